@@ -1,0 +1,111 @@
+"""``hydrosync new | import | info | run``: project management from the command line."""
+
+from __future__ import annotations
+
+import argparse
+from pathlib import Path
+
+from hydrosync_core.errors import InputError
+from hydrosync_core.importers.kinds import KINDS, import_file
+from hydrosync_core.project import Project
+
+
+def _open_project(path: str) -> Project:
+    return Project.open(path)
+
+
+def cmd_new(args: argparse.Namespace) -> int:
+    path = Path(args.project)
+    if path.exists() and not args.force:
+        raise InputError(str(path), "file exists (use --force to overwrite)")
+    project = Project.new(name=args.name or path.stem)
+    project.save(path)
+    print(f"created {path}")
+    return 0
+
+
+def cmd_import(args: argparse.Namespace) -> int:
+    path = Path(args.project)
+    project = _open_project(path) if path.exists() else Project.new(name=path.stem)
+    chosen = [(kind, getattr(args, kind)) for kind in KINDS if getattr(args, kind, None)]
+    if not chosen:
+        raise InputError(None, "nothing to import: give at least one --KIND FILE")
+    # Read everything first so one bad file leaves the project untouched.
+    messages = [import_file(project, kind, file) for kind, file in chosen]
+    project.save(path)
+    for message in messages:
+        print(message)
+    return 0
+
+
+def _human(nbytes: int) -> str:
+    size = float(nbytes)
+    for unit in ("B", "KiB", "MiB", "GiB"):
+        if size < 1024 or unit == "GiB":
+            return f"{size:.0f} {unit}" if unit == "B" else f"{size:.1f} {unit}"
+        size /= 1024
+    return f"{size:.1f} GiB"
+
+
+def cmd_info(args: argparse.Namespace) -> int:
+    with _open_project(args.project) as project:
+        attrs = project.attrs_root
+        print(f"{args.project}: {attrs.get('name', '')}")
+        for key in ("schema_version", "software_version", "created", "modified"):
+            print(f"  {key}: {attrs.get(key)}")
+        for info in project.walk():
+            depth = info.path.count("/")
+            label = info.path.rsplit("/", 1)[-1]
+            if info.kind == "group":
+                print(f"  {'  ' * depth}{label}/  ({_human(info.nbytes)})")
+            else:
+                shape = "x".join(str(n) for n in info.shape) or "scalar"
+                print(f"  {'  ' * depth}{label}  {shape} {info.dtype}")
+    return 0
+
+
+def cmd_run(args: argparse.Namespace) -> int:
+    from hydrosync_core.cli.terminal import TerminalProgress
+    from hydrosync_core.plugins import plugin_specs
+
+    specs = {s.id: s for s in plugin_specs()}
+    if args.plugin not in specs:
+        raise InputError(None, f"unknown plugin '{args.plugin}' (known: {', '.join(specs)})")
+    spec = specs[args.plugin]
+    project = _open_project(args.project)
+    missing = spec.missing_inputs(project)
+    if missing:
+        raise InputError(args.project, f"{spec.name} needs {', '.join('/' + m for m in missing)}")
+    progress = TerminalProgress(spec.name)
+    spec.load_run()(project, dict(spec.default_params), progress, None)
+    progress.done()
+    project.save()
+    print(f"{spec.name}: results stored in {args.project} under /results/{spec.id}")
+    return 0
+
+
+def register(sub: argparse._SubParsersAction) -> None:
+    p = sub.add_parser("new", help="create an empty project file")
+    p.add_argument("project", help="project file to create (.h5)")
+    p.add_argument("--name", help="project name (default: file stem)")
+    p.add_argument("--force", action="store_true", help="overwrite an existing file")
+    p.set_defaults(func=cmd_new)
+
+    p = sub.add_parser(
+        "import", help="import data files into a project (created if missing)",
+        description="Import files into a project. Every file is read and checked before "
+        "the project is saved, so a bad file leaves the project unchanged.",
+    )
+    p.add_argument("project", help="project file (.h5)")
+    for name, kind in KINDS.items():
+        p.add_argument(f"--{name}", metavar="FILE", help=kind.description)
+    p.set_defaults(func=cmd_import)
+
+    p = sub.add_parser("info", help="list a project's contents")
+    p.add_argument("project", help="project file (.h5)")
+    p.set_defaults(func=cmd_info)
+
+    p = sub.add_parser("run", help="run one plugin headless on a project and save the results")
+    p.add_argument("plugin", help="plugin id (e.g. latency, pool_calibration)")
+    p.add_argument("project", help="project file (.h5)")
+    p.set_defaults(func=cmd_run)

@@ -1,0 +1,1 @@
+"""Importers: text formats of ``formats.md`` and real device logs."""

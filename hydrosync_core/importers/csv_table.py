@@ -1,0 +1,169 @@
+"""Validated reading of the numeric CSV files of ``formats.md``.
+
+Fast path: numpy's C parser reads the whole file. Only when it fails (or a value is not
+finite) is the file re-scanned line by line to name the exact line and field at fault,
+so a 10-million-row point file loads at numpy speed while a bad file still gets a
+precise one-line error.
+"""
+
+from __future__ import annotations
+
+import csv
+import io
+import math
+import os
+from collections.abc import Sequence
+from pathlib import Path
+
+import numpy as np
+
+from hydrosync_core.errors import InputError
+
+
+def _read_text(path: Path) -> str:
+    if not path.exists():
+        raise InputError(str(path), "no such file")
+    if path.is_dir():
+        raise InputError(str(path), "is a folder, not a file")
+    try:
+        text = path.read_text(encoding="utf-8-sig", errors="strict")
+    except UnicodeDecodeError as exc:
+        raise InputError(str(path), f"not a text file (byte {exc.start} is not UTF-8)") from None
+    if not text.strip():
+        raise InputError(str(path), "file is empty")
+    return text
+
+
+def _header(path: Path, text: str) -> tuple[list[str], int]:
+    """Return the lower-cased column names and the 1-based line number of the header."""
+    for number, line in enumerate(text.splitlines(), start=1):
+        if line.strip() and not line.lstrip().startswith("#"):
+            names = [c.strip().lower() for c in next(csv.reader([line]))]
+            return names, number
+    raise InputError(str(path), "file has no header row")
+
+
+def _scan_for_error(
+    path: Path, text: str, header_line: int, names: list[str], wanted: list[int]
+) -> InputError:
+    """Find the first line that breaks the numeric parse and describe it."""
+    lines = text.splitlines()
+    for number in range(header_line + 1, len(lines) + 1):
+        line = lines[number - 1]
+        if not line.strip() or line.lstrip().startswith("#"):
+            continue
+        cells = next(csv.reader([line]))
+        if len(cells) != len(names):
+            return InputError(
+                str(path), f"expected {len(names)} fields, found {len(cells)}", line=number
+            )
+        for index in wanted:
+            raw = cells[index].strip()
+            try:
+                value = float(raw)
+            except ValueError:
+                return InputError(
+                    str(path), f"'{raw}' is not a number", line=number, field=names[index]
+                )
+            if not math.isfinite(value):
+                return InputError(
+                    str(path), f"value '{raw}' is not finite", line=number, field=names[index]
+                )
+    return InputError(str(path), "could not parse the numeric columns")
+
+
+def read_numeric_csv(
+    path: str | os.PathLike,
+    required: Sequence[str],
+    optional: Sequence[str] = (),
+    *,
+    time_column: str | None = "time",
+    min_rows: int = 1,
+) -> dict[str, np.ndarray]:
+    """Read a comma-separated numeric table with a header row.
+
+    Parameters
+    ----------
+    path : path-like
+        The CSV file.
+    required, optional : sequence of str
+        Column names (case-insensitive). Missing required columns are an error; optional
+        ones are returned when present. Other columns are ignored.
+    time_column : str or None
+        If given, rows are sorted by this column (float64 seconds) and duplicate times
+        are rejected with the two offending lines named.
+    min_rows : int
+        Fewer data rows than this is an error.
+
+    Returns
+    -------
+    dict of str to ndarray
+        float64 1-D arrays keyed by lower-case column name, in *required* then
+        *optional* order.
+
+    Raises
+    ------
+    InputError
+        With file, line and field for every problem.
+    """
+    path = Path(path)
+    text = _read_text(path)
+    names, header_line = _header(path, text)
+    missing = [c for c in required if c not in names]
+    if missing:
+        raise InputError(
+            str(path),
+            f"missing column(s) {', '.join(missing)} (header has: {', '.join(names)})",
+            line=header_line,
+        )
+    wanted_names = list(required) + [c for c in optional if c in names]
+    wanted = [names.index(c) for c in wanted_names]
+    body = "\n".join(text.splitlines()[header_line:])
+    try:
+        table = np.loadtxt(
+            io.StringIO(body), delimiter=",", usecols=wanted, ndmin=2, dtype=np.float64,
+            comments="#",
+        )
+    except ValueError:
+        raise _scan_for_error(path, text, header_line, names, wanted) from None
+    if table.shape[0] and not np.isfinite(table).all():
+        raise _scan_for_error(path, text, header_line, names, wanted)
+    if table.shape[0] < min_rows:
+        raise InputError(
+            str(path), f"has {table.shape[0]} data row(s); at least {min_rows} needed"
+        )
+    columns = {name: np.ascontiguousarray(table[:, i]) for i, name in enumerate(wanted_names)}
+    if time_column is not None:
+        columns = _sort_by_time(path, text, header_line, columns, time_column)
+    return columns
+
+
+def _data_line_numbers(text: str, header_line: int) -> np.ndarray:
+    lines = text.splitlines()
+    return np.array(
+        [
+            n
+            for n in range(header_line + 1, len(lines) + 1)
+            if lines[n - 1].strip() and not lines[n - 1].lstrip().startswith("#")
+        ]
+    )
+
+
+def _sort_by_time(
+    path: Path, text: str, header_line: int, columns: dict[str, np.ndarray], key: str
+) -> dict[str, np.ndarray]:
+    time = columns[key]
+    order = np.argsort(time, kind="stable")
+    sorted_time = time[order]
+    dup = np.flatnonzero(np.diff(sorted_time) == 0)
+    if dup.size:
+        line_numbers = _data_line_numbers(text, header_line)
+        first, second = sorted(line_numbers[order[dup[0]]], line_numbers[order[dup[0] + 1]])
+        raise InputError(
+            str(path),
+            f"duplicate time {sorted_time[dup[0]]!r} (also on line {first})",
+            line=int(second), field=key,
+        )
+    if np.all(order == np.arange(order.size)):
+        return columns
+    return {name: values[order] for name, values in columns.items()}

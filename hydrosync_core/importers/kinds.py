@@ -1,0 +1,89 @@
+"""What ``hydrosync import`` and File → Import… can bring into a project.
+
+Each kind maps a file to a project location through a reader. Modules add kinds with
+:func:`register_kind` (the NMEA/real-log readers register theirs on import).
+"""
+
+from __future__ import annotations
+
+import os
+from collections.abc import Callable
+from dataclasses import dataclass
+from pathlib import Path
+
+from hydrosync_core.importers import pool_json, survey_csv
+from hydrosync_core.project import Project
+from hydrosync_core.project import schema as S
+
+
+@dataclass(frozen=True)
+class ImportKind:
+    """A kind of input file and how it lands in the project."""
+
+    name: str
+    description: str
+    target: str
+    store: Callable[[Project, str, Path], str]
+
+
+KINDS: dict[str, ImportKind] = {}
+
+
+def register_kind(kind: ImportKind) -> None:
+    KINDS[kind.name] = kind
+
+
+def _table(reader: Callable) -> Callable[[Project, str, Path], str]:
+    def store(project: Project, target: str, path: Path) -> str:
+        columns = reader(path)
+        project.put_table(target, columns, source=str(path))
+        rows = len(next(iter(columns.values())))
+        return f"{rows} rows from {path.name} into /{target}"
+
+    return store
+
+
+def _points(project: Project, target: str, path: Path) -> str:
+    from hydrosync_core.importers.pointcloud import read_point_cloud
+
+    points = read_point_cloud(path)
+    project.put(target, points, attrs={"source": str(path), "frame": "target ENU", "units": "m"})
+    return f"{len(points)} points from {path.name} into /{target}"
+
+
+def _json(reader: Callable) -> Callable[[Project, str, Path], str]:
+    def store(project: Project, target: str, path: Path) -> str:
+        project.put_json(target, reader(path))
+        project.set_attrs(target, source=str(path))
+        return f"{path.name} into /{target}"
+
+    return store
+
+
+for _kind in (
+    ImportKind("gnss", "GNSS heights CSV (time, height[, lat, lon, quality])", S.RAW_GNSS,
+               _table(survey_csv.read_gnss_csv)),
+    ImportKind("attitude", "attitude CSV (time, roll, pitch, heading, heave)", S.RAW_ATTITUDE,
+               _table(survey_csv.read_attitude_csv)),
+    ImportKind("lines", "survey lines CSV (name, start, end)", S.RAW_LINES,
+               _table(survey_csv.read_lines_csv)),
+    ImportKind("mbes", "multibeam soundings CSV (time, x, y, z; sensor frame)",
+               f"{S.RAW_POOL}/mbes", _table(survey_csv.read_mbes_csv)),
+    ImportKind("ins", "INS trajectory CSV (time, e, n, u, roll, pitch, heading)",
+               f"{S.RAW_POOL}/ins", _table(survey_csv.read_ins_csv)),
+    ImportKind("lidar", "laser points (CSV x,y,z / PLY / LAS / LAZ; target ENU)",
+               f"{S.RAW_POOL}/lidar", _points),
+    ImportKind("setup", "pool setup.json (coarse boresight and lever arm)",
+               f"{S.RAW_POOL}/setup", _json(pool_json.read_setup_json)),
+    ImportKind("target", "pool target.json (target design)", f"{S.RAW_POOL}/target",
+               _json(pool_json.read_target_json)),
+):
+    register_kind(_kind)
+
+
+def import_file(project: Project, kind: str, path: str | os.PathLike) -> str:
+    """Read *path* as *kind* into *project*; return a one-line summary."""
+    if kind not in KINDS:
+        raise KeyError(f"unknown import kind '{kind}' (known: {', '.join(KINDS)})")
+    spec = KINDS[kind]
+    return spec.store(project, spec.target, Path(path))

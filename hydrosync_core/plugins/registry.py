@@ -1,0 +1,50 @@
+"""Plugin discovery through entry points. Discovery never raises."""
+
+from __future__ import annotations
+
+import logging
+from dataclasses import dataclass
+from importlib.metadata import entry_points
+
+from hydrosync_core.plugins.spec import ENTRY_POINT_GROUP, PluginSpec
+
+log = logging.getLogger(__name__)
+
+
+@dataclass(frozen=True)
+class Discovered:
+    """One entry point: its spec, or the error that stopped it loading."""
+
+    entry_point: str
+    value: str
+    spec: PluginSpec | None
+    error: str | None
+
+
+def discover(group: str = ENTRY_POINT_GROUP) -> list[Discovered]:
+    """Load every plugin spec of *group*; broken ones come back with their error."""
+    found: list[Discovered] = []
+    for ep in entry_points(group=group):
+        try:
+            spec = ep.load()
+            if not isinstance(spec, PluginSpec):
+                raise TypeError(f"{ep.value} is a {type(spec).__name__}, not a PluginSpec")
+            found.append(Discovered(ep.name, ep.value, spec, None))
+        except Exception as exc:  # a third-party plugin may fail in any way
+            message = f"{type(exc).__name__}: {exc}"
+            log.error("plugin '%s' (%s) failed to load: %s", ep.name, ep.value, message)
+            found.append(Discovered(ep.name, ep.value, None, message))
+    found.sort(key=lambda d: (d.spec.order if d.spec else 1000, d.entry_point))
+    return found
+
+
+def plugin_specs() -> list[PluginSpec]:
+    """The specs that loaded, in display order."""
+    return [d.spec for d in discover() if d.spec is not None]
+
+
+def get_spec(plugin_id: str) -> PluginSpec:
+    for spec in plugin_specs():
+        if spec.id == plugin_id:
+            return spec
+    raise KeyError(f"no plugin with id '{plugin_id}'")

@@ -1,0 +1,47 @@
+"""The vessel offset sheet stored in ``/vessel``: sensor positions and mounting angles.
+
+Each sensor has ``offset_m`` ``[x, y, z]`` in the body frame (FRD, metres) relative to
+the vessel reference point, and optionally ``angles_deg`` ``{roll, pitch, yaw}``.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from hydrosync_core.errors import InputError
+from hydrosync_core.project.model import Project, default_vessel
+from hydrosync_core.project.schema import VESSEL
+
+
+def vessel_config(project: Project) -> dict:
+    """Return the vessel sheet (the default empty sheet if none is stored)."""
+    return project.get_json(VESSEL, default_vessel())
+
+
+def set_sensor(
+    project: Project, name: str, offset_m, angles_deg: dict | None = None, **info
+) -> None:
+    """Set sensor *name*'s offset (body FRD, m) and optional mounting angles (deg)."""
+    config = vessel_config(project)
+    entry = {"offset_m": [float(v) for v in offset_m]}
+    if angles_deg is not None:
+        entry["angles_deg"] = {k: float(v) for k, v in angles_deg.items()}
+    entry.update(info)
+    config.setdefault("sensors", {})[name] = entry
+    project.put_json(VESSEL, config)
+
+
+def sensor_offset(project: Project, name: str) -> np.ndarray:
+    """Offset of sensor *name*, body frame FRD, metres, shape (3,)."""
+    sensors = vessel_config(project).get("sensors", {})
+    if name not in sensors:
+        raise InputError(
+            str(project.path or "<project>"), f"vessel sheet has no sensor '{name}'",
+            field="vessel/sensors",
+        )
+    return np.asarray(sensors[name]["offset_m"], dtype=float)
+
+
+def lever_arm(project: Project, to: str, origin: str) -> np.ndarray:
+    """Vector from sensor *origin* to sensor *to*, body frame FRD, metres, shape (3,)."""
+    return sensor_offset(project, to) - sensor_offset(project, origin)

@@ -1,0 +1,1 @@
+"""HydroSync Qt shell: main window, project browser, plugin host, workers."""

@@ -61,7 +61,9 @@ class PluginPanel(QWidget):
         worker = Worker(fn)
         worker.signals.sig_progress.connect(self.sig_progress)
         worker.signals.sig_finished.connect(on_finished)
-        worker.signals.sig_failed.connect(lambda msg: self.sig_status.emit(f"{label} failed: {msg}"))
+        worker.signals.sig_failed.connect(
+            lambda msg: self.sig_status.emit(f"{label} failed: {msg}")
+        )
         worker.signals.sig_cancelled.connect(lambda: self.sig_status.emit(f"{label} cancelled"))
         worker.signals.sig_done.connect(lambda: self.sig_busy.emit(False))
         self.worker = worker

@@ -158,10 +158,10 @@ def _sort_by_time(
     dup = np.flatnonzero(np.diff(sorted_time) == 0)
     if dup.size:
         line_numbers = _data_line_numbers(text, header_line)
-        first, second = sorted(line_numbers[order[dup[0]]], line_numbers[order[dup[0] + 1]])
+        first, second = sorted((line_numbers[order[dup[0]]], line_numbers[order[dup[0] + 1]]))
         raise InputError(
             str(path),
-            f"duplicate time {sorted_time[dup[0]]!r} (also on line {first})",
+            f"duplicate time {float(sorted_time[dup[0]])!r} (also on line {first})",
             line=int(second), field=key,
         )
     if np.all(order == np.arange(order.size)):

@@ -12,8 +12,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from hydrosync_core.importers import pool_json, survey_csv
-from hydrosync_core.project import Project
-from hydrosync_core.project import schema as S
+from hydrosync_core.project import Project, schema
 
 
 @dataclass(frozen=True)
@@ -61,21 +60,21 @@ def _json(reader: Callable) -> Callable[[Project, str, Path], str]:
 
 
 for _kind in (
-    ImportKind("gnss", "GNSS heights CSV (time, height[, lat, lon, quality])", S.RAW_GNSS,
+    ImportKind("gnss", "GNSS heights CSV (time, height[, lat, lon, quality])", schema.RAW_GNSS,
                _table(survey_csv.read_gnss_csv)),
-    ImportKind("attitude", "attitude CSV (time, roll, pitch, heading, heave)", S.RAW_ATTITUDE,
+    ImportKind("attitude", "attitude CSV (time, roll, pitch, heading, heave)", schema.RAW_ATTITUDE,
                _table(survey_csv.read_attitude_csv)),
-    ImportKind("lines", "survey lines CSV (name, start, end)", S.RAW_LINES,
+    ImportKind("lines", "survey lines CSV (name, start, end)", schema.RAW_LINES,
                _table(survey_csv.read_lines_csv)),
     ImportKind("mbes", "multibeam soundings CSV (time, x, y, z; sensor frame)",
-               f"{S.RAW_POOL}/mbes", _table(survey_csv.read_mbes_csv)),
+               f"{schema.RAW_POOL}/mbes", _table(survey_csv.read_mbes_csv)),
     ImportKind("ins", "INS trajectory CSV (time, e, n, u, roll, pitch, heading)",
-               f"{S.RAW_POOL}/ins", _table(survey_csv.read_ins_csv)),
+               f"{schema.RAW_POOL}/ins", _table(survey_csv.read_ins_csv)),
     ImportKind("lidar", "laser points (CSV x,y,z / PLY / LAS / LAZ; target ENU)",
-               f"{S.RAW_POOL}/lidar", _points),
+               f"{schema.RAW_POOL}/lidar", _points),
     ImportKind("setup", "pool setup.json (coarse boresight and lever arm)",
-               f"{S.RAW_POOL}/setup", _json(pool_json.read_setup_json)),
-    ImportKind("target", "pool target.json (target design)", f"{S.RAW_POOL}/target",
+               f"{schema.RAW_POOL}/setup", _json(pool_json.read_setup_json)),
+    ImportKind("target", "pool target.json (target design)", f"{schema.RAW_POOL}/target",
                _json(pool_json.read_target_json)),
 ):
     register_kind(_kind)

@@ -1,0 +1,92 @@
+"""Paragraph styles, colours and table styling shared by every report section.
+
+One look for the whole document: Helvetica (a standard PDF font, so no font file is
+embedded and every text is extractable), dark-blue headings, tables with a shaded header
+row that repeats on each page.
+"""
+
+from __future__ import annotations
+
+from reportlab.lib import colors
+from reportlab.lib.enums import TA_CENTER, TA_LEFT
+from reportlab.lib.styles import ParagraphStyle, StyleSheet1
+from reportlab.lib.units import mm
+
+INK = colors.HexColor("#1b1b1b")
+ACCENT = colors.HexColor("#1f4e79")
+MUTED = colors.HexColor("#666666")
+RULE = colors.HexColor("#9aa7b4")
+HEADER_FILL = colors.HexColor("#dde6ef")
+ZEBRA_FILL = colors.HexColor("#f4f6f8")
+WARN_FILL = colors.HexColor("#fff4d6")
+BAD_TEXT = colors.HexColor("#a32020")
+
+# Colour cycle for plot series: colour-blind-safe (Okabe-Ito), dark enough on white paper.
+SERIES = [
+    colors.HexColor(c)
+    for c in ("#0072b2", "#d55e00", "#009e73", "#cc79a7", "#e69f00", "#56b4e9", "#000000",
+              "#f0e442")
+]
+
+PAGE_MARGIN = 18 * mm
+
+
+def stylesheet() -> StyleSheet1:
+    """Return the report's paragraph styles (``Title``, ``H1``, ``H2``, ``Body``, …)."""
+    ss = StyleSheet1()
+    base = ParagraphStyle("Body", fontName="Helvetica", fontSize=9.5, leading=12.5,
+                          textColor=INK, spaceAfter=4)
+    ss.add(base)
+    ss.add(ParagraphStyle("Small", parent=base, fontSize=8, leading=10, textColor=MUTED))
+    ss.add(ParagraphStyle("Caption", parent=base, fontSize=8.5, leading=10.5,
+                          textColor=MUTED, spaceBefore=2, spaceAfter=10))
+    ss.add(ParagraphStyle("Title", parent=base, fontName="Helvetica-Bold", fontSize=24,
+                          leading=29, textColor=ACCENT, spaceAfter=6))
+    ss.add(ParagraphStyle("Subtitle", parent=base, fontSize=13, leading=17, textColor=MUTED,
+                          spaceAfter=18))
+    ss.add(ParagraphStyle("H1", parent=base, fontName="Helvetica-Bold", fontSize=15,
+                          leading=19, textColor=ACCENT, spaceBefore=4, spaceAfter=8))
+    ss.add(ParagraphStyle("H2", parent=base, fontName="Helvetica-Bold", fontSize=11.5,
+                          leading=15, textColor=ACCENT, spaceBefore=10, spaceAfter=4))
+    ss.add(ParagraphStyle("Cell", parent=base, fontSize=8.5, leading=10.5, spaceAfter=0))
+    ss.add(ParagraphStyle("CellBold", parent=ss["Cell"], fontName="Helvetica-Bold"))
+    ss.add(ParagraphStyle("CellCenter", parent=ss["Cell"], alignment=TA_CENTER))
+    ss.add(ParagraphStyle("Warning", parent=base, backColor=WARN_FILL, borderPadding=4,
+                          spaceBefore=4, spaceAfter=8, alignment=TA_LEFT))
+    ss.add(ParagraphStyle("TOC1", parent=base, fontSize=10, leading=14))
+    ss.add(ParagraphStyle("TOC2", parent=base, fontSize=9, leading=12, leftIndent=12))
+    return ss
+
+
+def table_style(n_rows: int, numeric_from: int = 1, zebra: bool = True) -> list[tuple]:
+    """Table style commands: shaded bold header row, rules, optional zebra rows.
+
+    Parameters
+    ----------
+    n_rows : int
+        Number of rows including the header.
+    numeric_from : int
+        Columns from this index on are right-aligned (numbers).
+    zebra : bool
+        Shade every other body row to guide the eye across wide tables.
+    """
+    cmds: list[tuple] = [
+        ("FONT", (0, 0), (-1, 0), "Helvetica-Bold", 8.5),
+        ("FONT", (0, 1), (-1, -1), "Helvetica", 8.5),
+        ("TEXTCOLOR", (0, 0), (-1, -1), INK),
+        ("BACKGROUND", (0, 0), (-1, 0), HEADER_FILL),
+        ("LINEABOVE", (0, 0), (-1, 0), 0.8, ACCENT),
+        ("LINEBELOW", (0, 0), (-1, 0), 0.6, ACCENT),
+        ("LINEBELOW", (0, -1), (-1, -1), 0.8, ACCENT),
+        ("VALIGN", (0, 0), (-1, -1), "MIDDLE"),
+        ("ALIGN", (0, 0), (numeric_from - 1, -1), "LEFT"),
+        ("ALIGN", (numeric_from, 0), (-1, -1), "RIGHT"),
+        ("TOPPADDING", (0, 0), (-1, -1), 2.5),
+        ("BOTTOMPADDING", (0, 0), (-1, -1), 2.5),
+        ("LEFTPADDING", (0, 0), (-1, -1), 4),
+        ("RIGHTPADDING", (0, 0), (-1, -1), 4),
+    ]
+    if zebra:
+        for row in range(2, n_rows, 2):
+            cmds.append(("BACKGROUND", (0, row), (-1, row), ZEBRA_FILL))
+    return cmds

@@ -1,0 +1,97 @@
+"""Page layout: A4 portrait, a cover page, running header and "page N of M" footer.
+
+"Page N of M" needs M before any page is final. :class:`NumberedCanvas` keeps each
+page's drawing state and paints the footers at save time, when the page count is known
+(the standard reportlab recipe); this avoids a second layout pass just for M.
+"""
+
+from __future__ import annotations
+
+from reportlab.lib.pagesizes import A4
+from reportlab.lib.units import mm
+from reportlab.pdfgen import canvas as rl_canvas
+from reportlab.platypus import BaseDocTemplate, Frame, PageTemplate, Paragraph
+
+from hydrosync_core.report.styles import ACCENT, MUTED, PAGE_MARGIN, RULE
+
+
+class NumberedCanvas(rl_canvas.Canvas):
+    """A canvas that writes "page N of M" on every page once M is known.
+
+    The document template sets :attr:`footer_left` and :attr:`header_text` on the canvas
+    class before the build (they are the same for every page).
+    """
+
+    footer_left = ""
+    header_text = ""
+
+    def __init__(self, *args, **kwargs) -> None:
+        super().__init__(*args, **kwargs)
+        self._saved_pages: list[dict] = []
+
+    def showPage(self) -> None:  # noqa: N802 (reportlab API)
+        self._saved_pages.append(dict(self.__dict__))
+        self._startPage()
+
+    def save(self) -> None:
+        total = len(self._saved_pages)
+        for state in self._saved_pages:
+            self.__dict__.update(state)
+            self._draw_running_text(total)
+            super().showPage()
+        super().save()
+
+    def _draw_running_text(self, total: int) -> None:
+        width, height = self._pagesize
+        page = self._pageNumber
+        self.saveState()
+        self.setFont("Helvetica", 8)
+        self.setFillColor(MUTED)
+        self.drawRightString(width - PAGE_MARGIN, 10 * mm, f"page {page} of {total}")
+        self.drawString(PAGE_MARGIN, 10 * mm, self.footer_left[:110])
+        if page > 1:  # the cover carries its own title block
+            self.drawString(PAGE_MARGIN, height - 11 * mm, self.header_text[:120])
+            self.setStrokeColor(RULE)
+            self.setLineWidth(0.5)
+            self.line(PAGE_MARGIN, height - 12.5 * mm, width - PAGE_MARGIN, height - 12.5 * mm)
+        self.setStrokeColor(RULE)
+        self.setLineWidth(0.5)
+        self.line(PAGE_MARGIN, 13.5 * mm, width - PAGE_MARGIN, 13.5 * mm)
+        self.restoreState()
+
+
+class ReportDocTemplate(BaseDocTemplate):
+    """A4 document with one body frame; headings H1/H2 become PDF outline entries."""
+
+    def __init__(self, filename: str, *, title: str, author: str, subject: str) -> None:
+        super().__init__(
+            filename, pagesize=A4, title=title, author=author, subject=subject,
+            creator="HydroSync", leftMargin=PAGE_MARGIN, rightMargin=PAGE_MARGIN,
+            topMargin=PAGE_MARGIN, bottomMargin=PAGE_MARGIN + 2 * mm,
+        )
+        frame = Frame(self.leftMargin, self.bottomMargin, self.width, self.height, id="body",
+                      leftPadding=0, rightPadding=0, topPadding=0, bottomPadding=0)
+        self.addPageTemplates([PageTemplate(id="body", frames=[frame])])
+        self._outline_count = 0
+
+    def afterFlowable(self, flowable) -> None:  # noqa: N802 (reportlab API)
+        """Register H1/H2 headings as bookmarks and table-of-contents entries."""
+        if not isinstance(flowable, Paragraph):
+            return
+        style = flowable.style.name
+        if style not in ("H1", "H2"):
+            return
+        level = 0 if style == "H1" else 1
+        text = flowable.getPlainText()
+        key = f"h{self._outline_count}"
+        self._outline_count += 1
+        self.canv.bookmarkPage(key)
+        self.canv.addOutlineEntry(text, key, level=level, closed=level > 0)
+        self.notify("TOCEntry", (level, text, self.page, key))
+
+    def handle_documentBegin(self) -> None:  # noqa: N802 (reportlab API)
+        self._outline_count = 0
+        super().handle_documentBegin()
+
+
+__all__ = ["ACCENT", "NumberedCanvas", "ReportDocTemplate"]

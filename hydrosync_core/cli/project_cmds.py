@@ -31,11 +31,21 @@ def cmd_import(args: argparse.Namespace) -> int:
     if not chosen:
         raise InputError(None, "nothing to import: give at least one --KIND FILE")
     # Read everything first so one bad file leaves the project untouched.
-    messages = [import_file(project, kind, file) for kind, file in chosen]
+    messages = [_import_one(project, kind, file, args) for kind, file in chosen]
     project.save(path)
     for message in messages:
         print(message)
     return 0
+
+
+def _import_one(project: Project, kind: str, file: str, args: argparse.Namespace) -> str:
+    """Import one file; the attitude log honours ``--heave-positive``."""
+    heave = getattr(args, "heave_positive", None)
+    if kind == "attitude_log" and heave:
+        from hydrosync_core.importers.log_import import store_attitude_log
+
+        return store_attitude_log(project, KINDS[kind].target, Path(file), heave_positive=heave)
+    return import_file(project, kind, file)
 
 
 def _human(nbytes: int) -> str:
@@ -99,6 +109,11 @@ def register(sub: argparse._SubParsersAction) -> None:
     p.add_argument("project", help="project file (.h5)")
     for name, kind in KINDS.items():
         p.add_argument(f"--{name}", metavar="FILE", help=kind.description)
+    p.add_argument(
+        "--heave-positive", choices=("up", "down"), default=None,
+        help="direction of positive heave in an --attitude_log file (required for "
+        "PSXN,23 and PASHR; Seapath PSXN,23 is documented positive down)",
+    )
     p.set_defaults(func=cmd_import)
 
     p = sub.add_parser("info", help="list a project's contents")

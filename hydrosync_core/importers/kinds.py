@@ -86,3 +86,26 @@ def import_file(project: Project, kind: str, path: str | os.PathLike) -> str:
         raise KeyError(f"unknown import kind '{kind}' (known: {', '.join(KINDS)})")
     spec = KINDS[kind]
     return spec.store(project, spec.target, Path(path))
+
+
+# --- Real device logs (NMEA): stores live in log_import, imported lazily. -----------------
+def _gnss_log(project: Project, target: str, path: Path) -> str:
+    from hydrosync_core.importers.log_import import store_gnss_log
+
+    return store_gnss_log(project, target, path)
+
+
+def _attitude_log(project: Project, target: str, path: Path) -> str:
+    from hydrosync_core.importers.log_import import store_attitude_log
+
+    return store_attitude_log(project, target, path)
+
+
+register_kind(ImportKind(
+    "gnss_log", "NMEA GNSS log (GGA / PTNL,GGK [+GST, ZDA]; logger time tags allowed)",
+    schema.RAW_GNSS, _gnss_log,
+))
+register_kind(ImportKind(
+    "attitude_log", "NMEA motion log (PASHR / PSXN,23 / TSS1; see --heave-positive)",
+    schema.RAW_ATTITUDE, _attitude_log,
+))

@@ -1,21 +1,31 @@
-"""Paragraph styles, colours and table styling shared by every report section.
+"""Fonts, paragraph styles, colours and table styling shared by every report section.
 
-One look for the whole document: Helvetica (a standard PDF font, so no font file is
-embedded and every text is extractable), dark-blue headings, tables with a shaded header
-row that repeats on each page.
+One look for the whole document: DejaVu Sans, dark-blue headings, tables with a shaded
+header row that repeats on each page. The standard PDF font Helvetica has no glyph for
+Δ, σ or →, which a viewer then draws as blanks; DejaVu Sans has them and ships with
+matplotlib (a HydroSync dependency), so it is embedded (subset) from there. Helvetica is
+the fallback if the font files cannot be found.
 """
 
 from __future__ import annotations
+
+import logging
+import os
 
 from reportlab.lib import colors
 from reportlab.lib.enums import TA_CENTER, TA_LEFT
 from reportlab.lib.styles import ParagraphStyle, StyleSheet1
 from reportlab.lib.units import mm
+from reportlab.pdfbase import pdfmetrics
+from reportlab.pdfbase.ttfonts import TTFont
+
+log = logging.getLogger(__name__)
 
 INK = colors.HexColor("#1b1b1b")
 ACCENT = colors.HexColor("#1f4e79")
 MUTED = colors.HexColor("#666666")
 RULE = colors.HexColor("#9aa7b4")
+GRID = colors.HexColor("#e3e3e3")
 HEADER_FILL = colors.HexColor("#dde6ef")
 ZEBRA_FILL = colors.HexColor("#f4f6f8")
 WARN_FILL = colors.HexColor("#fff4d6")
@@ -31,28 +41,58 @@ SERIES = [
 PAGE_MARGIN = 18 * mm
 
 
+def _register_fonts() -> tuple[str, str]:
+    """Register DejaVu Sans (regular/bold/italic) with reportlab; return (regular, bold)."""
+    try:
+        import matplotlib
+
+        folder = os.path.join(matplotlib.get_data_path(), "fonts", "ttf")
+        faces = {"DejaVuSans": "DejaVuSans.ttf", "DejaVuSans-Bold": "DejaVuSans-Bold.ttf",
+                 "DejaVuSans-Oblique": "DejaVuSans-Oblique.ttf",
+                 "DejaVuSans-BoldOblique": "DejaVuSans-BoldOblique.ttf"}
+        for name, file in faces.items():
+            if name not in pdfmetrics.getRegisteredFontNames():
+                pdfmetrics.registerFont(TTFont(name, os.path.join(folder, file)))
+        pdfmetrics.registerFontFamily("DejaVuSans", normal="DejaVuSans", bold="DejaVuSans-Bold",
+                                      italic="DejaVuSans-Oblique",
+                                      boldItalic="DejaVuSans-BoldOblique")
+        return "DejaVuSans", "DejaVuSans-Bold"
+    except Exception as exc:  # missing or unreadable font files: still produce a report
+        log.warning("DejaVu Sans not available (%s); using Helvetica", exc)
+        return "Helvetica", "Helvetica-Bold"
+
+
+FONT, FONT_BOLD = _register_fonts()
+
+
 def stylesheet() -> StyleSheet1:
     """Return the report's paragraph styles (``Title``, ``H1``, ``H2``, ``Body``, …)."""
     ss = StyleSheet1()
-    base = ParagraphStyle("Body", fontName="Helvetica", fontSize=9.5, leading=12.5,
+    base = ParagraphStyle("Body", fontName=FONT, fontSize=9.5, leading=12.5,
                           textColor=INK, spaceAfter=4)
     ss.add(base)
     ss.add(ParagraphStyle("Small", parent=base, fontSize=8, leading=10, textColor=MUTED))
     ss.add(ParagraphStyle("Caption", parent=base, fontSize=8.5, leading=10.5,
                           textColor=MUTED, spaceBefore=2, spaceAfter=10))
-    ss.add(ParagraphStyle("Title", parent=base, fontName="Helvetica-Bold", fontSize=24,
+    ss.add(ParagraphStyle("TableCaption", parent=ss["Caption"], spaceBefore=6, spaceAfter=3,
+                          keepWithNext=1))
+    ss.add(ParagraphStyle("Title", parent=base, fontName=FONT_BOLD, fontSize=24,
                           leading=29, textColor=ACCENT, spaceAfter=6))
     ss.add(ParagraphStyle("Subtitle", parent=base, fontSize=13, leading=17, textColor=MUTED,
                           spaceAfter=18))
-    ss.add(ParagraphStyle("H1", parent=base, fontName="Helvetica-Bold", fontSize=15,
-                          leading=19, textColor=ACCENT, spaceBefore=4, spaceAfter=8))
-    ss.add(ParagraphStyle("H2", parent=base, fontName="Helvetica-Bold", fontSize=11.5,
-                          leading=15, textColor=ACCENT, spaceBefore=10, spaceAfter=4))
+    ss.add(ParagraphStyle("H1", parent=base, fontName=FONT_BOLD, fontSize=15,
+                          leading=19, textColor=ACCENT, spaceBefore=4, spaceAfter=8,
+                          keepWithNext=1))
+    ss.add(ParagraphStyle("H2", parent=base, fontName=FONT_BOLD, fontSize=11.5,
+                          leading=15, textColor=ACCENT, spaceBefore=10, spaceAfter=4,
+                          keepWithNext=1))
     ss.add(ParagraphStyle("Cell", parent=base, fontSize=8.5, leading=10.5, spaceAfter=0))
-    ss.add(ParagraphStyle("CellBold", parent=ss["Cell"], fontName="Helvetica-Bold"))
+    ss.add(ParagraphStyle("CellBold", parent=ss["Cell"], fontName=FONT_BOLD))
     ss.add(ParagraphStyle("CellCenter", parent=ss["Cell"], alignment=TA_CENTER))
     ss.add(ParagraphStyle("Warning", parent=base, backColor=WARN_FILL, borderPadding=4,
                           spaceBefore=4, spaceAfter=8, alignment=TA_LEFT))
+    # Like H2 but not entered in the outline (the contents does not list itself).
+    ss.add(ParagraphStyle("ContentsTitle", parent=ss["H2"], spaceBefore=0))
     ss.add(ParagraphStyle("TOC1", parent=base, fontSize=10, leading=14))
     ss.add(ParagraphStyle("TOC2", parent=base, fontSize=9, leading=12, leftIndent=12))
     return ss
@@ -71,8 +111,8 @@ def table_style(n_rows: int, numeric_from: int = 1, zebra: bool = True) -> list[
         Shade every other body row to guide the eye across wide tables.
     """
     cmds: list[tuple] = [
-        ("FONT", (0, 0), (-1, 0), "Helvetica-Bold", 8.5),
-        ("FONT", (0, 1), (-1, -1), "Helvetica", 8.5),
+        ("FONT", (0, 0), (-1, 0), FONT_BOLD, 8.5),
+        ("FONT", (0, 1), (-1, -1), FONT, 8.5),
         ("TEXTCOLOR", (0, 0), (-1, -1), INK),
         ("BACKGROUND", (0, 0), (-1, 0), HEADER_FILL),
         ("LINEABOVE", (0, 0), (-1, 0), 0.8, ACCENT),

@@ -12,7 +12,7 @@ from reportlab.lib.units import mm
 from reportlab.pdfgen import canvas as rl_canvas
 from reportlab.platypus import BaseDocTemplate, Frame, PageTemplate, Paragraph
 
-from hydrosync_core.report.styles import ACCENT, MUTED, PAGE_MARGIN, RULE
+from hydrosync_core.report.styles import ACCENT, FONT, MUTED, PAGE_MARGIN, RULE
 
 
 class NumberedCanvas(rl_canvas.Canvas):
@@ -45,7 +45,7 @@ class NumberedCanvas(rl_canvas.Canvas):
         width, height = self._pagesize
         page = self._pageNumber
         self.saveState()
-        self.setFont("Helvetica", 8)
+        self.setFont(FONT, 8)
         self.setFillColor(MUTED)
         self.drawRightString(width - PAGE_MARGIN, 10 * mm, f"page {page} of {total}")
         self.drawString(PAGE_MARGIN, 10 * mm, self.footer_left[:110])

@@ -50,11 +50,11 @@ class DayConfig:
     roll_period_s: float = 8.0
     pitch_amp_deg: float = 1.2
     tide_rate_m_per_h: float = 0.4
-    gnss_white_m: float = 0.02
-    multipath_m: float = 0.03
+    gnss_white_m: float = 0.05
+    multipath_m: float = 0.05
     multipath_tau_s: float = 30.0
-    heave_error_m: float = 0.025
-    heave_error_tau_s: float = 8.0
+    heave_error_m: float = 0.05
+    heave_error_tau_s: float = 5.0
     squat_m: float = 0.08
     t0: float = 345600.0
 

@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 import numpy as np
-from numpy.polynomial import polynomial as P
+from numpy.polynomial import polynomial as npoly
 
 
 def detrend(time: np.ndarray, height: np.ndarray, degree: int = 1) -> tuple[np.ndarray, np.ndarray]:
@@ -31,6 +31,6 @@ def detrend(time: np.ndarray, height: np.ndarray, degree: int = 1) -> tuple[np.n
     tc = time - time.mean()
     scale = max(float(np.abs(tc).max()), 1e-9)
     # Seed eq. 1: h_i = h_M(CT1_i) − trend(CT1_i).
-    coef = P.polyfit(tc / scale, height, degree)
-    residual = height - P.polyval(tc / scale, coef)
+    coef = npoly.polyfit(tc / scale, height, degree)
+    residual = height - npoly.polyval(tc / scale, coef)
     return residual, coef / scale ** np.arange(degree + 1)

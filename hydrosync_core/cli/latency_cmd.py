@@ -1,0 +1,133 @@
+"""``hydrosync latency``: GNSS-versus-attitude delay from CSV files or a project (formats.md)."""
+
+from __future__ import annotations
+
+import argparse
+import sys
+from pathlib import Path
+
+from hydrosync_core.atomic import write_json_atomic
+from hydrosync_core.errors import InputError
+
+_OPTION_OF_FIELD = {"range_s": "--range", "step_s": "--step", "min_r": "--min-r",
+                    "detrend_degree": "--detrend-degree", "skip_s": "--skip",
+                    "weighting": "--weighting", "lever_arm": "--lever-arm",
+                    "lever_arm_m": "--lever-arm"}
+
+
+def _params(args: argparse.Namespace) -> dict:
+    params: dict = {"range_s": list(args.range), "step_s": args.step, "min_r": args.min_r,
+                    "detrend_degree": args.detrend_degree, "skip_s": args.skip,
+                    "weighting": args.weighting}
+    if args.lever_arm is not None:
+        params["lever_arm_m"] = list(args.lever_arm)
+    return params
+
+
+def _print_table(result) -> None:
+    print(f"{'line':<10} {'epochs':>6} {'R max':>7} {'dt [s]':>8} {'+-[s]':>7} "
+          f"{'s0 bef[m]':>9} {'s0 aft[m]':>9}  used")
+    for ln in result.lines:
+        print(f"{ln.name:<10} {ln.epochs:>6d} {ln.r_max:>7.4f} {ln.latency_s:>8.3f} "
+              f"{ln.uncertainty_s:>7.3f} {ln.sigma0_before_m:>9.3f} {ln.sigma0_after_m:>9.3f}  "
+              f"{'yes' if ln.used else 'no'}")
+    print(f"latency {result.latency_s:.3f} s  (95 % interval {result.ci95_low:.3f} .. "
+          f"{result.ci95_high:.3f} s; {result.message})")
+    for warning in result.warnings:
+        print(f"warning: {warning}")
+
+
+def _rename(exc: InputError, files: dict) -> InputError:
+    """Name the real file/option instead of the core's generic labels."""
+    file = files.get(exc.file, exc.file)
+    if file is None and exc.field in _OPTION_OF_FIELD:
+        file = _OPTION_OF_FIELD[exc.field]
+    return InputError(file, exc.message, line=exc.line, field=exc.field)
+
+
+def _run_csv(args: argparse.Namespace) -> int:
+    from hydrosync_core.importers.survey_csv import (
+        read_attitude_csv,
+        read_gnss_csv,
+        read_lines_csv,
+    )
+    from hydrosync_core.methods.latency import estimate_latency
+    from hydrosync_core.methods.latency.result import LatencyParams
+
+    missing = [o for o, v in (("--gnss", args.gnss), ("--attitude", args.attitude),
+                              ("--lines", args.lines), ("--lever-arm", args.lever_arm),
+                              ("--json", args.json)) if v is None]
+    if missing:
+        raise InputError(None, f"missing option(s) {', '.join(missing)} (or give a project file)")
+    files = {"gnss": args.gnss, "attitude": args.attitude, "lines": args.lines}
+    try:
+        params = LatencyParams.from_dict(_params(args))
+        gnss, attitude = read_gnss_csv(args.gnss), read_attitude_csv(args.attitude)
+        lines = read_lines_csv(args.lines)
+        result = estimate_latency(gnss, attitude, lines, args.lever_arm, params)
+    except InputError as exc:
+        raise _rename(exc, files) from None
+    _print_table(result)
+    if not result.converged:
+        raise InputError(args.lines, f"{result.message}; " + "; ".join(result.warnings[-2:]))
+    write_json_atomic(args.json, result.to_dict())
+    return 0
+
+
+def _run_project(args: argparse.Namespace) -> int:
+    from hydrosync_core.cli.terminal import TerminalProgress
+    from hydrosync_core.methods.latency.project_run import run
+    from hydrosync_core.project import Project
+
+    if any(v is not None for v in (args.gnss, args.attitude, args.lines)):
+        raise InputError(args.project, "give either a project file or --gnss/--attitude/--lines")
+    project = Project.open(args.project)
+    for path in ("raw/gnss", "raw/attitude", "raw/lines"):
+        if not project.exists(path):
+            raise InputError(args.project, f"project has no /{path} (import it first)")
+    progress = TerminalProgress("latency")
+    try:
+        result = run(project, _params(args), progress, None)
+    except InputError as exc:
+        raise _rename(exc, {"gnss": args.project, "attitude": args.project,
+                            "lines": args.project}) from None
+    progress.done()
+    _print_table(result)
+    if args.json is not None and result.converged:
+        write_json_atomic(args.json, result.to_dict())
+    project.save()
+    print(f"results stored in {args.project} under /results/latency")
+    if not result.converged:
+        print(f"hydrosync latency: {args.project}: {result.message}", file=sys.stderr)
+        return 2
+    return 0
+
+
+def cmd_latency(args: argparse.Namespace) -> int:
+    return _run_project(args) if args.project else _run_csv(args)
+
+
+def register(sub: argparse._SubParsersAction) -> None:
+    p = sub.add_parser(
+        "latency", help="delay of GNSS heights relative to attitude/heave (correlation)",
+        description="Estimate how late the GNSS time tags are relative to the attitude "
+        "time tags, from CSV files (--gnss/--attitude/--lines/--lever-arm/--json) or from "
+        "a project file (results stored in it under /results/latency).",
+    )
+    p.add_argument("project", nargs="?", type=Path, help="project file (.h5) instead of CSVs")
+    p.add_argument("--gnss", type=Path, help="gnss.csv (time, height)")
+    p.add_argument("--attitude", type=Path, help="attitude.csv (time, roll, pitch, heading, heave)")
+    p.add_argument("--lines", type=Path, help="lines.csv (name, start, end)")
+    p.add_argument("--lever-arm", nargs=3, type=float, metavar=("X", "Y", "Z"),
+                   help="antenna relative to the motion sensor, body frame FRD, m")
+    p.add_argument("--range", nargs=2, type=float, metavar=("MIN", "MAX"), default=(-1.0, 1.0),
+                   help="scan range of the delay, s (default -1 1)")
+    p.add_argument("--step", type=float, default=0.005, help="scan step, s (default 0.005)")
+    p.add_argument("--min-r", type=float, default=0.85,
+                   help="use lines with R max above this (default 0.85)")
+    p.add_argument("--detrend-degree", type=int, default=1, help="tide polynomial degree (1)")
+    p.add_argument("--skip", type=float, default=0.0, help="seconds skipped at line start (0)")
+    p.add_argument("--weighting", choices=("r", "inverse_variance"), default="r",
+                   help="weights of the line mean (default r)")
+    p.add_argument("--json", type=Path, help="result.json to write")
+    p.set_defaults(func=cmd_latency)

@@ -1,0 +1,88 @@
+"""``hydrosync pool-calibrate``: pool calibration from files (formats.md) or a project."""
+
+from __future__ import annotations
+
+import argparse
+from pathlib import Path
+
+from hydrosync_core.atomic import write_json_atomic
+from hydrosync_core.errors import InputError
+
+
+def _read_lidar(path: str):
+    try:
+        from hydrosync_core.importers.pointcloud import read_point_cloud
+    except ModuleNotFoundError as exc:
+        if exc.name != "hydrosync_core.importers.pointcloud":
+            raise
+        if Path(path).suffix.lower() != ".csv":
+            raise InputError(path, "only CSV laser files can be read in this build") from None
+        from hydrosync_core.importers.survey_csv import read_lidar_csv
+        return read_lidar_csv(path)
+    return read_point_cloud(path)
+
+
+def _summary(result) -> str:
+    b, la = result.boresight_deg, result.lever_arm_m
+    text = (f"boresight roll {b['roll']:.4f} pitch {b['pitch']:.4f} yaw {b['yaw']:.4f} deg; "
+            f"lever arm x {la['x']:.4f} y {la['y']:.4f} z {la['z']:.4f} m "
+            f"({result.method}, {result.iterations} seed iterations, "
+            f"{'converged' if result.converged else 'NOT converged'})")
+    return text + "".join(f"\nwarning: {w}" for w in result.warnings)
+
+
+def cmd_pool(args: argparse.Namespace) -> int:
+    from hydrosync_core.cli.terminal import TerminalProgress
+
+    progress = TerminalProgress("pool-calibrate")
+    if args.project:
+        from hydrosync_core.methods.pool.project_run import run
+        from hydrosync_core.project import Project
+
+        project = Project.open(args.project)
+        for need in ("raw/pool/lidar", "raw/pool/mbes", "raw/pool/ins", "raw/pool/setup",
+                     "raw/pool/target"):
+            if not project.exists(need):
+                raise InputError(args.project, f"pool calibration needs /{need}")
+        result = run(project, None, progress, None)
+        progress.done()
+        project.save()
+        if args.json:
+            write_json_atomic(args.json, result.to_dict())
+        print(_summary(result))
+        return 0
+    missing = [f"--{n}" for n in ("lidar", "mbes", "ins", "setup", "target", "json")
+               if not getattr(args, n)]
+    if missing:
+        raise InputError(None, f"missing {', '.join(missing)} (or give a project file)")
+    from hydrosync_core.importers.pool_json import read_setup_json, read_target_json
+    from hydrosync_core.importers.survey_csv import read_ins_csv, read_mbes_csv
+    from hydrosync_core.methods.pool.api import calibrate
+
+    # Read and check everything before computing, so bad input fails fast.
+    lidar = _read_lidar(args.lidar)
+    mbes = read_mbes_csv(args.mbes)
+    ins = read_ins_csv(args.ins)
+    setup = read_setup_json(args.setup)
+    target = read_target_json(args.target)
+    result = calibrate(lidar, mbes, ins, setup, target, None, progress, None)
+    progress.done()
+    write_json_atomic(args.json, result.to_dict())
+    print(_summary(result))
+    return 0
+
+
+def register(sub: argparse._SubParsersAction) -> None:
+    p = sub.add_parser(
+        "pool-calibrate", help="multibeam boresight and lever arm from a pool target",
+        description="Pool calibration (seed 003): the multibeam boresight and lever arm "
+        "relative to the INS, against laser-scanned target faces. Give the five files "
+        "and --json, or a project file holding raw/pool/*.")
+    p.add_argument("project", nargs="?", help="project file (.h5) holding raw/pool/*")
+    p.add_argument("--lidar", help="laser points x,y,z (CSV/PLY/LAS/LAZ, target ENU)")
+    p.add_argument("--mbes", help="multibeam soundings CSV time,x,y,z (sensor frame)")
+    p.add_argument("--ins", help="INS CSV time,e,n,u,roll,pitch,heading")
+    p.add_argument("--setup", help="setup.json (coarse boresight and lever arm)")
+    p.add_argument("--target", help="target.json (target design)")
+    p.add_argument("--json", help="result.json to write (atomically)")
+    p.set_defaults(func=cmd_pool)

@@ -1,0 +1,186 @@
+"""Motion-sensor records of a log: ``$PASHR`` attitude, TSS1, Seapath ``$PSXN,23``.
+
+Sign conventions (HydroSync: roll + starboard down, pitch + bow up, heave + up):
+
+* TSS1 ``:XXAAAA MHHHHQMRRRR MPPPP`` — XX horizontal acceleration (hex, 3.83 cm/s²),
+  AAAA vertical acceleration (hex, 0.0625 cm/s²), then sign + heave in cm, a status
+  letter (U/u unaided, G/g GPS-aided, H/h heading-aided, F/f fully aided; lower case =
+  settling), sign + roll and sign + pitch in 0.01°. Heave is positive up ("above
+  datum"), roll positive port up (= starboard down), pitch positive bow up (TSS1 as
+  documented by NovAtel SPAN, Norwegian Subsea MRU and UHDAS/MAHRS notes) — no sign
+  change. TSS1 carries no time and no heading.
+* ``$PSXN,23,roll,pitch,heading,heave`` (Kongsberg Seatex Seapath): roll positive port
+  side up, pitch positive bow up, heading true (degrees). Seapath documentation gives
+  heave positive *down*; ``formats.md`` forbids guessing a sign, so the caller must
+  state it (``heave_positive="down"`` for a standard Seapath set-up).
+* ``$PASHR,hhmmss.sss,HHH.HH,T,RRR.RR,PPP.PP,heave,σroll,σpitch,σheading,GPSq,INSq``
+  (OxTS / Applanix / NovAtel / Trimble attitude form): roll and pitch taken as
+  port-up and bow-up positive, as written (Applanix POS MV can be set to output
+  Tait-Bryan or "TSS" angles — they differ at second order in roll·pitch; the file
+  does not say which). Heave is vendor- and set-up-specific (Trimble marks the field
+  "reserved", often empty: such epochs are skipped as ``empty heave``), so the caller
+  must state its sign. Ashtech's unrelated ``$PASHR,POS|SAT|MCA|…`` sentences (alphabetic
+  first field) are recognised and counted, never read as attitude.
+"""
+
+from __future__ import annotations
+
+import re
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from hydrosync_core.importers import nmea_fields as nf
+from hydrosync_core.importers.nmea_lines import LogLines
+
+_TSS1 = re.compile(
+    r":([0-9A-Fa-f]{2})([0-9A-Fa-f]{4}) ([ +-])(\d{4})([A-Za-z ])([ +-])(\d{4}) ([ +-])(\d{4})"
+)
+_PASHR_TIME = re.compile(r"\d{6}(\.\d*)?\Z")
+
+HEAVE_CONVENTION = {"TSS1": "up", "PSXN,23": None, "PASHR": None}
+"""Heave sign fixed by the format's specification (None: must be given by the user)."""
+DOCUMENTED_HEAVE = {"PSXN,23": "down (Seapath manual)", "PASHR": "vendor-specific"}
+
+
+@dataclass
+class MotionRecords:
+    """Attitude epochs of one source, before time assembly.
+
+    ``index`` sentence indices; ``tod`` UTC seconds of day (NaN when the format has no
+    time); roll, pitch, heading in degrees (HydroSync conventions); heave in metres *as
+    written in the file* (sign applied later); ``sigma`` optional dict of σ arrays (deg).
+    """
+
+    source: str
+    index: np.ndarray
+    tod: np.ndarray
+    roll: np.ndarray
+    pitch: np.ndarray
+    heading: np.ndarray
+    heave: np.ndarray
+    sigma: dict[str, np.ndarray] = field(default_factory=dict)
+    skipped: dict[str, int] = field(default_factory=dict)
+    warnings: list[str] = field(default_factory=list)
+
+
+def _drop(skipped: dict[str, int], reason: str, mask: np.ndarray, keep: np.ndarray) -> None:
+    n = int(np.count_nonzero(mask & keep))
+    if n:
+        skipped[reason] = skipped.get(reason, 0) + n
+    keep &= ~mask
+
+
+def split_pashr(log: LogLines, index: np.ndarray) -> tuple[np.ndarray, int]:
+    """Keep the attitude form of ``$PASHR`` (numeric time, ``T`` in field 3).
+
+    Returns the attitude sentence indices and how many Ashtech (non-attitude) ones
+    were set aside.
+    """
+    rows = nf.rows_of(log.body, index)
+    attitude = np.array(
+        [len(r) > 6 and bool(_PASHR_TIME.match(r[1])) and r[3] == "T" for r in rows],
+        dtype=bool,
+    )
+    return index[attitude], int(np.count_nonzero(~attitude))
+
+
+def parse_pashr(log: LogLines, index: np.ndarray) -> MotionRecords:
+    """Parse attitude-form ``$PASHR`` sentences (already filtered by :func:`split_pashr`)."""
+    rows = nf.rows_of(log.body, index)
+    heading, h_empty, h_bad = nf.to_float(nf.column(rows, 2))
+    roll, r_empty, r_bad = nf.to_float(nf.column(rows, 4))
+    pitch, p_empty, p_bad = nf.to_float(nf.column(rows, 5))
+    heave, v_empty, v_bad = nf.to_float(nf.column(rows, 6))
+    sig = {name: nf.to_float(nf.column(rows, k))[0]
+           for name, k in (("sigma_roll", 7), ("sigma_pitch", 8), ("sigma_heading", 9))}
+    keep = np.ones(len(rows), dtype=bool)
+    skipped: dict[str, int] = {}
+    _drop(skipped, "empty attitude field", h_empty | r_empty | p_empty, keep)
+    _drop(skipped, "empty heave", v_empty, keep)
+    _drop(skipped, "unparseable field", h_bad | r_bad | p_bad | v_bad, keep)
+    tod = nf.time_of_day(nf.column(rows, 1))
+    return MotionRecords(
+        "PASHR", index[keep], tod[keep], roll[keep], pitch[keep], heading[keep],
+        heave[keep], {k: v[keep] for k, v in sig.items()}, skipped,
+    )
+
+
+def parse_psxn23(
+    log: LogLines, index: np.ndarray, quality_index: np.ndarray | None = None
+) -> MotionRecords:
+    """Parse ``$PSXN,23,roll,pitch,heading,heave``.
+
+    When ``$PSXN,20`` quality sentences are present, epochs whose latest preceding
+    roll/pitch quality (field 5) is 2 = invalid are dropped.
+    """
+    rows = nf.rows_of(log.body, index)
+    roll, r_empty, r_bad = nf.to_float(nf.column(rows, 2))
+    pitch, p_empty, p_bad = nf.to_float(nf.column(rows, 3))
+    heading, h_empty, h_bad = nf.to_float(nf.column(rows, 4))
+    heave, v_empty, v_bad = nf.to_float(nf.column(rows, 5))
+    keep = np.ones(len(rows), dtype=bool)
+    skipped: dict[str, int] = {}
+    _drop(skipped, "empty attitude field", r_empty | p_empty | h_empty, keep)
+    _drop(skipped, "empty heave", v_empty, keep)
+    _drop(skipped, "unparseable field", r_bad | p_bad | h_bad | v_bad, keep)
+    if quality_index is not None and quality_index.size:
+        qrows = nf.rows_of(log.body, quality_index)
+        rp_quality, _, _ = nf.to_float(nf.column(qrows, 5))
+        k = np.searchsorted(quality_index, index, side="right") - 1
+        has = k >= 0
+        invalid = np.zeros(len(rows), dtype=bool)
+        invalid[has] = rp_quality[k[has]] == 2
+        _drop(skipped, "roll/pitch quality invalid (PSXN,20)", invalid, keep)
+    return MotionRecords(
+        "PSXN,23", index[keep], np.full(int(keep.sum()), np.nan), roll[keep], pitch[keep],
+        heading[keep], heave[keep], {}, skipped,
+    )
+
+
+def parse_tss1(log: LogLines, index: np.ndarray) -> MotionRecords:
+    """Parse TSS1 records: heave (cm -> m, positive up), roll and pitch (0.01° -> °)."""
+    heave, roll, pitch = (np.full(index.size, np.nan) for _ in range(3))
+    status = []
+    for j, i in enumerate(index):
+        m = _TSS1.fullmatch(log.body[i])
+        if m is None:
+            status.append("")
+            continue
+        g = m.groups()
+        # Sign character is a space (positive) or '-'; magnitudes are 4-digit integers.
+        heave[j] = (-1.0 if g[2] == "-" else 1.0) * int(g[3]) * 0.01
+        roll[j] = (-1.0 if g[5] == "-" else 1.0) * int(g[6]) * 0.01
+        pitch[j] = (-1.0 if g[7] == "-" else 1.0) * int(g[8]) * 0.01
+        status.append(g[4])
+    keep = np.isfinite(heave)
+    skipped: dict[str, int] = {}
+    if (~keep).any():
+        skipped["unparseable field"] = int(np.count_nonzero(~keep))
+    warnings = []
+    settling = sum(1 for s in status if s.islower())
+    if settling:
+        warnings.append(f"{settling} TSS1 records flagged settling (lower-case status)")
+    return MotionRecords(
+        "TSS1", index[keep], np.full(int(keep.sum()), np.nan), roll[keep], pitch[keep],
+        np.full(int(keep.sum()), np.nan), heave[keep], {}, skipped, warnings,
+    )
+
+
+def heading_from_hdt(log: LogLines, hdt_index: np.ndarray, times: np.ndarray,
+                     hdt_times: np.ndarray) -> np.ndarray:
+    """True heading (deg) from ``$--HDT`` sentences, interpolated at *times*.
+
+    Headings are unwrapped before linear interpolation so 359° -> 1° does not sweep
+    through 180°; outside the HDT time span the result is NaN.
+    """
+    rows = nf.rows_of(log.body, hdt_index)
+    hdg, _, _ = nf.to_float(nf.column(rows, 1))
+    ok = np.isfinite(hdg) & np.isfinite(hdt_times)
+    if np.count_nonzero(ok) < 2:
+        return np.full(times.shape, np.nan)
+    t, h = hdt_times[ok], hdg[ok]
+    order = np.argsort(t, kind="stable")
+    t, h = t[order], np.unwrap(np.radians(h[order]))
+    out = np.degrees(np.interp(times, t, h, left=np.nan, right=np.nan)) % 360.0
+    return out

@@ -1,0 +1,205 @@
+"""Latency between GNSS heights and attitude/heave by correlative approximation (seed 000).
+
+Public entry points: :func:`estimate_latency`, :func:`synchronise`, :func:`line_series`.
+Inputs are plain dicts of 1-D arrays as the CSV readers return them: GNSS ``time`` (s,
+tags) and ``height`` (m); attitude ``time`` (s, strictly increasing), ``roll``, ``pitch``,
+``heading`` (degrees) and ``heave`` (m, positive up); lines ``name``, ``start``, ``end``
+(s). The lever arm is the antenna relative to the motion sensor, body FRD, metres.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+
+import numpy as np
+
+from hydrosync_core.errors import InputError
+from hydrosync_core.methods.latency.combine import combine, select_lines
+from hydrosync_core.methods.latency.correlation import heave_at
+from hydrosync_core.methods.latency.detrend import detrend
+from hydrosync_core.methods.latency.diagnose import diagnose
+from hydrosync_core.methods.latency.heave import induced_heave, total_heave
+from hydrosync_core.methods.latency.lines import prepare_line, scan_line
+from hydrosync_core.methods.latency.quality import sigma0
+from hydrosync_core.methods.latency.result import LatencyParams, LatencyResult, LineResult
+from hydrosync_core.progress import check_cancel, report
+
+
+def _column(table: Mapping, name: str, source: str) -> np.ndarray:
+    if name not in table:
+        raise InputError(source, f"missing column {name}", field=name)
+    values = np.asarray(table[name], dtype=float).ravel()
+    if not np.all(np.isfinite(values)):
+        raise InputError(source, "non-finite values", field=name)
+    return values
+
+
+def _check_inputs(gnss: Mapping, attitude: Mapping, lever_arm) -> tuple:
+    t_g, hgt = _column(gnss, "time", "gnss"), _column(gnss, "height", "gnss")
+    att = {c: _column(attitude, c, "attitude") for c in ("time", "roll", "pitch", "heave")}
+    if t_g.size < 2 or att["time"].size < 2:
+        raise InputError("gnss" if t_g.size < 2 else "attitude", "fewer than 2 epochs")
+    if np.any(np.diff(t_g) <= 0):
+        raise InputError("gnss", "time tags are not strictly increasing", field="time")
+    if np.any(np.diff(att["time"]) <= 0):
+        raise InputError("attitude", "time tags are not strictly increasing", field="time")
+    arm = np.asarray(lever_arm, dtype=float).ravel()
+    if arm.size != 3 or not np.all(np.isfinite(arm)):
+        raise InputError(None, "lever arm must be three finite numbers (x y z, m)",
+                         field="lever_arm")
+    return t_g, hgt, att, arm
+
+
+def _joint_peak(curves: np.ndarray, weights: np.ndarray, dts: np.ndarray) -> float:
+    """Δt maximising the epoch-weighted mean Fisher-z of the used lines' curves."""
+    if curves.size == 0 or not np.any(np.isfinite(curves)):
+        return float("nan")
+    z = np.arctanh(np.clip(curves, -0.999999, 0.999999))
+    mean = np.nansum(z * weights[:, None], axis=0) / weights.sum()
+    k = int(np.argmax(mean))
+    if 0 < k < dts.size - 1:
+        # Parabola through the three grid points around the maximum.
+        a, b, c = mean[k - 1 : k + 2]
+        denom = a - 2 * b + c
+        if denom < 0:
+            return float(dts[k] + 0.5 * (a - c) / denom * (dts[1] - dts[0]))
+    return float(dts[k])
+
+
+def estimate_latency(
+    gnss: Mapping, attitude: Mapping, lines: Mapping, lever_arm,
+    params: LatencyParams | Mapping | None = None, progress=None, cancel=None,
+) -> LatencyResult:
+    """Estimate the GNSS-versus-attitude delay Δt from survey lines (seed sections 2–3).
+
+    Returns a :class:`LatencyResult`; ``latency_s`` is NaN (``converged`` False) when no
+    line passes the R threshold. Raises :class:`InputError` for bad input or when no
+    line has enough epochs.
+    """
+    p = params if isinstance(params, LatencyParams) else LatencyParams.from_dict(params)
+    t_g, hgt, att, arm = _check_inputs(gnss, attitude, lever_arm)
+    t_att = att["time"]
+    roll, pitch = np.radians(att["roll"]), np.radians(att["pitch"])
+    # Seed eq. 2: total heave at the antenna, at attitude rate.
+    h_att = total_heave(att["heave"], roll, pitch, arm)
+    lo, hi = p.range_s
+    dts = np.linspace(lo, hi, int(round((hi - lo) / p.step_s)) + 1)
+    g_int, a_int = float(np.median(np.diff(t_g))), float(np.median(np.diff(t_att)))
+    names = [str(n) for n in np.asarray(lines["name"]).ravel()]
+    starts = np.asarray(lines["start"], dtype=float).ravel()
+    ends = np.asarray(lines["end"], dtype=float).ravel()
+    if not names:
+        raise InputError("lines", "no survey lines")
+
+    prepared, peaks = [], []
+    for i, name in enumerate(names):
+        check_cancel(cancel)
+        report(progress, 0.9 * i / len(names), f"line {name}")
+        line = prepare_line(name, starts[i], ends[i], t_g, hgt, t_att, p, g_int, a_int)
+        prepared.append(line)
+        peaks.append(scan_line(line, t_att, h_att, dts))
+    if not any(line.usable for line in prepared):
+        raise InputError("lines", f"no line has {p.min_epochs} or more GNSS epochs with attitude "
+                         "data (check the line times and the time scales of the files)")
+
+    r_max = np.array([pk.r_max for pk in peaks])
+    lat = np.array([pk.latency_s for pk in peaks])
+    unc = np.array([pk.uncertainty_s for pk in peaks])
+    usable = np.array([ln.usable and not pk.at_edge
+                       for ln, pk in zip(prepared, peaks, strict=True)])
+    used = select_lines(r_max, p.min_r, usable)
+    comb = combine(lat, r_max, unc, used, p.weighting)
+    curves = np.array([pk.curve for pk in peaks])
+    epochs = np.array([ln.tags.size for ln in prepared], dtype=float)
+    joint = _joint_peak(curves[used], epochs[used], dts)
+
+    check_cancel(cancel)
+    report(progress, 0.92, "quality")
+    out_lines = []
+    for ln, pk, u in zip(prepared, peaks, used, strict=True):
+        before = after = float("nan")
+        if ln.usable:
+            # Seed eqs. 5–6 before (Δt = 0) and after (final Δt) synchronisation.
+            H0 = heave_at(ln.tags, np.array([0.0, np.nan_to_num(comb.latency_s)]), t_att, h_att)
+            before = sigma0(ln.h, H0[0])
+            after = sigma0(ln.h, H0[1]) if np.isfinite(comb.latency_s) else float("nan")
+        out_lines.append(LineResult(
+            ln.name, float(ln.start), float(ln.end), int(ln.tags.size), pk.r_max, pk.latency_s,
+            pk.uncertainty_s, before, after, bool(u), pk.at_edge, tuple(ln.warnings)))
+
+    warnings = [w for ln in prepared for w in ln.warnings]
+    n_low = int(np.sum(usable & ~used))
+    if n_low:
+        warnings.append(f"{n_low} line(s) with R_max <= {p.min_r} not used")
+    diagnostics: dict = {}
+    med = np.nanmedian(r_max) if np.any(np.isfinite(r_max)) else np.nan
+    if comb.n_used == 0 or not med > p.min_r:
+        report(progress, 0.95, "testing heave sign and lever arm")
+        coarse = np.arange(lo, hi + 1e-12, max(p.step_s, 0.02))
+        diagnostics, more = diagnose(prepared, t_att, att["heave"], roll, pitch, arm, coarse)
+        warnings += more
+    converged = comb.n_used > 0
+    best = f"{np.nanmax(r_max):.3f}" if np.any(np.isfinite(r_max)) else "none"
+    message = (f"{comb.n_used} of {len(names)} lines used ({p.weighting} weights)" if converged
+               else f"no line with R_max > {p.min_r}: best R_max {best}")
+    report(progress, 1.0, "done")
+    return LatencyResult(
+        comb.latency_s, comb.uncertainty_s, comb.ci95_low, comb.ci95_high, comb.n_used,
+        p.weighting, joint, tuple(out_lines), dts, curves, tuple(float(v) for v in arm),
+        p.to_dict(), converged, message, tuple(warnings), diagnostics)
+
+
+def _attitude_at(attitude: Mapping, times: np.ndarray) -> dict[str, np.ndarray]:
+    """Seed eq. 3: attitude linearly interpolated at *times* (deg; heading unwrapped)."""
+    t = np.asarray(attitude["time"], dtype=float)
+    out = {c: np.interp(times, t, np.asarray(attitude[c], dtype=float))
+           for c in ("roll", "pitch", "heave")}
+    # Heading wraps at 360 deg: interpolate the unwrapped angle.
+    unwrapped = np.unwrap(np.radians(np.asarray(attitude["heading"], dtype=float)))
+    out["heading"] = np.degrees(np.interp(times, t, unwrapped)) % 360.0
+    return out
+
+
+def synchronise(gnss: Mapping, attitude: Mapping, lever_arm, latency_s: float) -> dict:
+    """GNSS heights with attitude at their corrected times ``tag − latency_s`` (seed eq. 3).
+
+    Returns a dict of 1-D arrays: ``time`` (s, corrected), ``height`` (m), ``roll``,
+    ``pitch``, ``heading`` (deg), ``heave`` and ``total_heave`` (m, up, seed eq. 2) —
+    only the epochs whose corrected time lies inside the attitude record.
+    """
+    if not np.isfinite(latency_s):
+        raise InputError(None, "cannot synchronise without a latency", field="latency_s")
+    t_g, hgt, att, arm = _check_inputs(gnss, attitude, lever_arm)
+    corrected = t_g - latency_s
+    keep = (corrected >= att["time"][0]) & (corrected <= att["time"][-1])
+    out = {"time": corrected[keep], "height": hgt[keep]}
+    out.update(_attitude_at(attitude, corrected[keep]))
+    out["total_heave"] = total_heave(
+        out["heave"], np.radians(out["roll"]), np.radians(out["pitch"]), arm)
+    return {k: out[k] for k in ("time", "height", "roll", "pitch", "heading", "heave",
+                                "total_heave")}
+
+
+def line_series(
+    gnss: Mapping, attitude: Mapping, lever_arm, start: float, end: float, latency_s: float,
+    params: LatencyParams | Mapping | None = None,
+) -> dict[str, np.ndarray]:
+    """One line's detrended heights and total heave before (Δt = 0) and after (seed fig. 4).
+
+    Returns ``time`` (s, tags), ``height`` (m, detrended), ``heave_before`` and
+    ``heave_after`` (m, total heave at ``tag`` and at ``tag − latency_s``).
+    """
+    p = params if isinstance(params, LatencyParams) else LatencyParams.from_dict(params)
+    t_g, hgt, att, arm = _check_inputs(gnss, attitude, lever_arm)
+    dt = float(np.nan_to_num(latency_s))
+    sel = (t_g >= start + p.skip_s) & (t_g <= end)
+    sel &= (t_g - max(dt, 0) >= att["time"][0]) & (t_g - min(dt, 0) <= att["time"][-1])
+    tags = t_g[sel]
+    if tags.size < 3:
+        empty = np.empty(0)
+        return {"time": empty, "height": empty, "heave_before": empty, "heave_after": empty}
+    h, _ = detrend(tags, hgt[sel], int(p.detrend_degree))
+    roll, pitch = np.radians(att["roll"]), np.radians(att["pitch"])
+    h_att = att["heave"] + induced_heave(roll, pitch, arm)
+    H = heave_at(tags, np.array([0.0, dt]), att["time"], h_att)
+    return {"time": tags, "height": h, "heave_before": H[0], "heave_after": H[1]}

@@ -1,0 +1,168 @@
+"""Run the latency module on a project and store its results (plugin entry point).
+
+Inputs read from the project: tables ``raw/gnss`` (time, height), ``raw/attitude``
+(time, roll, pitch, heading, heave; degrees, heave m up), ``raw/lines`` (name, start,
+end), and the lever arm: ``params['lever_arm_m']`` ``[x, y, z]`` if given, else the
+vessel sheet's sensor ``gnss`` offset minus sensor ``motion`` offset (body FRD, m).
+
+Stored layout (stable; the PDF report section reads it) — ``/results/latency``:
+
+* group attributes: ``json`` = the parameters used (``put_json``, incl. ``lever_arm_m``);
+  ``software_version``, ``run_utc`` (ISO 8601); ``latency_s``, ``uncertainty_s``,
+  ``ci95_low``, ``ci95_high`` (s, NaN when no line was used); ``joint_latency_s`` (s);
+  ``n_used`` (int); ``weighting`` ("r" or "inverse_variance"); ``converged`` (bool);
+  ``message`` (str); ``warnings`` (JSON list of str); ``diagnostics`` (JSON object);
+  ``lever_arm_m`` (JSON list [x, y, z], body FRD, m).
+* table ``lines`` (one row per survey line): ``name`` (str), ``start``, ``end`` (s),
+  ``epochs`` (int), ``r_max``, ``latency_s`` (s), ``uncertainty_s`` (s),
+  ``sigma0_before_m``, ``sigma0_after_m`` (m, seed eqs. 5–6 at Δt = 0 and at the final
+  Δt), ``used`` (bool, may be changed by the user, see :func:`recombine`),
+  ``auto_used`` (bool, the automatic selection), ``at_edge`` (bool).
+* dataset ``dt_grid`` (k,) s, and dataset ``r_curves`` (lines, k): R of every line at
+  every scanned Δt (NaN for lines without enough data).
+* table ``synchronised``: ``time`` (s, corrected GNSS time = tag − latency),
+  ``height`` (m), ``roll``, ``pitch``, ``heading`` (deg), ``heave``, ``total_heave``
+  (m, up) — absent when no latency could be determined.
+"""
+
+from __future__ import annotations
+
+import json
+from datetime import UTC, datetime
+
+import numpy as np
+
+from hydrosync_core import __version__
+from hydrosync_core.errors import InputError
+from hydrosync_core.methods.latency.api import estimate_latency, synchronise
+from hydrosync_core.methods.latency.combine import combine
+from hydrosync_core.methods.latency.correlation import heave_at
+from hydrosync_core.methods.latency.detrend import detrend
+from hydrosync_core.methods.latency.heave import total_heave
+from hydrosync_core.methods.latency.quality import sigma0
+from hydrosync_core.methods.latency.result import LatencyParams, LatencyResult
+from hydrosync_core.progress import sub_progress
+from hydrosync_core.project import Project
+from hydrosync_core.project.vessel import lever_arm as vessel_lever_arm
+
+RESULT = "results/latency"
+
+
+def project_lever_arm(project: Project, params: dict | None = None) -> np.ndarray:
+    """Lever arm (body FRD, m): ``params['lever_arm_m']`` or vessel sheet gnss − motion."""
+    given = (params or {}).get("lever_arm_m")
+    if given is not None:
+        arm = np.asarray(given, dtype=float).ravel()
+        if arm.size != 3 or not np.all(np.isfinite(arm)):
+            raise InputError(None, "lever_arm_m must be three finite numbers", field="lever_arm_m")
+        return arm
+    return vessel_lever_arm(project, "gnss", "motion")
+
+
+def read_inputs(project: Project) -> tuple[dict, dict, dict]:
+    """The raw GNSS, attitude and lines tables of *project*."""
+    return (project.get_table("raw/gnss"), project.get_table("raw/attitude"),
+            project.get_table("raw/lines"))
+
+
+def run(project: Project, params: dict | None = None, progress=None, cancel=None) -> LatencyResult:
+    """Estimate the latency from the project's raw data and replace ``/results/latency``."""
+    params = dict(params or {})
+    arm = project_lever_arm(project, params)
+    gnss, attitude, lines = read_inputs(project)
+    p = LatencyParams.from_dict(params)
+    result = estimate_latency(gnss, attitude, lines, arm, p, sub_progress(progress, 0, 0.9), cancel)
+    sync = (synchronise(gnss, attitude, arm, result.latency_s) if result.converged else None)
+    used_params = p.to_dict() | {"lever_arm_m": [float(v) for v in arm]}
+    store(project, result, sync, used_params)
+    if progress is not None:
+        progress(1.0, "results stored")
+    return result
+
+
+def store(project: Project, result: LatencyResult, sync: dict | None, params: dict) -> None:
+    """Write *result* under ``/results/latency`` (replacing it), layout in the module doc."""
+    project.delete(RESULT)
+    project.put_json(RESULT, params)
+    lines = result.lines
+    project.put_table(f"{RESULT}/lines", {
+        "name": np.array([ln.name for ln in lines], dtype=str),
+        "start": np.array([ln.start for ln in lines]),
+        "end": np.array([ln.end for ln in lines]),
+        "epochs": np.array([ln.epochs for ln in lines], dtype=np.int64),
+        "r_max": np.array([ln.r_max for ln in lines]),
+        "latency_s": np.array([ln.latency_s for ln in lines]),
+        "uncertainty_s": np.array([ln.uncertainty_s for ln in lines]),
+        "sigma0_before_m": np.array([ln.sigma0_before_m for ln in lines]),
+        "sigma0_after_m": np.array([ln.sigma0_after_m for ln in lines]),
+        "used": np.array([ln.used for ln in lines], dtype=bool),
+        "auto_used": np.array([ln.used for ln in lines], dtype=bool),
+        "at_edge": np.array([ln.at_edge for ln in lines], dtype=bool),
+    })
+    project.put(f"{RESULT}/dt_grid", result.dt_grid, attrs={"units": "s"})
+    project.put(f"{RESULT}/r_curves", result.r_curves, attrs={"rows": "lines", "cols": "dt_grid"})
+    if sync is not None:
+        project.put_table(f"{RESULT}/synchronised", sync,
+                          time="corrected GNSS time (tag - latency)")
+    project.set_attrs(
+        RESULT, software_version=__version__,
+        run_utc=datetime.now(UTC).isoformat(timespec="seconds"),
+        latency_s=float(result.latency_s), uncertainty_s=float(result.uncertainty_s),
+        ci95_low=float(result.ci95_low), ci95_high=float(result.ci95_high),
+        joint_latency_s=float(result.joint_latency_s), n_used=int(result.n_used),
+        weighting=result.weighting, converged=bool(result.converged), message=result.message,
+        warnings=json.dumps(list(result.warnings)),
+        diagnostics=json.dumps(result.to_dict()["diagnostics"]),
+        lever_arm_m=json.dumps(list(result.lever_arm_m)),
+    )
+
+
+def recombine(project: Project, used: np.ndarray, weighting: str | None = None) -> dict:
+    """Re-select lines by hand: new weighted mean from the stored per-line values (no scan).
+
+    Updates the ``used`` column, the final-value attributes, ``sigma0_after_m`` and the
+    ``synchronised`` table of ``/results/latency``; returns the new final values.
+    """
+    table = project.get_table(f"{RESULT}/lines")
+    used = np.asarray(used, dtype=bool)
+    if used.shape != table["used"].shape:
+        raise ValueError("used mask does not match the number of lines")
+    attrs = project.attrs(RESULT)
+    params = project.get_json(RESULT, {})
+    weighting = weighting or attrs.get("weighting", "r")
+    # Weighted mean of the selected lines from their stored values (seed section 2.4).
+    comb = combine(table["latency_s"], table["r_max"], table["uncertainty_s"], used, weighting)
+    table["used"] = used
+    arm = np.asarray(json.loads(attrs["lever_arm_m"]), dtype=float)
+    gnss, attitude, _ = read_inputs(project)
+    t_g, hgt = np.asarray(gnss["time"], float), np.asarray(gnss["height"], float)
+    t_att = np.asarray(attitude["time"], float)
+    h_att = total_heave(np.asarray(attitude["heave"], float), np.radians(attitude["roll"]),
+                        np.radians(attitude["pitch"]), arm)
+    p = LatencyParams.from_dict(params)
+    after = np.full(table["name"].size, np.nan)
+    if comb.n_used:
+        for i, (start, end) in enumerate(zip(table["start"], table["end"], strict=True)):
+            sel = (t_g >= start + p.skip_s) & (t_g <= end)
+            sel &= (t_g - comb.latency_s >= t_att[0]) & (t_g - comb.latency_s <= t_att[-1])
+            if sel.sum() >= 3:
+                h, _ = detrend(t_g[sel], hgt[sel], int(p.detrend_degree))
+                # Seed eqs. 5–6 at the new final Δt.
+                after[i] = sigma0(h, heave_at(t_g[sel], np.array([comb.latency_s]), t_att,
+                                              h_att)[0])
+    table["sigma0_after_m"] = after
+    project.put_table(f"{RESULT}/lines", table)
+    if comb.n_used:
+        project.put_table(f"{RESULT}/synchronised", synchronise(gnss, attitude, arm,
+                                                               comb.latency_s),
+                          time="corrected GNSS time (tag - latency)")
+    else:
+        project.delete(f"{RESULT}/synchronised")
+    values = comb.to_dict()
+    project.set_attrs(
+        RESULT, latency_s=comb.latency_s, uncertainty_s=comb.uncertainty_s,
+        ci95_low=comb.ci95_low, ci95_high=comb.ci95_high, n_used=comb.n_used,
+        weighting=weighting, converged=bool(comb.n_used),
+        message=f"{comb.n_used} of {used.size} lines used ({weighting} weights, chosen by hand)",
+    )
+    return values

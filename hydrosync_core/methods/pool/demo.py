@@ -1,0 +1,30 @@
+"""Demo data for the Pool Calibration plugin: a simulated pass written into a project."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from hydrosync_core.progress import report
+from hydrosync_core.project.vessel import set_sensor
+from hydrosync_core.simulate.pool_pass import simulate_pool_pass
+
+
+def fill_demo(project, seed: int = 0, progress=None) -> dict:
+    """Write raw/pool/{lidar, mbes, ins, setup, target} and the vessel sheet; return truth."""
+    report(progress, 0.0, "simulating a pool calibration pass")
+    sim = simulate_pool_pass(seed=seed)
+    project.put("raw/pool/lidar", sim["lidar"],
+                attrs={"frame": "target ENU", "units": "m", "source": "simulated"})
+    project.put_table("raw/pool/mbes", {k: np.asarray(v) for k, v in sim["mbes"].items()},
+                      source="simulated")
+    project.put_table("raw/pool/ins", {k: np.asarray(v) for k, v in sim["ins"].items()},
+                      source="simulated")
+    project.put_json("raw/pool/setup", sim["setup"])
+    project.put_json("raw/pool/target", sim["target"])
+    b = sim["setup"]["boresight_deg"]
+    la = sim["setup"]["lever_arm_m"]
+    set_sensor(project, "ins", [0.0, 0.0, 0.0])
+    set_sensor(project, "multibeam", [la["x"], la["y"], la["z"]], angles_deg=b,
+               note="coarse values (installation drawing)")
+    report(progress, 1.0, "pool demo data written")
+    return sim["truth"]

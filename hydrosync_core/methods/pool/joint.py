@@ -1,0 +1,160 @@
+"""Joint least-squares adjustment of the boresight angles and lever arm (beyond the seed).
+
+Unknowns: a small rotation δ (rad, about the body FRD axes, applied as
+``R_m <- Rot(δ)·R_m``) and a lever-arm change Δl (m, body FRD). Observations: the
+signed distances of the multibeam points of each face to that face's reference plane
+(the laser plane of the same face, or for a below-water horizontal face the above-water
+laser plane moved by the design height difference)::
+
+    r_i = n_k · p_i - d_k,   p_i = o + A_i (R_m x_i + l)            (A_i = C·R_b)
+    ∂r_i/∂Δl = a_i = A_iᵀ n_k,   ∂r_i/∂δ = (R_m x_i) × a_i
+
+Gauss-Newton with Huber iteratively reweighted least squares (outliers left by the
+segmentation get small weights). Covariance ``σ0² (JᵀWJ)⁻¹`` with ``σ0²`` the weighted
+residual variance, plus the part propagated from the reference planes' own fit
+uncertainty (laser TLS planes; the as-built height offset of the design planes); σ and correlations are reported for (roll, pitch, yaw) Euler angles
+of the boresight (propagated through the numeric Jacobian of the Euler angles with
+respect to δ) and the three lever-arm components. A parameter whose column of the
+normal matrix is (nearly) in its null space is fixed and reported as undetermined.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.spatial.transform import Rotation
+
+from hydrosync_core.methods.pool.georef import GeorefContext, boresight_angles
+from hydrosync_core.methods.pool.planes import PlaneFit
+from hydrosync_core.progress import check_cancel
+
+NAMES = ("roll", "pitch", "yaw", "lever_x", "lever_y", "lever_z")
+
+
+@dataclass(frozen=True)
+class JointFit:
+    """Joint solution: boresight matrix, lever (body FRD, m), covariance of NAMES order."""
+
+    r_m: np.ndarray
+    lever: np.ndarray
+    covariance: np.ndarray
+    sigma0_m: float
+    n_obs: int
+    iterations: int
+    converged: bool
+    fixed: tuple[str, ...]
+    residual_rms: dict[str, float]
+
+
+def _system(ctx: GeorefContext, obs: dict[str, tuple[np.ndarray, PlaneFit]], r_m, lever):
+    """Residuals (m), Jacobian (n, 6) and face labels of all observations."""
+    res, jac, lab = [], [], []
+    for name, (idx, plane) in obs.items():
+        p = ctx.ping[idx]
+        y = ctx.x_m[idx] @ r_m.T
+        a = np.einsum("nji,j->ni", ctx.rot[p], plane.normal)      # A_iᵀ n
+        pts = ctx.origin[p] + np.einsum("nij,nj->ni", ctx.rot[p], y + lever)
+        res.append(pts @ plane.normal - plane.d)
+        jac.append(np.hstack([np.cross(y, a), a]))
+        lab.append(np.full(len(idx), name, dtype=object))
+    return np.concatenate(res), np.vstack(jac), np.concatenate(lab)
+
+
+def _reference_cov(ctx, obs, r_m, lever, free, weights, n_inv) -> np.ndarray:
+    """Covariance added by the reference planes' own uncertainty (free parameters).
+
+    A plane perturbed by tilts (α, β) about its in-plane axes and an offset γ changes the
+    residuals by ``B = [a1·(p - c), a2·(p - c), -1]``; the solution moves by
+    ``-N⁻¹ JᵀW B (α, β, γ)``, so each face adds ``M C_plane Mᵀ`` with ``M = N⁻¹ JᵀW B``.
+    """
+    out = np.zeros((int(free.sum()),) * 2)
+    start = 0
+    for _name, (idx, plane) in obs.items():
+        sub = {_name: (idx, plane)}
+        _, jac, _ = _system(ctx, sub, r_m, lever)
+        w = weights[start:start + len(idx)]
+        start += len(idx)
+        if plane.axes is None:
+            continue
+        p = ctx.ping[idx]
+        pts = ctx.origin[p] + np.einsum("nij,nj->ni", ctx.rot[p], ctx.x_m[idx] @ r_m.T + lever)
+        rel = pts - plane.centroid
+        b = np.column_stack([rel @ plane.axes[:, 1], rel @ plane.axes[:, 2], -np.ones(len(idx))])
+        m = n_inv @ (jac[:, free].T @ (b * w[:, None]))
+        out += m @ plane.covariance() @ m.T
+    return out
+
+
+def euler_jacobian(r_m: np.ndarray, h: float = 1e-7) -> np.ndarray:
+    """d(roll, pitch, yaw)/dδ at δ = 0 for ``R = Rot(δ)·r_m`` (3, 3), numeric."""
+    base = np.array(boresight_angles(r_m))
+    out = np.zeros((3, 3))
+    for k in range(3):
+        step = np.zeros(3)
+        step[k] = h
+        moved = Rotation.from_rotvec(step).as_matrix() @ r_m
+        out[:, k] = (np.array(boresight_angles(moved)) - base) / h
+    return out
+
+
+def adjust(ctx: GeorefContext, obs: dict[str, tuple[np.ndarray, PlaneFit]], r_m0: np.ndarray,
+           lever0: np.ndarray, *, huber_m: float = 0.03, max_iter: int = 30,
+           tol: float = 1e-9, cond_max: float = 1e10, cancel=None) -> JointFit:
+    """Gauss-Newton / IRLS solution from the start values (r_m0, lever0)."""
+    r_m, lever = r_m0.copy(), np.asarray(lever0, float).copy()
+    n_obs = sum(len(i) for i, _ in obs.values())
+    if n_obs < 6:
+        raise ValueError("fewer than 6 multibeam points on reference planes")
+    # Observability: scaled normal matrix at the start; weak directions are fixed.
+    _, jac, _ = _system(ctx, obs, r_m, lever)
+    scale = np.linalg.norm(jac, axis=0)
+    scale[scale == 0] = 1.0
+    js = jac / scale
+    w, v = np.linalg.eigh(js.T @ js)
+    free = np.ones(6, dtype=bool)
+    for k in np.flatnonzero(w < w.max() / cond_max):
+        free[np.argmax(np.abs(v[:, k]))] = False
+    fixed = tuple(n for n, f in zip(NAMES, free, strict=True) if not f)
+    weights = None
+    converged, it = False, 0
+    for it in range(1, max_iter + 1):
+        check_cancel(cancel)
+        res, jac, _ = _system(ctx, obs, r_m, lever)
+        scale_r = 1.4826 * np.median(np.abs(res - np.median(res)))
+        k = max(huber_m, 2.0 * scale_r) if it > 1 else 10 * huber_m
+        weights = np.minimum(1.0, k / np.maximum(np.abs(res), 1e-12))     # Huber weights
+        jf = jac[:, free]
+        step_f = np.linalg.solve(jf.T @ (jf * weights[:, None]), -jf.T @ (weights * res))
+        step = np.zeros(6)
+        step[free] = step_f
+        r_m = Rotation.from_rotvec(step[:3]).as_matrix() @ r_m
+        lever = lever + step[3:]
+        if np.max(np.abs(step)) < tol:
+            converged = True
+            break
+    res, jac, lab = _system(ctx, obs, r_m, lever)
+    jf = jac[:, free]
+    normal = jf.T @ (jf * weights[:, None])
+    dof = max(1, len(res) - int(free.sum()))
+    sigma0_sq = float(np.sum(weights * res**2) / dof)
+    n_inv = np.linalg.inv(normal)
+    cov_f = sigma0_sq * n_inv + _reference_cov(ctx, obs, r_m, lever, free, weights, n_inv)
+    cov_d = np.zeros((6, 6))
+    cov_d[np.ix_(free, free)] = cov_f
+    # Propagate δ -> Euler angles (roll, pitch, yaw).
+    t = np.eye(6)
+    t[:3, :3] = euler_jacobian(r_m)
+    cov = t @ cov_d @ t.T
+    rms = {str(n): float(np.sqrt(np.mean(res[lab == n] ** 2))) for n in obs}
+    return JointFit(r_m, lever, cov, float(np.sqrt(sigma0_sq)), len(res), it, converged,
+                    fixed, rms)
+
+
+def correlation(cov: np.ndarray) -> np.ndarray:
+    """Correlation matrix of a covariance (zero rows stay zero)."""
+    s = np.sqrt(np.clip(np.diag(cov), 0, None))
+    denom = np.outer(s, s)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        c = np.where(denom > 0, cov / denom, 0.0)
+    return c

@@ -1,0 +1,114 @@
+"""Project entry point of the Pool Calibration plugin.
+
+Reads ``raw/pool/lidar`` ((N, 3) target ENU, m), ``raw/pool/mbes`` (table time, x, y, z;
+sensor FRD), ``raw/pool/ins`` (table time, e, n, u, roll, pitch, heading), ``raw/pool/setup``
+and ``raw/pool/target`` (JSON), runs :func:`~.api.calibrate` and REPLACES
+``/results/pool_calibration``. Stable layout (the report section and GUI panel rely on it):
+
+``results/pool_calibration`` attrs
+    ``params`` (JSON of the parameters used, via put_json), ``software_version``,
+    ``run_utc``, ``method`` ("joint" or "seed"), ``iterations`` (int), ``converged`` (bool),
+    ``roll_deg, pitch_deg, yaw_deg`` (final boresight), ``lever_x_m, lever_y_m,
+    lever_z_m`` (final lever arm, body FRD), ``sigma_roll_deg, sigma_pitch_deg,
+    sigma_yaw_deg, sigma_lever_x_m, sigma_lever_y_m, sigma_lever_z_m`` (joint 1-σ, NaN
+    when no joint solution), ``warnings`` (JSON list of strings), ``dropped_pings``.
+``results/pool_calibration/result`` group whose JSON (get_json) is ``PoolResult.to_dict()``.
+``results/pool_calibration/faces`` table: face (str), role (str), water (str),
+    points_laser, points_mbes (int), rms_laser_m, rms_mbes_m, normal_angle_deg (float,
+    NaN when a sensor has no plane), used_for (str, comma-separated parameters).
+``results/pool_calibration/iterations`` table: iteration, round (int), d_roll_deg,
+    d_pitch_deg, d_yaw_deg, roll_deg, pitch_deg, yaw_deg, max_normal_angle_deg.
+``results/pool_calibration/plan`` arrays for a plan view (ENU, m; at most
+    ``plan_points`` points each, random decimation): ``laser_xyz`` (n, 3) and
+    ``laser_face`` (n,) int index into the faces table; ``mbes_before_xyz`` (m, 3)
+    (coarse setup) and ``mbes_after_xyz`` (m, 3) (final values) of the same soundings, and
+    ``mbes_face`` (m,) int face index (-1 = not on a face).
+"""
+
+from __future__ import annotations
+
+import json
+from datetime import UTC, datetime
+
+import numpy as np
+
+from hydrosync_core import __version__
+from hydrosync_core.methods.pool import georef
+from hydrosync_core.methods.pool.api import DEFAULT_PARAMS, iterate, segment
+from hydrosync_core.progress import sub_progress
+
+RESULT = "results/pool_calibration"
+
+
+def _plan(project, seg, result, n_max: int, rng: np.random.Generator) -> None:
+    names = list(seg.design)
+    lx, lf = [], []
+    for k, name in enumerate(names):
+        pts = seg.laser_points.get(name)
+        if pts is not None:
+            lx.append(pts)
+            lf.append(np.full(len(pts), k))
+    lx = np.concatenate(lx) if lx else np.zeros((0, 3))
+    lf = np.concatenate(lf) if lf else np.zeros(0, int)
+    pick = rng.choice(len(lx), min(n_max, len(lx)), replace=False) if len(lx) else []
+    project.put(f"{RESULT}/plan/laser_xyz", lx[pick])
+    project.put(f"{RESULT}/plan/laser_face", lf[pick].astype(np.int32))
+    face = np.full(len(seg.ctx.x_m), -1, dtype=np.int32)
+    for k, name in enumerate(names):
+        face[seg.mbes_faces.get(name, [])] = k
+    sel = np.sort(rng.choice(len(face), min(n_max, len(face)), replace=False))
+    b, la = result.boresight_deg, result.lever_arm_m
+    r_f = georef.boresight_matrix(*np.deg2rad([b["roll"], b["pitch"], b["yaw"]]))
+    l_f = np.array([la["x"], la["y"], la["z"]])
+    before = georef.georeference(seg.ctx, seg.r_m0, seg.lever0, sel)
+    project.put(f"{RESULT}/plan/mbes_before_xyz", before)
+    project.put(f"{RESULT}/plan/mbes_after_xyz", georef.georeference(seg.ctx, r_f, l_f, sel))
+    project.put(f"{RESULT}/plan/mbes_face", face[sel])
+
+
+def run(project, params: dict | None = None, progress=None, cancel=None):
+    """Run the pool calibration on *project* and store the results (see module doc)."""
+    p = dict(DEFAULT_PARAMS)
+    p.update(params or {})
+    lidar = np.asarray(project.get("raw/pool/lidar"), dtype=float)
+    mbes = project.get_table("raw/pool/mbes")
+    ins = project.get_table("raw/pool/ins")
+    setup = project.get_json("raw/pool/setup")
+    target = project.get_json("raw/pool/target")
+    seg = segment(lidar, mbes, ins, setup, target, p, sub_progress(progress, 0, 0.6), cancel)
+    result = iterate(seg, p, sub_progress(progress, 0.6, 0.95), cancel)
+    project.delete(RESULT)
+    project.put_json(f"{RESULT}/result", result.to_dict())
+    project.put_json(RESULT, p)
+    j = result.joint
+    sig = ({**{f"sigma_{k}_deg": v for k, v in j.sigma_boresight_deg.items()},
+            **{f"sigma_lever_{k}_m": v for k, v in j.sigma_lever_arm_m.items()}}
+           if j else {f"sigma_{k}": float("nan") for k in
+                      ("roll_deg", "pitch_deg", "yaw_deg", "lever_x_m", "lever_y_m",
+                       "lever_z_m")})
+    project.set_attrs(
+        RESULT, software_version=__version__,
+        run_utc=datetime.now(UTC).isoformat(timespec="seconds"), method=result.method,
+        iterations=int(result.iterations), converged=bool(result.converged),
+        **{f"{k}_deg": float(v) for k, v in result.boresight_deg.items()},
+        **{f"lever_{k}_m": float(v) for k, v in result.lever_arm_m.items()},
+        **{k: float(v) for k, v in sig.items()},
+        warnings=json.dumps(result.warnings), dropped_pings=int(result.dropped_pings))
+    rows = result.faces
+    project.put_table(f"{RESULT}/faces", {
+        "face": np.array([r.face for r in rows], dtype=str),
+        "role": np.array([r.role for r in rows], dtype=str),
+        "water": np.array([r.water for r in rows], dtype=str),
+        "points_laser": np.array([r.points_laser for r in rows], dtype=np.int64),
+        "points_mbes": np.array([r.points_mbes for r in rows], dtype=np.int64),
+        "rms_laser_m": np.array([r.rms_laser_m for r in rows]),
+        "rms_mbes_m": np.array([r.rms_mbes_m for r in rows]),
+        "normal_angle_deg": np.array([r.normal_angle_deg for r in rows]),
+        "used_for": np.array([r.used_for for r in rows], dtype=str)})
+    cols = ("iteration", "round", "d_roll_deg", "d_pitch_deg", "d_yaw_deg", "roll_deg",
+            "pitch_deg", "yaw_deg", "max_normal_angle_deg")
+    project.put_table(f"{RESULT}/iterations", {
+        c: np.array([row[c] for row in result.iteration_table],
+                    dtype=np.int64 if c in ("iteration", "round") else float) for c in cols})
+    _plan(project, seg, result, int(p.get("plan_points", 20000)), np.random.default_rng(0))
+    return result

@@ -1,0 +1,94 @@
+"""Result dataclasses of the pool calibration; all serialise with ``to_dict`` (JSON).
+
+Angles in degrees and lengths in metres at this edge; boresight and lever arm in the
+``setup.json`` convention (boresight roll/pitch/yaw of R_m = Rz·Ry·Rx, lever arm body FRD).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import asdict, dataclass, field
+
+import numpy as np
+
+
+def jsonable(obj):
+    """Plain JSON types: numpy scalars/arrays converted, NaN/inf -> None."""
+    if isinstance(obj, dict):
+        return {str(k): jsonable(v) for k, v in obj.items()}
+    if isinstance(obj, list | tuple | np.ndarray):
+        return [jsonable(v) for v in obj]
+    if isinstance(obj, bool | np.bool_):
+        return bool(obj)
+    if isinstance(obj, int | np.integer):
+        return int(obj)
+    if isinstance(obj, float | np.floating):
+        return float(obj) if math.isfinite(obj) else None
+    return obj
+
+
+@dataclass(frozen=True)
+class FaceRow:
+    face: str
+    role: str
+    water: str
+    points_laser: int
+    points_mbes: int
+    rms_laser_m: float
+    rms_mbes_m: float
+    normal_angle_deg: float
+    used_for: str
+
+
+@dataclass(frozen=True)
+class SeedSolution:
+    """Seed (patent) solution: angle iteration then steps 4.1-4.4."""
+
+    boresight_deg: dict
+    lever_arm_m: dict
+    iterations: int
+    converged: bool
+    lever_shift_enu_m: list
+    undetermined: list
+
+
+@dataclass(frozen=True)
+class JointSolution:
+    """Joint least-squares solution with 1-σ and correlations (order ``parameters``)."""
+
+    boresight_deg: dict
+    lever_arm_m: dict
+    sigma_boresight_deg: dict
+    sigma_lever_arm_m: dict
+    parameters: list
+    correlation: list
+    sigma0_m: float
+    n_observations: int
+    iterations: int
+    converged: bool
+    undetermined: list
+    residual_rms_m: dict
+
+
+@dataclass(frozen=True)
+class PoolResult:
+    """Final values (joint solution when available, else seed), with both solutions."""
+
+    boresight_deg: dict
+    lever_arm_m: dict
+    iterations: int
+    converged: bool
+    message: str
+    method: str
+    coarse: dict
+    seed: SeedSolution
+    joint: JointSolution | None
+    faces: list[FaceRow]
+    iteration_table: list[dict]
+    warnings: list[str] = field(default_factory=list)
+    dropped_pings: int = 0
+    dropped_soundings: int = 0
+
+    def to_dict(self) -> dict:
+        """JSON-ready dict (NaN -> null)."""
+        return jsonable(asdict(self))

@@ -1,0 +1,110 @@
+"""Segmentation of the laser and multibeam clouds into the design faces (seed step 2).
+
+Guided by the design (target ENU, m): for each face, crop the points within ``tol`` of
+its plane, inside its polygon shrunk by ``margin`` and on the sensor's side of the water
+level (laser above, multibeam below, ``water_margin`` away from the surface, which
+removes water-surface returns); the pool floor, self-returns and strays fall outside the
+crops. Then open3d RANSAC (``segment_plane``) keeps the plane's inliers and DBSCAN keeps
+the largest cluster, removing remaining strays that happen to lie near the plane. Large
+clouds are first cropped to the target's bounding box; per-face point sets are capped
+(random subset) so that RANSAC/DBSCAN cost stays bounded.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from hydrosync_core.methods.pool.design import DesignFace, inside_polygon
+from hydrosync_core.progress import check_cancel, report
+
+
+@dataclass(frozen=True)
+class FaceSegment:
+    """Indices (into the segmented cloud) of the points of one face, and crop counts."""
+
+    name: str
+    indices: np.ndarray
+    cropped: int
+    ransac_inliers: int
+
+    @property
+    def n(self) -> int:
+        return len(self.indices)
+
+
+def bbox_mask(points: np.ndarray, faces: list[DesignFace], pad: float) -> np.ndarray:
+    """Points inside the design's bounding box grown by *pad* m."""
+    corners = np.concatenate([f.corners for f in faces])
+    lo, hi = corners.min(axis=0) - pad, corners.max(axis=0) + pad
+    return np.all((points >= lo) & (points <= hi), axis=1)
+
+
+def _ransac_dbscan(pts: np.ndarray, thresh: float, eps: float, min_points: int,
+                   normal: np.ndarray, max_angle_deg: float) -> np.ndarray:
+    """Indices into *pts* of the RANSAC plane inliers' largest DBSCAN cluster."""
+    import open3d as o3d
+
+    if len(pts) < max(3, min_points):
+        return np.arange(0)
+    o3d.utility.random.seed(0)
+    cloud = o3d.geometry.PointCloud(o3d.utility.Vector3dVector(pts))
+    model, inliers = cloud.segment_plane(distance_threshold=thresh, ransac_n=3,
+                                         num_iterations=300)
+    inliers = np.asarray(inliers, dtype=np.int64)
+    n_fit = np.asarray(model[:3]) / np.linalg.norm(model[:3])
+    # A RANSAC plane far from the design orientation is clutter, not the face.
+    if np.degrees(np.arccos(min(1.0, abs(n_fit @ normal)))) > max_angle_deg:
+        return np.arange(0)
+    if len(inliers) < min_points:
+        return inliers
+    sub = cloud.select_by_index(inliers.tolist())
+    labels = np.asarray(sub.cluster_dbscan(eps=eps, min_points=min_points))
+    if (labels >= 0).sum() == 0:
+        return np.arange(0)
+    biggest = np.bincount(labels[labels >= 0]).argmax()
+    return inliers[labels == biggest]
+
+
+def segment_cloud(points: np.ndarray, faces: list[DesignFace], water_level: float,
+                  side: str, *, tol: float = 0.3, margin: float = 0.1,
+                  water_margin: float = 0.1, ransac_m: float = 0.05, dbscan_eps: float = 0.3,
+                  min_points: int = 10, max_points: int = 20000, max_angle_deg: float = 15.0,
+                  seed: int = 0, progress=None, cancel=None) -> dict[str, FaceSegment]:
+    """Segment *points* (N, 3, target ENU, m) into *faces*.
+
+    *side* is ``"above"`` (laser) or ``"below"`` (multibeam). Returns a
+    :class:`FaceSegment` per face name (possibly empty).
+    """
+    rng = np.random.default_rng(seed)
+    cand = np.flatnonzero(bbox_mask(points, faces, tol))
+    pts = points[cand]
+    if side == "above":
+        ok = pts[:, 2] > water_level + water_margin
+    else:
+        ok = pts[:, 2] < water_level - water_margin
+    cand, pts = cand[ok], pts[ok]
+    out = {}
+    for k, face in enumerate(faces):
+        check_cancel(cancel)
+        near = np.abs(pts @ face.normal - face.d) < tol
+        idx = np.flatnonzero(near)
+        idx = idx[inside_polygon(face, pts[idx], margin)]
+        cropped = len(idx)
+        if len(idx) > max_points:
+            idx = np.sort(rng.choice(idx, max_points, replace=False))
+        keep = _ransac_dbscan(pts[idx], ransac_m, dbscan_eps, min_points, face.normal,
+                              max_angle_deg)
+        sel = np.sort(cand[idx[keep]])
+        out[face.name] = FaceSegment(face.name, sel, cropped, len(keep))
+        report(progress, (k + 1) / len(faces), f"segmented {face.name} ({side} water)")
+    return out
+
+
+def voxel_downsample(points: np.ndarray, voxel: float) -> np.ndarray:
+    """open3d voxel-grid downsampling (one averaged point per *voxel* m cube)."""
+    import open3d as o3d
+
+    cloud = o3d.geometry.PointCloud(o3d.utility.Vector3dVector(points))
+    return np.asarray(cloud.voxel_down_sample(voxel).points)

@@ -1,0 +1,114 @@
+"""Assemble the PDF report of a project: cover, contents, summary, one section per plugin.
+
+Sections come from the plugins: ``spec.report_section`` is the dotted path of
+``section(project, ctx) -> list[Flowable]``. A module without results gets no section
+(the summary says it was not run); a section that raises is replaced by a short notice
+so one faulty plugin cannot prevent the report.
+"""
+
+from __future__ import annotations
+
+import logging
+import os
+from pathlib import Path
+
+from reportlab.platypus import Flowable, PageBreak
+
+from hydrosync_core import __version__
+from hydrosync_core.atomic import atomic_path
+from hydrosync_core.errors import InputError
+from hydrosync_core.plugins import plugin_specs
+from hydrosync_core.plugins.spec import PluginSpec, load_object
+from hydrosync_core.progress import check_cancel, report
+from hydrosync_core.report.context import ReportContext, esc
+from hydrosync_core.report.cover import (
+    ModuleStatus,
+    contents_and_summary,
+    cover_page,
+    module_status,
+    results_path,
+)
+from hydrosync_core.report.template import NumberedCanvas, ReportDocTemplate
+
+log = logging.getLogger(__name__)
+
+
+def _generic_section(project, ctx: ReportContext, spec: PluginSpec) -> list[Flowable]:
+    """Fallback for a plugin with results but no report section of its own."""
+    path = results_path(spec)
+    items = [f"/{info.path}" for info in project.walk(path)]
+    return [ctx.heading(spec.name),
+            ctx.para(f"This module provides no report section. Its results are stored in "
+                     f"the project under <b>/{esc(path)}</b>: "
+                     + esc(", ".join(items[:30]) or "(empty)") + ".")]
+
+
+def _section(project, ctx: ReportContext, status: ModuleStatus) -> list[Flowable]:
+    spec = status.spec
+    if not spec.report_section:
+        return _generic_section(project, ctx, spec)
+    try:
+        flowables = list(load_object(spec.report_section)(project, ctx))
+    except Exception as exc:  # a faulty plugin must not prevent the rest of the report
+        log.error("report section of %s failed: %s: %s", spec.id, type(exc).__name__, exc)
+        return [ctx.heading(spec.name),
+                ctx.warning(f"the {spec.name} section could not be produced "
+                            f"({type(exc).__name__}: {exc}). The results stored in the "
+                            f"project are unaffected.")]
+    return flowables
+
+
+def build_report(project, pdf_path: str | os.PathLike, progress=None, cancel=None, *,
+                 specs: list[PluginSpec] | None = None) -> Path:
+    """Write the PDF report of *project* to *pdf_path* atomically and return the path.
+
+    Parameters
+    ----------
+    project : hydrosync_core.project.Project
+        The project; read only.
+    pdf_path : path-like
+        Output file. Written through a temporary file and renamed, so a failure or a
+        cancel leaves any previous file untouched.
+    progress : callable(fraction, message), optional
+    cancel : object with ``is_set()``, optional
+    specs : list of PluginSpec, optional
+        The modules to report on (default: every registered plugin).
+
+    Returns
+    -------
+    pathlib.Path
+        *pdf_path*.
+    """
+    pdf_path = Path(pdf_path)
+    if not pdf_path.parent.is_dir():
+        raise InputError(str(pdf_path), "output folder does not exist")
+    report(progress, 0.0, "collecting results")
+    specs = plugin_specs() if specs is None else specs
+    statuses = [module_status(project, spec) for spec in specs]
+    check_cancel(cancel)
+
+    doc_title = f"HydroSync report \u2014 {project.name or 'Untitled project'}"
+    with atomic_path(pdf_path) as tmp:
+        doc = ReportDocTemplate(str(tmp), title=doc_title, author="HydroSync",
+                                subject="Sensor calibration report")
+        ctx = ReportContext(width=doc.width)
+        story: list[Flowable] = cover_page(project, ctx, statuses)
+        story += contents_and_summary(ctx, statuses)
+        with_results = [s for s in statuses if s.has_results]
+        for i, status in enumerate(with_results):
+            check_cancel(cancel)
+            report(progress, 0.1 + 0.6 * i / max(len(with_results), 1),
+                   f"section {status.spec.name}")
+            story.append(PageBreak())
+            story += _section(project, ctx, status)
+        check_cancel(cancel)
+        report(progress, 0.75, "laying out pages")
+        canvas = type("ReportCanvas", (NumberedCanvas,), {
+            "footer_left": f"HydroSync {__version__} \u2014 {project.name or 'Untitled'}"
+                           + (f" \u2014 {project.path.name}" if project.path else ""),
+            "header_text": doc_title,
+        })
+        # Two passes at most: the contents needs the page numbers of the headings.
+        doc.multiBuild(story, canvasmaker=canvas, maxPasses=4)
+    report(progress, 1.0, f"report written to {pdf_path}")
+    return pdf_path

@@ -1,0 +1,187 @@
+"""What a plugin's report section receives: styles, page width and flowable helpers.
+
+A section is ``section(project, ctx: ReportContext) -> list[Flowable]``. It builds its
+heading, paragraphs, tables and figures through *ctx* so every section looks the same
+and tables split across pages with their header row repeated.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+from dataclasses import dataclass, field
+from datetime import UTC, datetime
+
+from reportlab.graphics.shapes import Drawing, Group
+from reportlab.platypus import (
+    Flowable,
+    KeepTogether,
+    LongTable,
+    Paragraph,
+    Spacer,
+    TableStyle,
+)
+from reportlab.platypus.flowables import HRFlowable
+
+from hydrosync_core.report.charts import Chart
+from hydrosync_core.report.styles import FONT_BOLD, RULE, stylesheet, table_style
+
+
+def esc(text) -> str:
+    """Escape text for a reportlab Paragraph (which parses a small XML subset)."""
+    return str(text).replace("&", "&amp;").replace("<", "&lt;").replace(">", "&gt;")
+
+
+def fmt(value, decimals: int = 3, unit: str = "") -> str:
+    """Fixed-decimal number with an optional unit; ``"—"`` for missing/non-finite values.
+
+    The minus sign is ASCII so that text extracted from the PDF parses as a number.
+    """
+    try:
+        number = float(value)
+    except (TypeError, ValueError):
+        return "\u2014"
+    if not math.isfinite(number):
+        return "\u2014"
+    text = f"{number:.{decimals}f}"
+    if text.strip("-0.") == "":
+        text = text.lstrip("-")  # no "-0.000"
+    return f"{text} {unit}".rstrip() if unit else text
+
+
+def utc_text(iso) -> str:
+    """``"2026-11-22 04:40:23 UTC"`` from an ISO 8601 time stamp (as stored in the project)."""
+    try:
+        stamp = datetime.fromisoformat(str(iso))
+    except ValueError:
+        return str(iso or "?")
+    if stamp.tzinfo is not None:
+        stamp = stamp.astimezone(UTC)
+    return stamp.strftime("%Y-%m-%d %H:%M:%S UTC")
+
+
+def fmt_pm(value, sigma, decimals: int = 3, unit: str = "") -> str:
+    """``value ± sigma unit`` (sigma omitted when missing)."""
+    main = fmt(value, decimals)
+    if fmt(sigma, decimals) != "\u2014":
+        main += f" \u00b1 {fmt(sigma, decimals)}"
+    return f"{main} {unit}".rstrip() if unit else main
+
+
+@dataclass
+class ReportContext:
+    """Shared state and helpers for building report sections.
+
+    Attributes
+    ----------
+    width : float
+        Usable frame width in points.
+    styles : StyleSheet1
+        Paragraph styles: ``Body``, ``Small``, ``Caption``, ``H1``, ``H2``, ``Cell``, ``Warning``.
+    figure_count, table_count : int
+        Running numbers for captions ("Figure 3", "Table 2").
+    """
+
+    width: float
+    styles: object = field(default_factory=stylesheet)
+    figure_count: int = 0
+    table_count: int = 0
+
+    # ------------------------------------------------------------------ text
+    def heading(self, text: str, level: int = 1) -> Paragraph:
+        """A section (level 1) or sub-section (level 2) heading; appears in the outline."""
+        return Paragraph(esc(text), self.styles["H1" if level == 1 else "H2"])
+
+    def para(self, text: str, style: str = "Body") -> Paragraph:
+        """A paragraph; *text* may use reportlab mark-up (``<b>``, ``<i>``, ``<sub>``)."""
+        return Paragraph(text, self.styles[style])
+
+    def warning(self, text: str) -> Paragraph:
+        return Paragraph(f"<b>Warning:</b> {esc(text)}", self.styles["Warning"])
+
+    def rule(self) -> HRFlowable:
+        return HRFlowable(width="100%", thickness=0.5, color=RULE, spaceBefore=2, spaceAfter=6)
+
+    # ------------------------------------------------------------------ tables
+    def table(
+        self,
+        header: Sequence[str],
+        rows: Sequence[Sequence],
+        *,
+        col_widths: Sequence[float] | None = None,
+        numeric_from: int = 1,
+        caption: str | None = None,
+        highlight_rows: Sequence[int] = (),
+        extra_style: Sequence[tuple] = (),
+        zebra: bool = True,
+    ) -> list[Flowable]:
+        """A table whose header row repeats on each page, with an optional caption above.
+
+        Parameters
+        ----------
+        header : sequence of str
+            Column titles (units in brackets), reportlab mark-up allowed
+            (``R<sub>max</sub>``); wrapped in Paragraphs so long titles break.
+        rows : sequence of sequences
+            Cell values: str (already formatted) or Flowable.
+        col_widths : sequence of float, optional
+            Fractions of the frame width (summing to <= 1) or None for equal widths.
+        numeric_from : int
+            Columns from this index on are right-aligned.
+        highlight_rows : sequence of int
+            Body row indices (0-based) printed in bold (e.g. the combined result).
+        """
+        n_cols = len(header)
+        fractions = col_widths or [1.0 / n_cols] * n_cols
+        widths = [f * self.width for f in fractions]
+        head_style = self.styles["CellBold"]
+        head = [Paragraph(h, head_style) for h in header]
+        data = [head] + [[c if isinstance(c, Flowable) else str(c) for c in r] for r in rows]
+        style = table_style(len(data), numeric_from=numeric_from, zebra=zebra)
+        for i in highlight_rows:
+            style.append(("FONT", (0, i + 1), (-1, i + 1), FONT_BOLD, 8.5))
+        style.extend(extra_style)
+        table = LongTable(data, colWidths=widths, repeatRows=1, hAlign="LEFT")
+        table.setStyle(TableStyle(style))
+        out: list[Flowable] = []
+        if caption:
+            self.table_count += 1
+            # TableCaption keeps with the table (at least its first rows).
+            out.append(Paragraph(f"<b>Table {self.table_count}.</b> {caption}",
+                                 self.styles["TableCaption"]))
+        out.append(table)
+        out.append(Spacer(1, 8))
+        return out
+
+    def key_values(self, pairs: Sequence[tuple[str, str]], caption: str | None = None,
+                   key_width: float = 0.38) -> list[Flowable]:
+        """A two-column table of labelled values (no numeric alignment)."""
+        rows = [[Paragraph(esc(k), self.styles["Cell"]), Paragraph(esc(v), self.styles["Cell"])]
+                for k, v in pairs]
+        return self.table(["Item", "Value"], rows, col_widths=[key_width, 1 - key_width],
+                          numeric_from=2, caption=caption)
+
+    # ------------------------------------------------------------------ figures
+    def chart(self, height: float = 210.0, fraction: float = 1.0, **kwargs) -> Chart:
+        """A :class:`Chart` *fraction* of the frame wide (points); call ``figure()`` with it."""
+        return Chart(width=self.width * fraction, height=height, **kwargs)
+
+    def figure(self, content, caption: str) -> KeepTogether:
+        """Figure + numbered caption kept on one page.
+
+        *content* is a :class:`Chart`, a reportlab Drawing, or a list of Charts placed
+        side by side (panels of one figure).
+        """
+        self.figure_count += 1
+        if isinstance(content, list | tuple):
+            drawing = Drawing(sum(c.width for c in content), max(c.height for c in content))
+            x = 0.0
+            for chart in content:
+                panel = Group(*chart.drawing().contents)
+                panel.translate(x, 0)
+                drawing.add(panel)
+                x += chart.width
+        else:
+            drawing = content.drawing() if isinstance(content, Chart) else content
+        cap = Paragraph(f"<b>Figure {self.figure_count}.</b> {caption}", self.styles["Caption"])
+        return KeepTogether([Spacer(1, 4), drawing, cap])

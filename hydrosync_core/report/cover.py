@@ -1,0 +1,169 @@
+"""Cover page, contents and the summary table of all modules.
+
+The summary asks each plugin's section module for an optional
+``summary(project) -> list[tuple[str, str]]`` (quantity, formatted value); a module that
+was not run is listed with the reason (which inputs are missing).
+"""
+
+from __future__ import annotations
+
+import hashlib
+import logging
+from dataclasses import dataclass
+from datetime import UTC, datetime
+from pathlib import Path
+
+from reportlab.lib.units import mm
+from reportlab.platypus import Flowable, PageBreak, Paragraph, Spacer, Table, TableStyle
+from reportlab.platypus.tableofcontents import TableOfContents
+
+from hydrosync_core import __version__
+from hydrosync_core.plugins.spec import PluginSpec, load_object
+from hydrosync_core.project.vessel import vessel_config
+from hydrosync_core.report.context import ReportContext, esc, utc_text
+from hydrosync_core.report.styles import ACCENT, FONT, FONT_BOLD, INK, RULE
+
+log = logging.getLogger(__name__)
+
+
+@dataclass(frozen=True)
+class ModuleStatus:
+    """Whether one plugin's results are in the project, and its summary rows."""
+
+    spec: PluginSpec
+    has_results: bool
+    reason: str
+    run_utc: str
+    software_version: str
+    rows: tuple[tuple[str, str], ...]
+
+
+def results_path(spec: PluginSpec) -> str:
+    return f"results/{spec.id}"
+
+
+def module_status(project, spec: PluginSpec) -> ModuleStatus:
+    """Collect the status line and key results of *spec*'s module."""
+    path = results_path(spec)
+    if not project.exists(path):
+        missing = spec.missing_inputs(project)
+        reason = ("not run: inputs missing (" + ", ".join("/" + m for m in missing) + ")"
+                  if missing else "not run (inputs present)")
+        return ModuleStatus(spec, False, reason, "", "", ())
+    attrs = project.attrs(path)
+    rows: tuple[tuple[str, str], ...] = ()
+    if spec.report_section:
+        module_name = spec.report_section.partition(":")[0]
+        try:
+            summary = load_object(f"{module_name}:summary")
+            rows = tuple((str(k), str(v)) for k, v in summary(project))
+        except AttributeError:
+            rows = ()
+        except Exception as exc:  # a plugin's summary must not sink the whole report
+            log.error("summary of %s failed: %s", spec.id, exc)
+            rows = (("summary unavailable", f"{type(exc).__name__}: {exc}"),)
+    return ModuleStatus(spec, True, "run", str(attrs.get("run_utc", "")),
+                        str(attrs.get("software_version", "")), rows)
+
+
+def file_sha256(path: Path | None) -> str:
+    """SHA-256 of the saved project file (what the reader can check the report against)."""
+    if path is None or not Path(path).exists():
+        return "not saved"
+    digest = hashlib.sha256()
+    with open(path, "rb") as fh:
+        for chunk in iter(lambda: fh.read(1 << 20), b""):
+            digest.update(chunk)
+    return digest.hexdigest()
+
+
+def cover_page(project, ctx: ReportContext, statuses: list[ModuleStatus]) -> list[Flowable]:
+    """Title block, project identification, and a sign-off box."""
+    attrs = project.attrs_root
+    vessel = vessel_config(project).get("name") or "(not set in the vessel sheet)"
+    now = datetime.now(UTC).strftime("%Y-%m-%d %H:%M:%S UTC")
+    path = project.path
+    run = [s.spec.name for s in statuses if s.has_results]
+    pairs = [
+        ("Project", project.name or "(unnamed)"),
+        ("Vessel", vessel),
+        ("Report date", now),
+        ("Software", f"HydroSync {__version__}"),
+        ("Project file", str(path) if path else "(not saved)"),
+        ("Project file SHA-256", file_sha256(path)
+         + (" (the project has unsaved changes)" if project.dirty else "")),
+        ("Project created", utc_text(attrs.get("created"))),
+        ("Project last saved", utc_text(attrs.get("modified"))),
+        ("Modules with results", ", ".join(run) if run else "none"),
+    ]
+    out: list[Flowable] = [
+        Spacer(1, 30 * mm),
+        Paragraph("Sensor calibration report", ctx.styles["Title"]),
+        Paragraph(esc(project.name or "Untitled project"), ctx.styles["Subtitle"]),
+    ]
+    rows = [[Paragraph(f"<b>{esc(k)}</b>", ctx.styles["Cell"]),
+             Paragraph(esc(v), ctx.styles["Cell"])] for k, v in pairs]
+    info = Table(rows, colWidths=[0.3 * ctx.width, 0.7 * ctx.width], hAlign="LEFT")
+    info.setStyle(TableStyle([
+        ("VALIGN", (0, 0), (-1, -1), "TOP"),
+        ("LINEBELOW", (0, 0), (-1, -1), 0.4, RULE),
+        ("LINEABOVE", (0, 0), (-1, 0), 0.8, ACCENT),
+        ("TOPPADDING", (0, 0), (-1, -1), 4),
+        ("BOTTOMPADDING", (0, 0), (-1, -1), 4),
+    ]))
+    out += [info, Spacer(1, 25 * mm), _signoff(ctx), PageBreak()]
+    return out
+
+
+def _signoff(ctx: ReportContext) -> Table:
+    head = ["", "Name", "Signature", "Date"]
+    rows = [head] + [[role, "", "", ""] for role in ("Prepared by", "Checked by", "Approved by")]
+    table = Table(rows, colWidths=[0.2 * ctx.width, 0.3 * ctx.width, 0.3 * ctx.width,
+                                   0.2 * ctx.width], rowHeights=[14] + [26] * 3, hAlign="LEFT")
+    table.setStyle(TableStyle([
+        ("FONT", (0, 0), (-1, -1), FONT, 8.5),
+        ("FONT", (0, 0), (-1, 0), FONT_BOLD, 8.5),
+        ("TEXTCOLOR", (0, 0), (-1, -1), INK),
+        ("GRID", (0, 0), (-1, -1), 0.5, RULE),
+        ("VALIGN", (0, 0), (-1, -1), "MIDDLE"),
+    ]))
+    return table
+
+
+def contents_and_summary(ctx: ReportContext, statuses: list[ModuleStatus]) -> list[Flowable]:
+    """Table of contents, then one summary table over every registered module."""
+    toc = TableOfContents()
+    toc.levelStyles = [ctx.styles["TOC1"], ctx.styles["TOC2"]]
+    toc.dotsMinLevel = 0
+    out: list[Flowable] = [Paragraph("Contents", ctx.styles["ContentsTitle"]), toc, Spacer(1, 10),
+                           ctx.heading("Summary of results")]
+    if not statuses:
+        out.append(ctx.para("No analysis module is installed."))
+        return out
+    rows = []
+    separators = []
+    for s in statuses:
+        if rows:
+            separators.append(("LINEABOVE", (0, len(rows) + 1), (-1, len(rows) + 1), 0.5, RULE))
+        name = Paragraph(f"<b>{esc(s.spec.name)}</b>", ctx.styles["Cell"])
+        if not s.has_results:
+            rows.append([name, Paragraph(esc(s.reason), ctx.styles["Cell"]), "", ""])
+            continue
+        if not s.rows:
+            rows.append([name, "results stored", "see section", ""])
+        for i, (quantity, value) in enumerate(s.rows):
+            rows.append([name if i == 0 else "", Paragraph(esc(quantity), ctx.styles["Cell"]),
+                         Paragraph(esc(value), ctx.styles["Cell"]),
+                         Paragraph(f"{esc(utc_text(s.run_utc))}<br/>HydroSync "
+                                   f"{esc(s.software_version)}" if i == 0 else "",
+                                   ctx.styles["Small"])])
+    out += ctx.table(["Module", "Quantity", "Value", "Computed (UTC, version)"], rows,
+                     col_widths=[0.18, 0.3, 0.3, 0.22], numeric_from=4, zebra=False,
+                     extra_style=separators,
+                     caption="Key results of every module. Values are the final, corrected "
+                     "values; uncertainties are one standard deviation unless stated.")
+    not_run = [s.spec.name for s in statuses if not s.has_results]
+    if not_run:
+        out.append(ctx.para("Modules not run (their sections are omitted): "
+                            + esc(", ".join(not_run)) + "."))
+    return out

@@ -1,0 +1,282 @@
+"""Report section of the pool calibration (seed 003 and the joint adjustment).
+
+Reads ``/results/pool_calibration`` as :mod:`hydrosync_core.methods.pool.project_run`
+stores it: group attributes with the final values and their 1-σ, the JSON of
+``PoolResult.to_dict()`` on ``result``, tables ``faces`` and ``iterations``, and the
+decimated clouds under ``plan``; plus ``raw/pool/target`` for the design outlines.
+Content: final parameters beside the coarse values and both solutions, the face table,
+the joint adjustment's statistics and correlations, the seed iteration table with its
+convergence, and plan and elevation views of the segmented clouds.
+"""
+
+from __future__ import annotations
+
+import json
+
+import numpy as np
+from reportlab.platypus import Flowable
+
+from hydrosync_core.report.context import ReportContext, fmt, fmt_pm, utc_text
+from hydrosync_core.report.styles import BAD_TEXT, INK, SERIES
+
+RESULT = "results/pool_calibration"
+HEADING = "Pool calibration of multibeam boresight and lever arm"
+
+# Decimals: angles to the millidegree, lever arms to the tenth of a millimetre (the
+# joint adjustment's 1-σ are a few millidegrees and tenths of millimetres).
+ANGLE_DECIMALS = 3
+LEVER_DECIMALS = 4
+PLOT_POINTS = 2500  # per cloud and panel: enough to see the faces, light in the PDF
+
+ANGLES = (("roll", "Boresight roll", "\u00b0"), ("pitch", "Boresight pitch", "\u00b0"),
+          ("yaw", "Boresight yaw", "\u00b0"))
+LEVERS = (("x", "Lever arm x (forward)", "m"), ("y", "Lever arm y (starboard)", "m"),
+          ("z", "Lever arm z (down)", "m"))
+ROLE_COLORS = {"wall": SERIES[0], "oblique": SERIES[1], "perpendicular": SERIES[2],
+               "horizontal": SERIES[3], "parallel": SERIES[4], "other": SERIES[5]}
+
+
+def _result(project) -> dict:
+    return project.get_json(f"{RESULT}/result", {}) or {}
+
+
+def parameter_rows(attrs: dict) -> list[tuple[str, str]]:
+    """``(name, "value ± σ unit")`` of the six final parameters, as printed everywhere."""
+    rows = []
+    for key, label, unit in ANGLES:
+        rows.append((label, fmt_pm(attrs.get(f"{key}_deg"), attrs.get(f"sigma_{key}_deg"),
+                                   ANGLE_DECIMALS, unit)))
+    for key, label, unit in LEVERS:
+        rows.append((label, fmt_pm(attrs.get(f"lever_{key}_m"),
+                                   attrs.get(f"sigma_lever_{key}_m"), LEVER_DECIMALS, unit)))
+    return rows
+
+
+def summary(project) -> list[tuple[str, str]]:
+    """Rows of the report's summary table (and of ``hydrosync demo``'s printout)."""
+    attrs = project.attrs(RESULT)
+    method = {"joint": "joint adjustment", "seed": "seed iteration"}.get(
+        str(attrs.get("method")), str(attrs.get("method")))
+    state = "converged" if attrs.get("converged") else "NOT converged"
+    return [(f"{label} (final, 1\u03c3)", value) for label, value in parameter_rows(attrs)] + [
+        ("Final values from", f"{method}, {state}")]
+
+
+def section(project, ctx: ReportContext) -> list[Flowable]:
+    """The pool calibration section's flowables."""
+    attrs = project.attrs(RESULT)
+    res = _result(project)
+    out: list[Flowable] = [
+        ctx.heading(HEADING),
+        ctx.para(
+            "Method: pool calibration against a laser-scanned target (seed 003). Both point "
+            "clouds are segmented into the design faces of the target; planes are fitted by "
+            "total least squares. The seed method iterates the boresight angles from the "
+            "angles between multibeam and laser plane normals (roll from the wall, pitch and "
+            "yaw from the oblique faces), then derives the lever arm offsets (x from the wall, "
+            "y from the oblique faces, z from the horizontal faces). The joint adjustment "
+            "estimates all six parameters at once by minimising the point-to-plane distances "
+            "of the multibeam soundings to the laser planes, with their covariance. "
+            "Angles follow setup.json: R<sub>m</sub> = Rz(yaw)\u00b7Ry(pitch)\u00b7Rx(roll); "
+            "the lever arm is in the body frame (x forward, y starboard, z down)."),
+    ]
+    out += _parameter_table(ctx, attrs, res)
+    out += _run_info(ctx, attrs, res)
+    for text in json.loads(attrs.get("warnings") or "[]"):
+        out.append(ctx.warning(text))
+    out += _face_table(project, ctx, res)
+    out += _joint_tables(ctx, res)
+    out += _plan_figures(project, ctx)
+    out += _iterations(project, ctx)
+    return out
+
+
+def _parameter_table(ctx, attrs, res) -> list[Flowable]:
+    coarse = res.get("coarse", {})
+    seed = res.get("seed") or {}
+    joint = res.get("joint") or {}
+    rows = []
+    for key, label, unit in ANGLES + LEVERS:
+        group, sig_group = (("boresight_deg", "sigma_boresight_deg") if unit == "\u00b0"
+                            else ("lever_arm_m", "sigma_lever_arm_m"))
+        dec = ANGLE_DECIMALS if unit == "\u00b0" else LEVER_DECIMALS
+        final_key = f"{key}_deg" if unit == "\u00b0" else f"lever_{key}_m"
+        c = coarse.get(group, {}).get(key)
+        final = attrs.get(final_key)
+        rows.append([
+            f"{label} [{unit}]", fmt(c, dec), fmt(seed.get(group, {}).get(key), dec),
+            fmt_pm(joint.get(group, {}).get(key), joint.get(sig_group, {}).get(key), dec),
+            fmt(final, dec),
+            fmt(None if c is None or final is None else final - c, dec)])
+    method = str(attrs.get("method", "?"))
+    return ctx.table(
+        ["Parameter", "Coarse (setup)", "Seed method", "Joint adjustment \u00b1 1\u03c3",
+         f"Final ({method})", "Correction (final \u2212 coarse)"], rows,
+        col_widths=[0.22, 0.13, 0.13, 0.2, 0.15, 0.17],
+        caption="Boresight angles and lever arm: the coarse values of the installation "
+        "drawing, the seed method's and the joint adjustment's solutions, and the final "
+        "values to enter in the acquisition software.")
+
+
+def _run_info(ctx, attrs, res) -> list[Flowable]:
+    joint = res.get("joint") or {}
+    seed = res.get("seed") or {}
+    pairs = [
+        ("Outcome", str(res.get("message", attrs.get("message", "")))),
+        ("Seed method", f"{seed.get('iterations', '?')} angle iterations, "
+                        + ("converged" if seed.get("converged") else "not converged")
+                        + (f"; undetermined: {', '.join(seed['undetermined'])}"
+                           if seed.get("undetermined") else "")),
+    ]
+    if joint:
+        pairs += [("Joint adjustment",
+                   f"{joint.get('iterations', '?')} iterations, "
+                   + ("converged" if joint.get("converged") else "not converged")
+                   + f", {joint.get('n_observations', '?')} soundings, \u03c3\u2080 = "
+                   + fmt(1000 * float(joint.get("sigma0_m", np.nan)), 1, "mm"))]
+    pairs += [("Multibeam pings dropped (INS gaps)", str(res.get("dropped_pings", 0))),
+              ("Computed", f"{utc_text(attrs.get('run_utc'))} with HydroSync "
+                           f"{attrs.get('software_version', '?')}")]
+    return ctx.key_values(pairs, caption="Pool calibration: solution statistics.",
+                          key_width=0.32)
+
+
+def _face_table(project, ctx, res) -> list[Flowable]:
+    if not project.exists(f"{RESULT}/faces"):
+        return []
+    t = project.get_table(f"{RESULT}/faces")
+    resid = (res.get("joint") or {}).get("residual_rms_m", {})
+    rows = []
+    for i, name in enumerate(t["face"]):
+        rows.append([
+            str(name), str(t["role"][i]), str(t["water"][i]), str(int(t["points_laser"][i])),
+            str(int(t["points_mbes"][i])), fmt(1000 * t["rms_laser_m"][i], 1),
+            fmt(1000 * t["rms_mbes_m"][i], 1),
+            fmt(1000 * resid[name], 1) if name in resid else "\u2014",
+            fmt(t["normal_angle_deg"][i], 3), str(t["used_for"][i]).replace(",", ", ")
+            or "\u2014"])
+    return [ctx.heading("Target faces", 2)] + ctx.table(
+        ["Face", "Role", "Water", "Laser points", "MBES points", "Laser RMS [mm]",
+         "MBES RMS [mm]", "Joint resid. RMS [mm]", "Normal angle [\u00b0]", "Used for"],
+        rows, col_widths=[0.15, 0.1, 0.08, 0.07, 0.07, 0.08, 0.08, 0.08, 0.09, 0.2],
+        numeric_from=3, extra_style=[("ALIGN", (-1, 0), (-1, -1), "LEFT")],
+        caption="Faces of the target design, their role inferred from geometry, points "
+        "segmented in each cloud, plane-fit RMS, the angle between the laser and the final "
+        "multibeam plane normals, and the parameters each face determines.")
+
+
+def _joint_tables(ctx, res) -> list[Flowable]:
+    joint = res.get("joint")
+    if not joint or not joint.get("correlation"):
+        return []
+    names = list(joint.get("parameters", []))
+    corr = np.asarray(joint["correlation"], float)
+    rows = [[n] + [fmt(v, 2) for v in corr[i]] for i, n in enumerate(names)]
+    strong = [("TEXTCOLOR", (j + 1, i + 1), (j + 1, i + 1), BAD_TEXT)
+              for i in range(len(names)) for j in range(len(names))
+              if i != j and abs(corr[i, j]) > 0.9]
+    n = len(names)
+    return [ctx.heading("Joint adjustment: correlations", 2)] + ctx.table(
+        ["", *names], rows, col_widths=[0.16] + [0.84 / n] * n, extra_style=strong,
+        caption="Correlation matrix of the joint adjustment's parameters. Values above 0.9 "
+        "in magnitude (red) mean the pass geometry barely separates the two parameters.")
+
+
+def _subsample(n: int, k: int) -> np.ndarray:
+    """At most *k* evenly spread indices of *n* (deterministic)."""
+    return np.arange(n) if n <= k else np.linspace(0, n - 1, k).astype(int)
+
+
+def _plan_figures(project, ctx) -> list[Flowable]:
+    base = f"{RESULT}/plan"
+    needed = ("laser_xyz", "laser_face", "mbes_before_xyz", "mbes_after_xyz", "mbes_face")
+    if not all(project.exists(f"{base}/{k}") for k in needed):
+        return []
+    t = project.get_table(f"{RESULT}/faces")
+    roles = np.asarray(t["role"]).astype(str)
+    lx = np.asarray(project.get(f"{base}/laser_xyz"), float)
+    lf = np.asarray(project.get(f"{base}/laser_face"), int)
+    mb = np.asarray(project.get(f"{base}/mbes_before_xyz"), float)
+    ma = np.asarray(project.get(f"{base}/mbes_after_xyz"), float)
+    mf = np.asarray(project.get(f"{base}/mbes_face"), int)
+    on = mf >= 0
+    mb, ma, mf = mb[on], ma[on], mf[on]
+    target = project.get_json("raw/pool/target", {}) or {}
+    faces = target.get("faces", [])
+    water = float(target.get("water_level_m", 0.0))
+    out: list[Flowable] = [ctx.heading("Segmented point clouds", 2)]
+
+    def outlines(chart, ix, iy):
+        for face in faces:
+            c = np.asarray(face["corners"], float)
+            chart.polygon(c[:, ix], c[:, iy], color="#8a8a8a", width=0.4)
+
+    def by_role(chart, xyz, face_idx, ix, iy, marker, label_suffix):
+        for role, color in ROLE_COLORS.items():
+            sel = np.flatnonzero(roles[face_idx] == role) if len(face_idx) else []
+            if len(sel) == 0:
+                continue
+            sel = sel[_subsample(len(sel), PLOT_POINTS // 2)]
+            chart.points(xyz[sel, ix], xyz[sel, iy], color=color, size=0.8, marker=marker,
+                         label=f"{role}{label_suffix}")
+
+    # Plan view: north along the page (the wall runs north), east across.
+    plan = ctx.chart(height=250, xlabel="north [m]", ylabel="east [m]")
+    outlines(plan, 1, 0)
+    by_role(plan, lx, lf, 1, 0, "circle", " (laser)")
+    sel = _subsample(len(ma), PLOT_POINTS)
+    plan.points(ma[sel, 1], ma[sel, 0], color=INK, size=0.5, marker="square",
+                label="multibeam, final values")
+    out.append(ctx.figure(plan, (
+        "Plan view of the segmented clouds in the target frame (ENU): laser points coloured "
+        "by the role of their face, multibeam soundings on faces georeferenced with the final "
+        "values (black), design face outlines in grey. The vertical scale is stretched "
+        "(axes not to the same scale) to separate the faces.")))
+    # Elevation seen from the vessel: the faces above water (laser) and below (multibeam).
+    panels = []
+    for title, xyz in (("coarse setup", mb), ("final values", ma)):
+        chart = ctx.chart(height=250, fraction=0.5, xlabel=f"north [m] \u2014 multibeam, {title}",
+                          ylabel="up [m]")
+        outlines(chart, 1, 2)
+        chart.hline(water, color=SERIES[5], dash=(4, 2), width=0.8)
+        sel = _subsample(len(lx), PLOT_POINTS)
+        chart.points(lx[sel, 1], lx[sel, 2], color="#9ec5e8", size=0.6, marker="square")
+        by_role(chart, xyz, mf, 1, 2, "square", "")
+        panels.append(chart)
+    out.append(ctx.figure(panels, (
+        "Elevation of the target seen from the vessel (north against up): laser points above "
+        "the water line (light blue, dashed line) and multibeam soundings below it, coloured "
+        "by face role, georeferenced with the coarse setup (left) and the final values "
+        "(right).")))
+    return out
+
+
+def _iterations(project, ctx) -> list[Flowable]:
+    if not project.exists(f"{RESULT}/iterations"):
+        return []
+    t = project.get_table(f"{RESULT}/iterations")
+    n = len(t["iteration"])
+    if n == 0:
+        return []
+    out: list[Flowable] = [ctx.heading("Seed method: angle iterations", 2)]
+    chart = ctx.chart(height=180, xlabel="iteration", ylabel="max. normal angle [\u00b0]")
+    it = np.asarray(t["iteration"], float)
+    chart.line(it, t["max_normal_angle_deg"], color=SERIES[0], width=1.0,
+               label="largest angle between multibeam and laser normals")
+    chart.points(it, t["max_normal_angle_deg"], color=SERIES[0], size=1.4)
+    out.append(ctx.figure(chart, "Convergence of the seed iteration (steps 3.1\u20133.6): the "
+                          "largest angle between corresponding plane normals after each "
+                          "boresight update."))
+    rows = [[str(int(t["iteration"][i])), str(int(t["round"][i])),
+             *(fmt(t[c][i], 4) for c in ("d_roll_deg", "d_pitch_deg", "d_yaw_deg")),
+             *(fmt(t[c][i], ANGLE_DECIMALS) for c in ("roll_deg", "pitch_deg", "yaw_deg")),
+             fmt(t["max_normal_angle_deg"][i], 4)] for i in range(n)]
+    out += ctx.table(
+        ["Iteration", "Round", "\u03b4roll [\u00b0]", "\u03b4pitch [\u00b0]",
+         "\u03b4yaw [\u00b0]", "Roll [\u00b0]", "Pitch [\u00b0]", "Yaw [\u00b0]",
+         "Max normal angle [\u00b0]"], rows,
+        col_widths=[0.09, 0.08, 0.11, 0.11, 0.11, 0.11, 0.11, 0.11, 0.17], numeric_from=0,
+        caption="Seed iteration: boresight corrections of each iteration (about the body "
+        "axes), the accumulated angles and the largest remaining normal angle. A new round "
+        "starts after the lever arm has been re-estimated.")
+    return out

@@ -1,0 +1,255 @@
+"""The File menu's work for :class:`~hydrosync_gui.main_window.MainWindow`.
+
+New, Open, Open Recent, Save, Save As, Import and Export report, with the
+unsaved-changes prompt in front of anything that would drop the current project. Every
+step that touches the disk runs in a :class:`~hydrosync_gui.workers.Worker` through
+``MainWindow.run_shell_task`` so the window never freezes; the steps that must follow it
+(open after save, quit after save) are passed on as continuations.
+"""
+
+from __future__ import annotations
+
+import inspect
+import logging
+from collections.abc import Callable
+from pathlib import Path
+
+from PySide6.QtWidgets import QFileDialog, QMessageBox
+
+from hydrosync_core.errors import InputError
+from hydrosync_core.importers.kinds import KINDS, import_file
+from hydrosync_core.project import Project
+from hydrosync_gui.dialogs import ImportDialog
+
+log = logging.getLogger("hydrosync_gui.file")
+
+PROJECT_FILTER = "HydroSync projects (*.h5 *.hdf5);;All files (*)"
+
+
+def copy_subtree(src: Project, dst: Project, path: str) -> None:
+    """Replace *path* in *dst* by *src*'s node there (group attributes, datasets, all below)."""
+    path = path.strip("/")
+    try:
+        data = src.get(path)
+    except InputError:  # a group: copy its attributes and everything below it
+        dst.delete(path)
+        dst.ensure_group(path)
+        dst.set_attrs(path, **src.attrs(path))
+        for info in src.walk(path):
+            if info.kind == "group":
+                dst.ensure_group(info.path)
+                dst.set_attrs(info.path, **info.attrs)
+            else:
+                dst.put(info.path, src.get(info.path), attrs=info.attrs)
+    else:
+        dst.put(path, data, attrs=src.attrs(path))
+
+
+def _import_into_scratch(kind: str, path: str, options: dict):
+    """Read *path* into a scratch project (worker thread): the real one stays untouched."""
+    scratch = Project.new(name="import")
+    if options.get("heave_positive") and kind == "attitude_log":
+        # as ``hydrosync import --heave-positive`` does
+        from hydrosync_core.importers.log_import import store_attitude_log
+
+        message = store_attitude_log(scratch, KINDS[kind].target, Path(path),
+                                     heave_positive=options["heave_positive"])
+    else:
+        message = import_file(scratch, kind, path)
+    return scratch, message
+
+
+class FileActions:
+    """Mixin of :class:`MainWindow` holding the File menu slots."""
+
+    # ------------------------------------------------------ unsaved changes
+    def maybe_save(self, then: Callable[[], None]) -> None:
+        """Run *then* once the current project may be dropped.
+
+        If the project has unsaved changes, ask Save / Discard / Cancel: Save saves (in a
+        worker) and runs *then* after a successful save; Discard runs *then*; Cancel
+        does nothing.
+        """
+        if self.project is None or not self.project.dirty:
+            then()
+            return
+        answer = QMessageBox.question(
+            self, "Unsaved changes",
+            f"The project '{self.project.name}' has unsaved changes. Save them first?",
+            QMessageBox.StandardButton.Save | QMessageBox.StandardButton.Discard
+            | QMessageBox.StandardButton.Cancel,
+            QMessageBox.StandardButton.Save,
+        )
+        if answer == QMessageBox.StandardButton.Save:
+            self.save_project(then=then)
+        elif answer == QMessageBox.StandardButton.Discard:
+            then()
+
+    # ----------------------------------------------------------- new / open
+    def _on_new(self) -> None:
+        if self.ensure_idle():
+            self.maybe_save(self.new_project)
+
+    def new_project(self) -> None:
+        """Replace the current project by an empty, unsaved one."""
+        project = Project.new("Untitled")
+        project.dirty = False  # nothing to lose yet
+        self.set_project(project)
+        log.info("new project")
+
+    def _on_open(self) -> None:
+        if self.ensure_idle():
+            self.maybe_save(self._choose_and_open)
+
+    def _choose_and_open(self) -> None:
+        path, _ = QFileDialog.getOpenFileName(self, "Open project", self.last_dir(),
+                                              PROJECT_FILTER)
+        if path:
+            self.open_project(path)
+
+    def _on_open_recent(self, path: str) -> None:
+        if self.ensure_idle():
+            self.maybe_save(lambda: self.open_project(path))
+
+    def open_project(self, path: str) -> None:
+        """Open *path* in a worker; on success it becomes the current project."""
+
+        def opened(project: Project) -> None:
+            self.set_project(project)
+            self.recent.add(path)
+            self.remember_dir(path)
+            log.info("opened %s", path)
+            self.statusBar().showMessage(f"Opened {path}", 5000)
+
+        def failed(message: str) -> None:
+            if not Path(path).exists():
+                self.recent.remove(path)
+            self.show_error("Cannot open project", message)
+
+        self.run_shell_task(f"Opening {Path(path).name}", lambda p, c: Project.open(path),
+                            opened, failed)
+
+    # ---------------------------------------------------------------- save
+    def _on_save(self) -> None:
+        if self.ensure_idle():
+            self.save_project()
+
+    def _on_save_as(self) -> None:
+        if self.ensure_idle():
+            self.save_project(ask=True)
+
+    def save_project(self, then: Callable[[], None] | None = None, ask: bool = False) -> None:
+        """Save (atomically, in a worker); ask for a file name if needed; then run *then*.
+
+        On failure the project stays in memory, still marked modified, and the error is
+        shown; *then* is not run.
+        """
+        project = self.project
+        if project is None:
+            return
+        target = project.path
+        if ask or target is None:
+            start = str(Path(self.last_dir()) / f"{project.name or 'project'}.h5")
+            chosen, _ = QFileDialog.getSaveFileName(self, "Save project as", start,
+                                                    PROJECT_FILTER)
+            if not chosen:
+                return
+            target = Path(chosen)
+            if not target.suffix:
+                target = target.with_suffix(".h5")
+
+        def saved(path: Path) -> None:
+            self.recent.add(path)
+            self.remember_dir(path)
+            self.browser.refresh()
+            self.update_title()
+            log.info("saved %s", path)
+            self.statusBar().showMessage(f"Saved {path}", 5000)
+            if then is not None:
+                then()
+
+        def failed(message: str) -> None:
+            self.update_title()
+            self.show_error("Save failed", f"{message}\n\nThe project is still open and "
+                            "unchanged in memory; save it somewhere else.")
+
+        self.run_shell_task(f"Saving {Path(target).name}",
+                            lambda p, c: project.save(target), saved, failed)
+
+    # --------------------------------------------------------------- import
+    def _on_import(self) -> None:
+        if not self.ensure_idle():
+            return
+        choice = ImportDialog.ask(self, KINDS, self.last_dir())
+        if choice is not None:
+            self.import_data(*choice)
+
+    def import_data(self, kind: str, path: str, options: dict | None = None) -> None:
+        """Import *path* as *kind* (a key of ``KINDS``) in a worker.
+
+        *options*: ``{"heave_positive": "up" | "down"}`` for a motion log.
+
+        The file is read into a scratch project first, so a bad file (``InputError``) is
+        reported as its one-line message and leaves the current project untouched.
+        """
+        project = self.project
+        if project is None:
+            return
+
+        def imported(result) -> None:
+            scratch, message = result
+            copy_subtree(scratch, project, KINDS[kind].target)
+            scratch.close()
+            self.remember_dir(path)
+            self.browser.refresh()
+            self.host.refresh()
+            self.update_title()
+            log.info("imported %s", message)
+            self.statusBar().showMessage(f"Imported {message}", 8000)
+
+        self.run_shell_task(f"Importing {Path(path).name}",
+                            lambda p, c: _import_into_scratch(kind, path, dict(options or {})),
+                            imported,
+                            lambda msg: self.show_error("Import failed", msg))
+
+    # --------------------------------------------------------------- report
+    def _on_export_report(self) -> None:
+        if not self.ensure_idle() or self.project is None:
+            return
+        try:
+            from hydrosync_core.report import build_report
+        except ImportError as exc:
+            self.show_error(
+                "Report not available",
+                "The PDF report is not available in this installation: "
+                f"hydrosync_core.report.build_report cannot be imported ({exc}).",
+                level=logging.WARNING,
+            )
+            return
+        start = str(Path(self.last_dir()) / f"{self.project.name or 'report'}.pdf")
+        path, _ = QFileDialog.getSaveFileName(self, "Export report", start, "PDF (*.pdf)")
+        if path:
+            self.export_report(path, build_report)
+
+    def export_report(self, path: str, build_report: Callable) -> None:
+        """Run ``build_report(project, path[, progress, cancel])`` in a worker."""
+        project = self.project
+        accepted = inspect.signature(build_report).parameters
+        cancellable = "cancel" in accepted
+
+        def work(progress, cancel):
+            kwargs = {}
+            if "progress" in accepted:
+                kwargs["progress"] = progress
+            if cancellable:
+                kwargs["cancel"] = cancel
+            return build_report(project, path, **kwargs)
+
+        def done(_result) -> None:
+            self.remember_dir(path)
+            log.info("report written to %s", path)
+            self.statusBar().showMessage(f"Report written to {path}", 8000)
+
+        self.run_shell_task("Exporting report", work, done,
+                            lambda msg: self.show_error("Report failed", msg),
+                            cancellable=cancellable)

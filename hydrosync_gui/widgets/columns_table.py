@@ -1,0 +1,126 @@
+"""A read-only table of named 1-D columns (a project table) for results and raw data.
+
+Example
+-------
+>>> table = ColumnsTable()
+>>> table.set_columns(project.get_table("results/latency/lines"),
+...                   units={"latency": "s"}, formats={"latency": "{:.4f}"})
+
+Cells are formatted only when Qt paints them, so a table of a million rows costs the
+arrays it holds and nothing more.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+
+import numpy as np
+from PySide6.QtCore import QAbstractTableModel, QModelIndex, QPersistentModelIndex, Qt
+from PySide6.QtWidgets import QAbstractItemView, QHeaderView, QTableView, QWidget
+
+_Index = QModelIndex | QPersistentModelIndex
+
+
+def _default_format(value) -> str:
+    if isinstance(value, float | np.floating):
+        return "" if np.isnan(value) else f"{value:.6g}"
+    if isinstance(value, bytes):
+        return value.decode("utf-8", "replace")
+    return str(value)
+
+
+class ColumnsTableModel(QAbstractTableModel):
+    """Qt model over ``{name: 1-D array}``; headers ``name [unit]``."""
+
+    def __init__(self, parent=None) -> None:
+        super().__init__(parent)
+        self._names: list[str] = []
+        self._columns: list[np.ndarray] = []
+        self._headers: list[str] = []
+        self._formats: list[str | None] = []
+        self._rows = 0
+
+    def set_columns(
+        self,
+        columns: Mapping[str, np.ndarray],
+        units: Mapping[str, str] | None = None,
+        formats: Mapping[str, str] | None = None,
+    ) -> None:
+        """Show *columns* (equal-length 1-D arrays); *units*/*formats* keyed by name.
+
+        *formats* are ``str.format`` patterns such as ``"{:.3f}"``.
+        """
+        arrays = {k: np.asarray(v) for k, v in columns.items()}
+        lengths = {a.shape[0] if a.ndim else 1 for a in arrays.values()}
+        if len(lengths) > 1:
+            raise ValueError(f"columns of different lengths {sorted(lengths)}")
+        units = units or {}
+        formats = formats or {}
+        self.beginResetModel()
+        self._names = list(arrays)
+        self._columns = [a.reshape(-1) for a in arrays.values()]
+        self._headers = [f"{n} [{units[n]}]" if units.get(n) else n for n in self._names]
+        self._formats = [formats.get(n) for n in self._names]
+        self._rows = lengths.pop() if lengths else 0
+        self.endResetModel()
+
+    def rowCount(self, parent: _Index = QModelIndex()) -> int:  # noqa: B008, N802
+        return 0 if parent.isValid() else self._rows
+
+    def columnCount(self, parent: _Index = QModelIndex()) -> int:  # noqa: B008, N802
+        return 0 if parent.isValid() else len(self._columns)
+
+    def text(self, row: int, column: int) -> str:
+        """The displayed text of one cell."""
+        value = self._columns[column][row]
+        pattern = self._formats[column]
+        if pattern and not (isinstance(value, float | np.floating) and np.isnan(value)):
+            return pattern.format(value)
+        return _default_format(value)  # NaN (a missing value) is shown blank
+
+    def data(self, index: _Index, role: int = Qt.ItemDataRole.DisplayRole):
+        if not index.isValid():
+            return None
+        if role == Qt.ItemDataRole.DisplayRole:
+            return self.text(index.row(), index.column())
+        if role == Qt.ItemDataRole.TextAlignmentRole:
+            kind = self._columns[index.column()].dtype.kind
+            if kind in "iuf":
+                return int(Qt.AlignmentFlag.AlignRight | Qt.AlignmentFlag.AlignVCenter)
+        return None
+
+    def headerData(self, section: int, orientation, role=Qt.ItemDataRole.DisplayRole):  # noqa: N802
+        if role != Qt.ItemDataRole.DisplayRole:
+            return None
+        if orientation == Qt.Orientation.Horizontal:
+            return self._headers[section] if section < len(self._headers) else None
+        return str(section + 1)
+
+
+class ColumnsTable(QTableView):
+    """Read-only, sortable-looking table view; see :meth:`set_columns`."""
+
+    def __init__(self, parent: QWidget | None = None) -> None:
+        super().__init__(parent)
+        self.table_model = ColumnsTableModel(self)
+        self.setModel(self.table_model)
+        self.setEditTriggers(QAbstractItemView.EditTrigger.NoEditTriggers)
+        self.setSelectionBehavior(QAbstractItemView.SelectionBehavior.SelectRows)
+        self.setAlternatingRowColors(True)
+        self.verticalHeader().setDefaultSectionSize(20)
+        self.horizontalHeader().setSectionResizeMode(QHeaderView.ResizeMode.Interactive)
+        self.horizontalHeader().setStretchLastSection(True)
+
+    def set_columns(
+        self,
+        columns: Mapping[str, np.ndarray],
+        units: Mapping[str, str] | None = None,
+        formats: Mapping[str, str] | None = None,
+    ) -> None:
+        """Show *columns*; see :meth:`ColumnsTableModel.set_columns`."""
+        self.table_model.set_columns(columns, units, formats)
+        if self.table_model.rowCount() <= 1000:  # sizing reads every cell: only when cheap
+            self.resizeColumnsToContents()
+
+    def clear(self) -> None:
+        self.table_model.set_columns({})

@@ -1,0 +1,90 @@
+"""The Latency panel on an empty and on a demo project (pytest-qt, offscreen)."""
+
+from __future__ import annotations
+
+import os
+
+import numpy as np
+import pytest
+from PySide6.QtCore import Qt
+
+from hydrosync_core.methods.latency.combine import combine
+from hydrosync_core.methods.latency.demo import fill_demo
+from hydrosync_core.project import Project
+from plugins.latency.panel import LatencyPanel
+from plugins.latency.views import USED_COLUMN
+
+SCREENSHOT = "/work/main/docs/latency-panel.png"
+
+
+@pytest.fixture
+def panel(qtbot):
+    widget = LatencyPanel()
+    qtbot.addWidget(widget)
+    widget.resize(1300, 850)
+    widget.show()
+    yield widget
+    assert widget.wait_idle(30.0)
+    widget.close()
+
+
+def test_empty_project_needs_data(panel):
+    panel.set_project(Project.new("empty"))
+    assert "Needs data" in panel.summary.text() and "/raw/gnss" in panel.summary.text()
+    assert not panel.run_button.isEnabled()
+    assert panel.table.rowCount() == 0
+
+
+def test_demo_run_table_curves_and_toggle(panel, qtbot):
+    project = Project.new("demo")
+    truth = fill_demo(project, seed=0)
+    panel.set_project(project)
+    # Lever arm comes from the vessel sheet (gnss − motion).
+    values = panel.form.values()
+    assert [values["lever_x"], values["lever_y"], values["lever_z"]] == truth["lever_arm_m"]
+    panel.form.set_values({"step_s": 0.01})
+    modified = []
+    panel.sig_project_modified.connect(lambda: modified.append(1))
+    with qtbot.waitSignal(panel.sig_busy, timeout=30_000, check_params_cb=lambda b: not b):
+        panel.run_button.click()
+    qtbot.waitUntil(lambda: panel.table.rowCount() == 13, timeout=10_000)
+    assert modified
+    attrs = project.attrs("results/latency")
+    assert attrs["latency_s"] == pytest.approx(truth["latency_s"], abs=0.03)
+    table = project.get_table("results/latency/lines")
+    # Table contents match the stored per-line values.
+    for row in range(13):
+        assert panel.table.item(row, 0).text() == table["name"][row]
+        assert float(panel.table.item(row, 3).text()) == pytest.approx(table["latency_s"][row],
+                                                                       abs=5e-4)
+        assert float(panel.table.item(row, 2).text()) == pytest.approx(table["r_max"][row],
+                                                                       abs=5e-5)
+    # One R curve per line, plotted over the stored grid; the final Δt line is placed.
+    grid = project.get("results/latency/dt_grid")
+    assert len(panel.r_plot.curves) == 13
+    x, y = panel.r_plot.curves[2].getData()
+    np.testing.assert_allclose(x, grid)
+    np.testing.assert_allclose(y, project.get("results/latency/r_curves")[2])
+    assert panel.r_plot.final_line.value() == pytest.approx(attrs["latency_s"])
+    # Fig. 4 for the selected line: heights and both heave curves share the time axis.
+    hx, hy = panel.series_plot.height_item.getData()
+    ax, ay = panel.series_plot.after_item.getData()
+    assert hx.size == 120 and np.array_equal(hx, ax)
+    assert np.std(hy - ay) < np.std(hy - panel.series_plot.before_item.getData()[1])
+
+    # Untick line 1 and 5: the mean is recomputed from the stored values at once.
+    panel.table.item(0, USED_COLUMN).setCheckState(Qt.CheckState.Unchecked)
+    panel.table.item(4, USED_COLUMN).setCheckState(Qt.CheckState.Unchecked)
+    used = np.ones(13, bool)
+    used[[0, 4]] = False
+    expect = combine(table["latency_s"], table["r_max"], table["uncertainty_s"], used, "r")
+    new = project.attrs("results/latency")
+    assert new["latency_s"] == pytest.approx(expect.latency_s)
+    assert new["n_used"] == 11
+    assert project.get_table("results/latency/lines")["used"].tolist() == used.tolist()
+    assert panel.r_plot.final_line.value() == pytest.approx(expect.latency_s)
+    assert f"{expect.latency_s:.3f}" in panel.summary.text()
+    if os.path.isdir(os.path.dirname(SCREENSHOT)):
+        panel.table.selectRow(2)
+        qtbot.wait(100)  # let the layouts settle before the screenshot
+        panel.grab().save(SCREENSHOT)

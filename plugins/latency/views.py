@@ -1,0 +1,155 @@
+"""The latency panel's views: line table with 'used' check boxes, R curves, fig. 4 plot."""
+
+from __future__ import annotations
+
+import numpy as np
+import pyqtgraph as pg
+from PySide6.QtCore import Qt, Signal
+from PySide6.QtWidgets import QAbstractItemView, QHeaderView, QTableWidget, QTableWidgetItem
+
+COLUMNS = ("Line", "Epochs", "R max", "Δt [s]", "± [s]", "σ0 before [m]", "σ0 after [m]", "Used")
+USED_COLUMN = COLUMNS.index("Used")
+RIGHT = Qt.AlignmentFlag.AlignRight | Qt.AlignmentFlag.AlignVCenter
+
+
+def line_colour(i: int, n: int) -> pg.Color:
+    return pg.intColor(i, hues=max(n, 1), values=1, maxValue=200)
+
+
+def _fmt(value: float, digits: int) -> str:
+    return "–" if not np.isfinite(value) else f"{value:.{digits}f}"
+
+
+class LineTable(QTableWidget):
+    """One row per survey line; the user toggles 'Used' (emits ``sig_used_changed``)."""
+
+    sig_used_changed = Signal()
+
+    def __init__(self, parent=None) -> None:
+        super().__init__(0, len(COLUMNS), parent)
+        self.setHorizontalHeaderLabels(list(COLUMNS))
+        self.setSelectionBehavior(QAbstractItemView.SelectionBehavior.SelectRows)
+        self.setSelectionMode(QAbstractItemView.SelectionMode.SingleSelection)
+        self.setEditTriggers(QAbstractItemView.EditTrigger.NoEditTriggers)
+        self.verticalHeader().setVisible(False)
+        self.horizontalHeader().setSectionResizeMode(QHeaderView.ResizeMode.ResizeToContents)
+        self.horizontalHeader().setStretchLastSection(True)
+        self._filling = False
+        self.itemChanged.connect(self._on_item_changed)
+
+    def fill(self, table: dict) -> None:
+        self._filling = True
+        names = table["name"]
+        self.setRowCount(len(names))
+        for row in range(len(names)):
+            cells = (str(names[row]), str(int(table["epochs"][row])),
+                     _fmt(table["r_max"][row], 4), _fmt(table["latency_s"][row], 3),
+                     _fmt(table["uncertainty_s"][row], 3), _fmt(table["sigma0_before_m"][row], 3),
+                     _fmt(table["sigma0_after_m"][row], 3))
+            for col, text in enumerate(cells):
+                item = QTableWidgetItem(text)
+                if col:
+                    item.setTextAlignment(RIGHT)
+                if col == 0:
+                    item.setForeground(line_colour(row, len(names)))
+                self.setItem(row, col, item)
+            used = QTableWidgetItem("")
+            used.setFlags(Qt.ItemFlag.ItemIsUserCheckable | Qt.ItemFlag.ItemIsEnabled
+                          | Qt.ItemFlag.ItemIsSelectable)
+            used.setCheckState(Qt.CheckState.Checked if table["used"][row]
+                               else Qt.CheckState.Unchecked)
+            if not np.isfinite(table["latency_s"][row]):
+                used.setFlags(Qt.ItemFlag.ItemIsEnabled)  # nothing to use
+                used.setToolTip("no correlation peak for this line")
+            self.setItem(row, USED_COLUMN, used)
+        self._filling = False
+
+    def used(self) -> np.ndarray:
+        return np.array([self.item(r, USED_COLUMN).checkState() == Qt.CheckState.Checked
+                         for r in range(self.rowCount())], dtype=bool)
+
+    def set_used(self, row: int, value: bool) -> None:
+        self.item(row, USED_COLUMN).setCheckState(
+            Qt.CheckState.Checked if value else Qt.CheckState.Unchecked)
+
+    def _on_item_changed(self, item: QTableWidgetItem) -> None:
+        if not self._filling and item.column() == USED_COLUMN:
+            self.sig_used_changed.emit()
+
+
+class CorrelationPlot(pg.PlotWidget):
+    """R against Δt for every line, each line's peak marked, the final Δt as a vertical line."""
+
+    def __init__(self, parent=None) -> None:
+        super().__init__(parent)
+        self.setBackground("w")
+        self.setLabel("bottom", "Δt (GNSS tag late by)", units="s")
+        self.setLabel("left", "correlation R")
+        self.showGrid(x=True, y=True, alpha=0.3)
+        self.curves: list[pg.PlotDataItem] = []
+        self.peaks = pg.ScatterPlotItem(size=9, symbol="o", pen=pg.mkPen("k"))
+        self.final_line = pg.InfiniteLine(angle=90, pen=pg.mkPen("k", width=2),
+                                          label="Δt = {value:.3f} s",
+                                          labelOpts={"position": 0.08, "color": "k"})
+        self.threshold = pg.InfiniteLine(
+            angle=0, pen=pg.mkPen((120, 120, 120), style=Qt.PenStyle.DashLine))
+
+    def show_curves(self, grid, curves, table, final: float, min_r: float, selected: int) -> None:
+        self.clear()
+        self.curves = []
+        n = len(curves)
+        for i, r in enumerate(curves):
+            used = bool(table["used"][i])
+            width = 3 if i == selected else 1.5
+            pen = pg.mkPen(line_colour(i, n), width=width,
+                           style=Qt.PenStyle.SolidLine if used else Qt.PenStyle.DotLine)
+            self.curves.append(self.plot(grid, np.nan_to_num(r, nan=0.0), pen=pen,
+                                         name=str(table["name"][i])))
+        ok = np.isfinite(table["latency_s"])
+        brushes = [pg.mkBrush(line_colour(i, n)) for i in np.flatnonzero(ok)]
+        self.peaks.setData(table["latency_s"][ok], table["r_max"][ok], brush=brushes)
+        self.addItem(self.peaks)
+        self.threshold.setValue(min_r)
+        self.addItem(self.threshold)
+        self.final_line.setVisible(bool(np.isfinite(final)))
+        if np.isfinite(final):
+            self.final_line.setValue(final)
+        self.addItem(self.final_line)
+
+    def set_final(self, final: float) -> None:
+        self.final_line.setVisible(bool(np.isfinite(final)))
+        if np.isfinite(final):
+            self.final_line.setValue(final)
+
+
+class SeriesPlot(pg.PlotWidget):
+    """Seed fig. 4: detrended GNSS height and total heave of one line, before and after."""
+
+    def __init__(self, parent=None) -> None:
+        super().__init__(parent)
+        self.setBackground("w")
+        self.setLabel("bottom", "time since line start", units="s")
+        self.setLabel("left", "height / heave", units="m")
+        self.showGrid(x=True, y=True, alpha=0.3)
+        legend = self.addLegend(offset=(-10, 5), brush=pg.mkBrush(255, 255, 255, 220),
+                                pen=pg.mkPen((160, 160, 160)), labelTextColor="k")
+        legend.setZValue(10)
+        self.height_item = self.plot([], [], pen=pg.mkPen("k", width=2),
+                                     name="GNSS height (detrended)")
+        self.before_item = self.plot([], [], pen=pg.mkPen((214, 39, 40), width=1.5,
+                                                          style=Qt.PenStyle.DashLine),
+                                     name="total heave, Δt = 0")
+        self.after_item = self.plot([], [], pen=pg.mkPen((31, 119, 180), width=1.5),
+                                    name="total heave, synchronised")
+
+    def show_series(self, series: dict | None, title: str = "") -> None:
+        if series is None or series["time"].size == 0:
+            for item in (self.height_item, self.before_item, self.after_item):
+                item.setData([], [])
+            self.setTitle(title)
+            return
+        t = series["time"] - series["time"][0]
+        self.height_item.setData(t, series["height"])
+        self.before_item.setData(t, series["heave_before"] - series["heave_before"].mean())
+        self.after_item.setData(t, series["heave_after"] - series["heave_after"].mean())
+        self.setTitle(title)

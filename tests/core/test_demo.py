@@ -1,0 +1,137 @@
+"""``hydrosync demo``: end to end (slow, < 2 min) and failure isolation between plugins."""
+
+from __future__ import annotations
+
+import os
+import re
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import pytest
+from pypdf import PdfReader
+
+from hydrosync_core.cli import main
+from hydrosync_core.demo import (
+    DEMO_PROJECT,
+    DEMO_REPORT,
+    Stage,
+    StageListener,
+    build_demo,
+    key_results,
+)
+from hydrosync_core.plugins import Discovered, PluginSpec, get_spec, plugin_specs
+from hydrosync_core.project import Project
+from hydrosync_core.report import latency_section as lat
+
+# ``esc(text)`` called as ``esc(project, seed=…, progress=…)`` raises a TypeError: a
+# stand-in for a plugin whose simulator or run function is broken.
+BROKEN = "hydrosync_core.report.context:esc"
+
+
+def pdf_text(path: Path) -> str:
+    return re.sub(r"\s+", " ", " ".join(p.extract_text() for p in PdfReader(str(path)).pages))
+
+
+@pytest.mark.slow
+def test_demo_end_to_end(tmp_path):
+    """The real command as ``make demo`` runs it: every plugin simulated, run, reported."""
+    out = tmp_path / "demo-output"
+    env = dict(os.environ, HYDROSYNC_DEBUG="1")
+    t0 = time.perf_counter()
+    command = Path(sys.executable).parent / "hydrosync"  # the installed console script
+    proc = subprocess.run([str(command), "demo", "--out", str(out)],
+                          capture_output=True, text=True, timeout=240, env=env)
+    elapsed = time.perf_counter() - t0
+    assert proc.returncode == 0, proc.stdout + proc.stderr
+    assert elapsed < 120, f"demo took {elapsed:.0f} s"
+    project_path, report_path = out / DEMO_PROJECT, out / DEMO_REPORT
+    assert project_path.is_file() and report_path.is_file()
+    assert not list(out.glob("*.tmp"))
+    stdout = proc.stdout
+    specs = plugin_specs()
+    # One line per stage (a non-tty log shows progress), then where the files are.
+    for spec in specs:
+        if spec.demo:
+            assert f"] {spec.name}: simulate data ..." in stdout
+        assert f"] {spec.name}: run ..." in stdout
+    assert "FAILED" not in stdout
+    assert f"project: {project_path}" in stdout and f"report:  {report_path}" in stdout
+    # The key results printed are those stored in the project, formatted as in the report.
+    rows = key_results(project_path)
+    assert {name for name, _, _ in rows} == {s.name for s in specs if s.report_section}
+    text = pdf_text(report_path)
+    for _name, quantity, value in rows:
+        assert re.search(rf"{re.escape(quantity)}\s+{re.escape(value)}", stdout)
+        assert value in text
+    with Project.open(project_path) as project:
+        for spec in specs:
+            assert project.exists(f"results/{spec.id}"), spec.id
+        attrs = project.attrs("results/latency")
+        # The simulated survey day has a 0.29 s delay (seed table 1).
+        assert abs(attrs["latency_s"] - 0.29) < 0.03
+        assert attrs["ci95_low"] < 0.29 < attrs["ci95_high"]
+        assert lat.final_value_text(attrs) in text
+        assert "not run" not in text and "could not be produced" not in text
+
+
+class _Recorder(StageListener):
+    def __init__(self) -> None:
+        self.started: list[str] = []
+        self.finished: list[Stage] = []
+
+    def start(self, index, total, label):
+        self.started.append(label)
+        return None
+
+    def finish(self, stage):
+        self.finished.append(stage)
+
+
+def test_a_failing_plugin_does_not_stop_the_others(tmp_path):
+    real = get_spec("latency")
+    broken_demo = PluginSpec(id="broken_sim", name="Broken simulator", run=real.run,
+                             panel=real.panel, requires=("raw/never",), demo=BROKEN, order=1)
+    # Its simulator works (the latency one) but its run function is broken.
+    broken_run = PluginSpec(id="broken_run", name="Broken run", run=BROKEN, panel=real.panel,
+                            requires=real.requires, demo=real.demo, order=2)
+    recorder = _Recorder()
+    outcome = build_demo(tmp_path, seed=3, listener=recorder,
+                         specs=[broken_demo, broken_run, real])
+    failed = {s.label for s in outcome.failed}
+    assert failed == {"Broken simulator: simulate data", "Broken run: run"}
+    assert all("TypeError" in s.message for s in outcome.failed)
+    assert [s.label for s in recorder.finished] == recorder.started
+    assert "Latency: run" in recorder.started
+    assert set(outcome.results) == {"latency"}
+    assert outcome.report_path == tmp_path / DEMO_REPORT and outcome.report_path.is_file()
+    with Project.open(tmp_path / DEMO_PROJECT) as project:
+        assert project.exists("results/latency")
+        assert not project.exists("results/broken_run")
+        attrs = project.attrs("results/latency")
+    text = pdf_text(outcome.report_path)
+    assert lat.final_value_text(attrs) in text
+
+
+def test_cli_exit_1_when_a_plugin_fails(tmp_path, monkeypatch, capsys):
+    real = get_spec("latency")
+    broken = PluginSpec(id="broken_run", name="Broken run", run=BROKEN, panel=real.panel,
+                        requires=real.requires, demo=real.demo)
+    found = [Discovered("latency", "x", real, None), Discovered("broken_run", "y", broken, None),
+             Discovered("ghost", "plugins.ghost:SPEC", None, "ModuleNotFoundError: ghost")]
+    monkeypatch.setattr("hydrosync_core.demo.discover", lambda: found)
+    code = main(["demo", "--out", str(tmp_path / "out"), "--seed", "5"])
+    captured = capsys.readouterr()
+    assert code == 1
+    assert "load plugin ghost: FAILED: ModuleNotFoundError: ghost" in captured.out
+    assert "Broken run: run failed: TypeError" in captured.err
+    assert "Latency between GNSS" in pdf_text(tmp_path / "out" / DEMO_REPORT)
+    assert "Latency" in captured.out and "key results:" in captured.out
+
+
+def test_demo_out_must_be_a_folder(tmp_path, capsys):
+    target = tmp_path / "file.txt"
+    target.write_text("x")
+    assert main(["demo", "--out", str(target)]) == 2
+    assert "--out must be a folder" in capsys.readouterr().err

@@ -1,0 +1,160 @@
+"""PDF report: numbers as text, section headings, page numbers, partial and empty projects.
+
+The text of the PDF is extracted with pypdf and compared with the values stored in the
+project, formatted by the same functions the sections use.
+"""
+
+from __future__ import annotations
+
+import re
+import threading
+
+import h5py
+import numpy as np
+import pytest
+from pypdf import PdfReader
+
+from hydrosync_core.cli import main
+from hydrosync_core.errors import Cancelled
+from hydrosync_core.plugins import PluginSpec, get_spec, load_object, plugin_specs
+from hydrosync_core.project import Project
+from hydrosync_core.report import build_report
+from hydrosync_core.report import latency_section as lat
+from hydrosync_core.report.charts import nice_ticks, tick_label
+from hydrosync_core.report.context import fmt, fmt_pm, utc_text
+
+LATENCY_HEADING = "Latency between GNSS heights and attitude"
+
+
+def pdf_pages(path) -> list[str]:
+    """Text of every page (whitespace runs collapsed to one space)."""
+    return [re.sub(r"\s+", " ", page.extract_text()) for page in PdfReader(str(path)).pages]
+
+
+def run_plugin(project: Project, plugin_id: str, seed: int = 7) -> object:
+    spec = get_spec(plugin_id)
+    load_object(spec.demo)(project, seed=seed, progress=None)
+    return spec.load_run()(project, dict(spec.default_params), None, None)
+
+
+@pytest.fixture(scope="module")
+def latency_project(tmp_path_factory):
+    """A saved project in which only the latency module was run (demo data)."""
+    path = tmp_path_factory.mktemp("latency") / "survey.h5"
+    project = Project.new("Harbour survey")
+    run_plugin(project, "latency")
+    project.save(path)
+    yield Project.open(path)
+
+
+# ---------------------------------------------------------------------------- helpers
+def test_fmt_and_ticks():
+    assert fmt(0.28774, 3) == "0.288"
+    assert fmt(-0.0001, 3) == "0.000"  # no "-0.000"
+    assert fmt(float("nan")) == "\u2014" and fmt(None) == "\u2014"
+    assert fmt_pm(0.2877, 0.0056, 3, "s") == "0.288 \u00b1 0.006 s"
+    assert fmt_pm(0.2877, float("nan"), 3, "s") == "0.288 s"
+    assert utc_text("2026-11-22T04:40:23+00:00") == "2026-11-22 04:40:23 UTC"
+    ticks = nice_ticks(-1.0, 1.0)
+    assert ticks[0] == -1.0 and ticks[-1] == 1.0 and np.allclose(np.diff(ticks), 0.5)
+    assert np.allclose(np.diff(nice_ticks(0.21, 0.43)), 0.05)
+    assert tick_label(0.25, 0.25) == "0.25" and tick_label(-0.5, 0.5) == "\u22120.5"
+
+
+# ---------------------------------------------------------------------------- content
+def test_empty_project_report(tmp_path):
+    out = build_report(Project.new("Nothing yet"), tmp_path / "empty.pdf")
+    pages = pdf_pages(out)
+    text = " ".join(pages)
+    assert "Sensor calibration report" in text and "Nothing yet" in text
+    assert "Summary of results" in text
+    for spec in plugin_specs():
+        assert f"{spec.name} not run" in text
+    assert LATENCY_HEADING not in text
+    assert "Modules not run (their sections are omitted)" in text
+    assert pages[-1].count(f"page {len(pages)} of {len(pages)}") == 1
+
+
+def test_latency_only_report_numbers_and_pages(latency_project, tmp_path):
+    progress: list[float] = []
+    out = build_report(latency_project, tmp_path / "r.pdf",
+                       progress=lambda f, m: progress.append(f))
+    assert progress[0] == 0.0 and progress[-1] == 1.0 and progress == sorted(progress)
+    pages = pdf_pages(out)
+    n = len(pages)
+    for i, page in enumerate(pages, start=1):
+        assert f"page {i} of {n}" in page
+    text = " ".join(pages)
+    attrs = latency_project.attrs("results/latency")
+    table = latency_project.get_table("results/latency/lines")
+    assert len(table["name"]) == 13
+    # Every line's row, in order, exactly as stored (formatted like the section does).
+    for i in range(len(table["name"])):
+        assert " ".join(lat.line_row(table, i)) in text, lat.line_row(table, i)
+    assert lat.final_value_text(attrs) in text
+    assert lat.ci_text(attrs) in text
+    assert f"Weighted mean {fmt(attrs['latency_s'], 3)} {fmt(attrs['uncertainty_s'], 3)}" in text
+    # The demo latency is 0.29 s: the report must show a value close to it.
+    assert abs(float(lat.final_value_text(attrs).split()[0]) - 0.29) < 0.03
+    # Section headings and figures; the pool section is omitted, the summary says so.
+    assert LATENCY_HEADING in text and "Before and after synchronisation" in text
+    assert re.search(r"Figure 1\. Correlation R", text)
+    assert "the best used line" in text and "the worst used line" in text
+    pool = get_spec("pool_calibration")
+    assert f"{pool.name} not run: inputs missing" in text
+    assert "Pool calibration" not in [p.split(" ")[0] for p in pages]
+    # Summary rows come from the section module and are in the summary table.
+    for _quantity, value in lat.summary(latency_project):
+        assert value in text
+    # The cover names the file and its checksum.
+    assert str(latency_project.path.name) in text and "SHA-256" in text
+
+
+def test_faulty_section_does_not_sink_the_report(latency_project, tmp_path):
+    real = get_spec("latency")
+    # A section whose callable has the wrong signature raises inside the build.
+    broken = PluginSpec(id="latency", name="Latency", run=real.run, panel=real.panel,
+                        report_section="hydrosync_core.report.context:esc")
+    out = build_report(latency_project, tmp_path / "b.pdf", specs=[broken])
+    text = " ".join(pdf_pages(out))
+    assert "the Latency section could not be produced (TypeError" in text
+    assert "Summary of results" in text
+
+
+def test_cancel_leaves_previous_file(latency_project, tmp_path):
+    target = tmp_path / "r.pdf"
+    target.write_bytes(b"previous")
+    stop = threading.Event()
+    stop.set()
+    with pytest.raises(Cancelled):
+        build_report(latency_project, target, cancel=stop)
+    assert target.read_bytes() == b"previous"
+    assert list(tmp_path.iterdir()) == [target]
+
+
+# ---------------------------------------------------------------------------- CLI
+def test_cli_report(latency_project, tmp_path, capsys):
+    out = tmp_path / "cli.pdf"
+    assert main(["report", str(latency_project.path), "-o", str(out)]) == 0
+    assert f"report written to {out}" in capsys.readouterr().out
+    assert out.read_bytes().startswith(b"%PDF")
+
+
+@pytest.mark.parametrize("kind", ["missing", "text", "hdf5", "no-folder", "not-pdf"])
+def test_cli_report_bad_input(kind, tmp_path, capsys):
+    project = tmp_path / "p.h5"
+    out = tmp_path / "r.pdf"
+    if kind == "text":
+        project.write_text("time,height\n1,2\n")
+    elif kind == "hdf5":
+        with h5py.File(project, "w") as f:
+            f["x"] = np.arange(3)
+    elif kind in ("no-folder", "not-pdf"):
+        Project.new("p").save(project)
+        out = tmp_path / "nowhere" / "r.pdf" if kind == "no-folder" else tmp_path / "r.txt"
+    code = main(["report", str(project), "-o", str(out)])
+    err = capsys.readouterr().err.strip()
+    assert code == 2
+    assert err.startswith("hydrosync report: ") and "\n" not in err
+    assert not out.exists()
+    assert not any(p.suffix in (".pdf", ".tmp", ".txt") for p in tmp_path.rglob("*"))

@@ -1,0 +1,314 @@
+"""Main window: loading a project, lazy plugin tabs, unsaved prompt, recent files,
+worker progress and cancel, import/save/report error handling, failed plugins."""
+
+from __future__ import annotations
+
+import sys
+
+import numpy as np
+import pytest
+from conftest import make_project
+from PySide6.QtCore import QSettings, Qt, QTimer
+from PySide6.QtWidgets import QMessageBox
+
+from hydrosync_core.project import Project
+from hydrosync_gui.recent_files import RecentFiles
+
+fake_plugin = sys.modules["hydrosync_test_fake_plugin"]
+Button = QMessageBox.StandardButton
+
+
+def open_and_wait(qtbot, window, path) -> None:
+    window.open_project(str(path))
+    qtbot.waitUntil(lambda: not window.busy, timeout=5000)
+
+
+def test_open_project_shows_groups_and_title(qtbot, make_window, project_file):
+    window = make_window()
+    assert window.windowTitle() == "HydroSync — Untitled[*]"
+    assert not window.isWindowModified()
+    open_and_wait(qtbot, window, project_file)
+
+    assert window.project.path == project_file
+    assert window.windowTitle() == "HydroSync — survey[*]"
+    assert not window.isWindowModified()
+    b = window.browser
+    assert b.row_texts("raw") == ("raw", "group", "", "66.4 KiB")  # 16000 + 40000 + 12000 B
+    assert b.row_texts("raw/gnss") == ("gnss", "table 1000 × 2", "", "15.6 KiB")
+    assert b.row_texts("raw/gnss/height") == ("height", "1000", "float64", "7.8 KiB")
+    assert b.row_texts("raw/attitude")[1] == "table 1000 × 5"
+    assert b.row_texts("raw/pool/lidar") == ("lidar", "500 × 3", "float64", "11.7 KiB")
+    assert b.row_texts("raw/pool/setup")[1] == "json"
+    assert b.item("raw").isExpanded()
+    # the open panel got the project
+    panel = window.current_panel()
+    assert panel.project is window.project
+    assert panel.label.text() == "raw groups: 3"
+    assert RecentFiles(window.settings).files() == [str(project_file.resolve())]
+
+
+def test_panels_are_created_lazily(qtbot, make_window):
+    window = make_window()
+    assert fake_plugin.FakePanel.instances == 1  # the first tab is shown at start
+    assert fake_plugin.SecondPanel.instances == 0
+    assert window.host.entries[1].panel is None
+    assert window.tabs.tabText(1) == "Second analysis"
+    window.tabs.setCurrentIndex(1)
+    assert fake_plugin.SecondPanel.instances == 1
+    second = window.host.entries[1].panel
+    assert second.project is window.project and second.refreshes == 1
+    window.tabs.setCurrentIndex(0)
+    window.tabs.setCurrentIndex(1)
+    assert fake_plugin.SecondPanel.instances == 1  # created once
+
+
+def test_failed_plugins_are_listed_and_logged(qtbot, make_window):
+    window = make_window()
+    window.tabs.setCurrentIndex(2)  # the panel whose constructor raises
+    assert window.host.entries[2].error == "RuntimeError: panel exploded on purpose"
+    dialog = window.show_plugins()
+    rows = dialog.rows()
+    assert ("Fake analysis (fake)", "loaded, panel open", "Fake analysis for tests") in rows
+    assert ("Broken panel (broken_panel)", "panel failed",
+            "RuntimeError: panel exploded on purpose") in rows
+    broken = [r for r in rows if r[0] == "broken"]
+    assert broken == [("broken", "failed to load",
+                       "broken_plugin:SPEC: ModuleNotFoundError: No module named 'broken_plugin'")]
+    qtbot.waitUntil(lambda: any("broken_plugin" in line for line in window.console.lines()))
+    assert any("panel exploded on purpose" in line for line in window.console.lines())
+    dialog.close()
+
+
+def test_broken_panel_tab_shows_the_error(qtbot, make_window):
+    from PySide6.QtWidgets import QLabel
+
+    window = make_window()
+    window.tabs.setCurrentIndex(2)
+    labels = window.tabs.widget(2).findChildren(QLabel)
+    assert any("panel exploded on purpose" in label.text() for label in labels)
+    window.tabs.setCurrentIndex(0)  # the window still works
+    assert window.current_panel() is not None
+
+
+@pytest.mark.parametrize("answer", [Button.Save, Button.Discard, Button.Cancel])
+def test_unsaved_changes_prompt_on_new(qtbot, make_window, project_file, ui, answer):
+    window = make_window()
+    open_and_wait(qtbot, window, project_file)
+    window.project.put_table("raw/lines", {"start": np.array([0.0]), "end": np.array([5.0])})
+    window.update_title()
+    assert window.isWindowModified()
+    ui.answer = answer
+    window._on_new()
+    qtbot.waitUntil(lambda: not window.busy, timeout=5000)
+    assert ui.questions == 1
+    with Project.open(project_file) as on_disk:
+        saved = on_disk.exists("raw/lines")
+    if answer == Button.Cancel:
+        assert window.project.path == project_file and window.project.dirty
+        assert not saved
+    else:
+        assert window.project.path is None and window.project.name == "Untitled"
+        assert not window.isWindowModified()
+        assert saved == (answer == Button.Save)
+
+
+def test_clean_project_is_replaced_without_prompt(qtbot, make_window, project_file, ui):
+    window = make_window()
+    open_and_wait(qtbot, window, project_file)
+    window._on_new()
+    assert ui.questions == 0 and window.project.path is None
+
+
+@pytest.mark.parametrize("answer", [Button.Discard, Button.Cancel])
+def test_close_with_unsaved_changes(qtbot, make_window, ui, answer):
+    window = make_window(make_project())  # dirty: never saved
+    ui.answer = answer
+    window.close()
+    qtbot.wait(50)
+    assert ui.questions == 1
+    assert window.isVisible() == (answer == Button.Cancel)
+
+
+def test_open_recent_persistence(qtbot, make_window, tmp_path, settings):
+    paths = []
+    for i in range(10):
+        path = tmp_path / f"p{i}.h5"
+        Project.new(f"p{i}").save(path)
+        paths.append(path)
+    window = make_window()
+    for path in paths[:3]:
+        open_and_wait(qtbot, window, path)
+    settings.sync()
+    # a fresh QSettings on the same file sees the list, most recent first
+    again = RecentFiles(QSettings(settings.fileName(), QSettings.Format.IniFormat))
+    assert again.files() == [str(p.resolve()) for p in (paths[2], paths[1], paths[0])]
+    window._fill_recent_menu()
+    texts = [a.text() for a in window.recent_menu.actions() if a.text()]
+    assert texts[:3] == ["&1 p2.h5", "&2 p1.h5", "&3 p0.h5"]
+    paths[1].unlink()  # missing files are pruned
+    assert again.files() == [str(paths[2].resolve()), str(paths[0].resolve())]
+    for path in paths:  # at most 8
+        again.add(path) if path.exists() else None
+    assert len(again.files()) == 8 and again.files()[0] == str(paths[9].resolve())
+    window._on_open_recent(str(paths[9].resolve()))  # the menu's action opens the file
+    qtbot.waitUntil(lambda: not window.busy, timeout=5000)
+    assert window.project.name == "p9"
+
+
+def test_worker_progress_cancel_and_responsiveness(qtbot, make_window):
+    window = make_window()
+    panel = window.current_panel()
+    ticks = []
+    timer = QTimer()
+    timer.timeout.connect(lambda: ticks.append(1))
+    timer.start(10)
+    panel.run_job(steps=1000, dt=0.01)  # 10 s if not cancelled
+    qtbot.waitUntil(lambda: window.task_status.bar.value() > 0, timeout=3000)
+    assert window.busy and window.task_status.isVisible()
+    assert window.task_status.cancel_button.isEnabled()
+    assert "Fake analysis: step" in window.task_status.label.text()
+    before = len(ticks)
+    qtbot.wait(200)
+    assert len(ticks) - before >= 5  # the event loop keeps running during the job
+    qtbot.mouseClick(window.task_status.cancel_button, Qt.MouseButton.LeftButton)
+    qtbot.waitUntil(lambda: not window.busy, timeout=3000)
+    timer.stop()
+    assert panel.finished_with is None
+    assert not window.task_status.isVisible()
+    assert not window.project.exists("results/fake")
+    qtbot.waitUntil(lambda: any("Fake job cancelled" in line for line in window.console.lines()))
+
+
+def test_panel_results_refresh_browser_and_mark_modified(qtbot, make_window, project_file):
+    window = make_window()
+    open_and_wait(qtbot, window, project_file)
+    panel = window.current_panel()
+    panel.run_job(steps=5, dt=0.001)
+    qtbot.waitUntil(lambda: panel.finished_with is not None, timeout=3000)
+    qtbot.waitUntil(lambda: not window.busy, timeout=3000)
+    assert window.browser.row_texts("results/fake/out")[1] == "table 5 × 1"
+    assert window.isWindowModified()
+
+
+def test_import_good_and_bad_file(qtbot, make_window, tmp_path, ui):
+    window = make_window()
+    good = tmp_path / "gnss.csv"
+    good.write_text("time,height\n0.0,1.5\n0.1,1.6\n0.2,1.7\n")
+    bad = tmp_path / "bad.csv"
+    bad.write_text("time,height\n0.0,1.5\n0.1,abc\n")
+    window.import_data("gnss", str(bad))
+    qtbot.waitUntil(lambda: not window.busy, timeout=5000)
+    assert not window.project.exists("raw/gnss") and not window.project.dirty
+    [(kind, title, text)] = ui.boxes
+    assert title == "Import failed" and "bad.csv:3" in text and "\n" not in text
+    window.import_data("gnss", str(good))
+    qtbot.waitUntil(lambda: not window.busy, timeout=5000)
+    np.testing.assert_allclose(window.project.get_table("raw/gnss")["height"], [1.5, 1.6, 1.7])
+    assert window.browser.row_texts("raw/gnss")[1] == "table 3 × 2"
+    assert window.isWindowModified()
+
+
+def test_save_failure_keeps_the_project(qtbot, make_window, tmp_path, ui):
+    window = make_window(make_project())
+    ui.save_path = str(tmp_path / "no_such_dir" / "x.h5")
+    window._on_save()
+    qtbot.waitUntil(lambda: not window.busy, timeout=5000)
+    assert [b[1] for b in ui.boxes] == ["Save failed"]
+    assert window.project.dirty and window.project.path is None
+    assert window.project.get("raw/pool/lidar").shape == (500, 3)
+    ui.save_path = str(tmp_path / "ok")  # suffix added
+    window._on_save()
+    qtbot.waitUntil(lambda: not window.busy, timeout=5000)
+    assert window.project.path == tmp_path / "ok.h5" and not window.isWindowModified()
+
+
+def test_export_report_missing_and_present(qtbot, make_window, tmp_path, ui, monkeypatch):
+    import hydrosync_core.report as report
+
+    window = make_window(make_project())
+    monkeypatch.delattr(report, "build_report", raising=False)
+    window._on_export_report()
+    assert ui.boxes[-1][1] == "Report not available"
+    assert "build_report" in ui.boxes[-1][2]
+
+    calls = []
+
+    def build_report(project, pdf_path, progress=None, cancel=None):
+        progress(0.5, "half")
+        calls.append((project, pdf_path, cancel.is_set()))
+        with open(pdf_path, "wb") as fh:
+            fh.write(b"%PDF-1.4\n")
+
+    monkeypatch.setattr(report, "build_report", build_report, raising=False)
+    ui.save_path = str(tmp_path / "r.pdf")
+    window._on_export_report()
+    qtbot.waitUntil(lambda: not window.busy, timeout=5000)
+    assert calls == [(window.project, str(tmp_path / "r.pdf"), False)]
+    assert (tmp_path / "r.pdf").read_bytes().startswith(b"%PDF")
+
+
+def test_geometry_is_persisted(qtbot, make_window, settings):
+    window = make_window()
+    window.resize(640, 480)  # within the offscreen screen
+    window.close_without_prompt()
+    assert settings.value("window/geometry") is not None
+    again = make_window()
+    assert (again.width(), again.height()) == (640, 480)
+
+
+def test_import_dialog_choice_and_heave_sign(qtbot):
+    from hydrosync_core.importers.kinds import KINDS
+    from hydrosync_gui.dialogs import ImportDialog
+
+    dialog = ImportDialog(KINDS, "/tmp")
+    qtbot.addWidget(dialog)
+    ok = dialog.buttons.button(dialog.buttons.StandardButton.Ok)
+    assert not ok.isEnabled()  # no file yet
+    dialog.kind_box.setCurrentIndex(dialog.kind_box.findData("attitude_log"))
+    dialog.path_edit.setText(" /data/motion.log ")
+    assert ok.isEnabled() and dialog.target.text() == "/raw/attitude"
+    assert not dialog.heave_box.isHidden()
+    assert dialog.choice() == ("attitude_log", "/data/motion.log", {})
+    dialog.heave_box.setCurrentIndex(dialog.heave_box.findData("down"))
+    assert dialog.choice() == ("attitude_log", "/data/motion.log", {"heave_positive": "down"})
+    dialog.kind_box.setCurrentIndex(dialog.kind_box.findData("gnss"))
+    assert dialog.heave_box.isHidden()
+    assert dialog.choice() == ("gnss", "/data/motion.log", {})
+
+
+def test_import_menu_passes_heave_sign_to_the_motion_log_reader(
+    qtbot, make_window, tmp_path, monkeypatch
+):
+    import hydrosync_core.importers.log_import as log_import
+    from hydrosync_gui.dialogs import ImportDialog
+
+    calls = []
+
+    def store(project, target, path, **options):
+        calls.append((target, path.name, options))
+        project.put_table(target, {"time": np.array([0.0, 1.0]), "heave": np.array([0.1, 0.2])})
+        return "2 records"
+
+    monkeypatch.setattr(log_import, "store_attitude_log", store)
+    monkeypatch.setattr(ImportDialog, "ask", classmethod(
+        lambda cls, parent, kinds, start: ("attitude_log", str(tmp_path / "m.log"),
+                                           {"heave_positive": "up"})))
+    window = make_window()
+    window._on_import()
+    qtbot.waitUntil(lambda: not window.busy, timeout=5000)
+    assert calls == [("raw/attitude", "m.log", {"heave_positive": "up"})]
+    assert window.browser.row_texts("raw/attitude")[1] == "table 2 × 2"
+
+
+def test_restarting_a_panel_task_keeps_the_status_until_the_new_one_ends(qtbot, make_window):
+    window = make_window()
+    panel = window.current_panel()
+    first = panel.run_job(steps=1000, dt=0.01)
+    qtbot.waitUntil(lambda: window.task_status.bar.value() > 0, timeout=3000)
+    panel.run_job(steps=30, dt=0.01)  # cancels the first
+    assert first.finished_event.wait(3.0)
+    qtbot.wait(50)  # the first task's late "done" signal is delivered
+    assert window.busy or panel.finished_with is not None
+    qtbot.waitUntil(lambda: panel.finished_with is not None, timeout=3000)
+    qtbot.waitUntil(lambda: not window.busy, timeout=3000)
+    assert panel.finished_with == {"steps": 30}

@@ -1,0 +1,102 @@
+"""Reusable widgets: parameter form, columns table, log console, task status."""
+
+from __future__ import annotations
+
+import logging
+import threading
+
+import numpy as np
+import pytest
+from PySide6.QtCore import Qt
+
+from hydrosync_gui.log_console import LogConsole
+from hydrosync_gui.task_status import TaskStatus
+from hydrosync_gui.widgets import ColumnsTable, ParamField, ParamForm
+
+
+def test_param_form_types_units_and_round_trip(qtbot):
+    form = ParamForm([
+        ParamField("max_lag", "Max lag", 1.0, unit="s", minimum=0.01, maximum=10, decimals=3),
+        ParamField("window", "Window", 60, unit="s", minimum=1, maximum=3600),
+        ParamField("detrend", "Detrend heights", True),
+        ParamField("method", "Method", "xcorr", choices=("xcorr", "lsq")),
+        ParamField("label", "Label", "L01"),
+    ])
+    qtbot.addWidget(form)
+    assert form.values() == {"max_lag": 1.0, "window": 60, "detrend": True, "method": "xcorr",
+                             "label": "L01"}
+    assert form.editors["max_lag"].suffix() == " s"
+    changes = []
+    form.sig_changed.connect(lambda: changes.append(1))
+    form.set_values({"max_lag": 20.0, "window": 5, "detrend": False, "method": "lsq",
+                     "unknown": 1})
+    values = form.values()
+    assert values["max_lag"] == 10.0  # clipped to the declared maximum
+    assert values == {"max_lag": 10.0, "window": 5, "detrend": False, "method": "lsq",
+                      "label": "L01"}
+    assert type(values["window"]) is int and len(changes) == 4
+
+
+def test_param_form_from_defaults(qtbot):
+    form = ParamForm.from_defaults({"r_threshold": 0.85, "detrend_degree": 1})
+    qtbot.addWidget(form)
+    assert form.values() == {"r_threshold": 0.85, "detrend_degree": 1}
+    assert form.editors["r_threshold"].objectName() == "param_r_threshold"
+
+
+def test_columns_table_shows_columns_with_units_and_formats(qtbot):
+    table = ColumnsTable()
+    qtbot.addWidget(table)
+    table.set_columns({"line": np.array(["L1", "L2"]), "latency": np.array([0.2876, np.nan]),
+                       "n": np.array([120, 98])},
+                      units={"latency": "s"}, formats={"latency": "{:.3f}"})
+    model = table.table_model
+    assert (model.rowCount(), model.columnCount()) == (2, 3)
+    assert [model.headerData(c, Qt.Orientation.Horizontal) for c in range(3)] == [
+        "line", "latency [s]", "n"]
+    assert [[model.text(r, c) for c in range(3)] for r in range(2)] == [
+        ["L1", "0.288", "120"], ["L2", "", "98"]]  # missing values are blank
+    table.set_columns({"x": np.array([1.0, np.nan])})
+    assert model.text(1, 0) == ""
+    with pytest.raises(ValueError, match="different lengths"):
+        table.set_columns({"a": np.zeros(2), "b": np.zeros(3)})
+    table.clear()
+    assert model.columnCount() == 0
+
+
+def test_log_console_receives_records_from_worker_threads(qtbot):
+    console = LogConsole()
+    qtbot.addWidget(console)
+    logger = logging.getLogger("hydrosync_test_console")
+    logger.setLevel(logging.INFO)
+    console.install(logger)
+    thread = threading.Thread(target=lambda: logger.warning("from a worker %d", 7))
+    thread.start()
+    thread.join()
+    logger.debug("below the level")
+    qtbot.waitUntil(lambda: any("from a worker 7" in line for line in console.lines()))
+    assert "WARNING hydrosync_test_console: from a worker 7" in console.lines()[-1]
+    console.uninstall()
+    assert console.handler not in logger.handlers
+    logger.warning("after uninstall")
+    qtbot.wait(20)
+    assert not any("after uninstall" in line for line in console.lines())
+
+
+def test_task_status_follows_the_latest_task(qtbot):
+    status = TaskStatus()
+    qtbot.addWidget(status)
+    assert status.isHidden() and not status.busy
+    cancelled = []
+    status.begin("a", "Latency", lambda: cancelled.append("a"))
+    assert not status.isHidden()
+    status.begin("b", "Saving")  # not cancellable
+    status.update("a", 0.5, "line 3")
+    assert status.active() == "b" and status.label.text() == "Saving"
+    assert not status.cancel_button.isEnabled()
+    status.end("b")
+    assert status.label.text() == "Latency: line 3" and status.bar.value() == 500
+    status.cancel_button.click()
+    assert cancelled == ["a"]
+    status.end("a")
+    assert status.isHidden()

@@ -48,6 +48,7 @@ class DemoOutcome:
     report_path: Path | None
     stages: list[Stage] = field(default_factory=list)
     results: dict[str, object] = field(default_factory=dict)
+    truth: dict[str, object] = field(default_factory=dict)
 
     @property
     def failed(self) -> list[Stage]:
@@ -131,12 +132,14 @@ def build_demo(out_dir: str | Path, *, seed: int = DEMO_SEED,
         check_cancel(cancel)
         index += 1
         fill = load_object_safe(spec.demo)
-        stage, _ = _timed(f"{spec.name}: simulate data", spec.id, listener, index, total,
-                          lambda progress, fill=fill: fill(project, seed=seed,
-                                                           progress=progress))
+        stage, truth = _timed(f"{spec.name}: simulate data", spec.id, listener, index, total,
+                              lambda progress, fill=fill: fill(project, seed=seed,
+                                                               progress=progress))
         outcome.stages.append(stage)
         if not stage.ok:
             failed_simulation.add(spec.id)
+        elif truth is not None:
+            outcome.truth[spec.id] = truth  # what the simulator put in, to compare with
 
     for spec in specs:
         check_cancel(cancel)
@@ -167,6 +170,19 @@ def build_demo(out_dir: str | Path, *, seed: int = DEMO_SEED,
         outcome.report_path = report_path
     project.close()
     return outcome
+
+
+def truth_text(value, digits: int = 4) -> str:
+    """Compact one-line text of a simulator's truth (nested dicts/lists of numbers)."""
+    if isinstance(value, dict):
+        # Arrays (e.g. true epoch times) are not one-line material: left out.
+        return ", ".join(f"{k} {truth_text(v, digits)}" for k, v in value.items()
+                         if not (hasattr(v, "shape") and getattr(v, "size", 0) > 6))
+    if isinstance(value, list | tuple):
+        return "[" + ", ".join(truth_text(v, digits) for v in value) + "]"
+    if isinstance(value, float):
+        return f"{value:.{digits}g}"
+    return str(value)
 
 
 def load_object_safe(dotted: str) -> Callable:

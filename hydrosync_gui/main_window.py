@@ -1,7 +1,8 @@
 """The HydroSync main window: project browser, one tab per plugin, log, status bar.
 
-Layout: the project browser docked left, a tab per plugin in the centre (each panel is
-imported and created the first time its tab is shown; a placeholder until then), the log
+Layout: the project browser docked left, a tab per plugin in the centre
+(:class:`~hydrosync_gui.plugin_tabs.PluginTabs`: each panel is imported and created the
+first time its tab is shown), the log
 console docked at the bottom, and a status bar whose progress bar and Cancel button
 follow the running task. File-menu behaviour lives in :mod:`hydrosync_gui.file_actions`.
 
@@ -19,11 +20,8 @@ from PySide6.QtCore import QSettings, Qt, QTimer, Slot
 from PySide6.QtGui import QAction, QCloseEvent, QKeySequence
 from PySide6.QtWidgets import (
     QDockWidget,
-    QLabel,
     QMainWindow,
     QMessageBox,
-    QTabWidget,
-    QVBoxLayout,
     QWidget,
 )
 
@@ -32,8 +30,9 @@ from hydrosync_core.project import Project
 from hydrosync_gui.dialogs import PluginsDialog
 from hydrosync_gui.file_actions import FileActions
 from hydrosync_gui.log_console import LogConsole
-from hydrosync_gui.plugin_host import PluginEntry, PluginHost
+from hydrosync_gui.plugin_host import PluginHost
 from hydrosync_gui.plugin_panel import PluginPanel
+from hydrosync_gui.plugin_tabs import PluginTabs
 from hydrosync_gui.project_browser import ProjectBrowser
 from hydrosync_gui.recent_files import RecentFiles
 from hydrosync_gui.resources import icon
@@ -75,15 +74,10 @@ class MainWindow(QMainWindow, FileActions):
         if logging.getLogger("hydrosync_gui").level == logging.NOTSET:
             logging.getLogger("hydrosync_gui").setLevel(logging.INFO)
         self.browser = ProjectBrowser()
-        self.tabs = QTabWidget()
-        self.tabs.setDocumentMode(True)
-        self.setCentralWidget(self.tabs)
         self.browser_dock = self._dock("Project", "project_dock", self.browser,
                                        Qt.DockWidgetArea.LeftDockWidgetArea)
         self.log_dock = self._dock("Log", "log_dock", self.console,
                                    Qt.DockWidgetArea.BottomDockWidgetArea)
-        self.resizeDocks([self.browser_dock], [420], Qt.Orientation.Horizontal)
-        self.resizeDocks([self.log_dock], [140], Qt.Orientation.Vertical)
         self.task_status = TaskStatus()
         self.statusBar().addPermanentWidget(self.task_status)
 
@@ -93,16 +87,17 @@ class MainWindow(QMainWindow, FileActions):
         self.host.sig_busy.connect(self._on_panel_busy)
         self.host.sig_project_modified.connect(self._on_project_modified)
         self.host.load()
-        self._placeholders: dict[int, QLabel] = {}
-        self._build_tabs()
+        self.tabs = PluginTabs(self.host)
+        self.setCentralWidget(self.tabs)
+        self.resizeDocks([self.browser_dock], [420], Qt.Orientation.Horizontal)
+        self.resizeDocks([self.log_dock], [140], Qt.Orientation.Vertical)
         self._build_menus()
         self._restore_settings()
         if project is None:
             project = Project.new("Untitled")
             project.dirty = False  # an empty new project has nothing to lose
         self.set_project(project)
-        self.tabs.currentChanged.connect(self._on_tab_changed)
-        self._on_tab_changed(self.tabs.currentIndex())
+        self.tabs.ensure_current()  # the first tab's panel: it is shown from the start
         for fail in self.host.failed:
             self.statusBar().showMessage(f"Plugin '{fail.name}' failed to load "
                                          "(Help → Plugins)", 10000)
@@ -114,25 +109,6 @@ class MainWindow(QMainWindow, FileActions):
         dock.setWidget(widget)
         self.addDockWidget(area, dock)
         return dock
-
-    def _build_tabs(self) -> None:
-        for entry in self.host.entries:
-            page = QWidget()
-            layout = QVBoxLayout(page)
-            layout.setContentsMargins(0, 0, 0, 0)
-            label = QLabel(f"<h3>{entry.name}</h3><p>{entry.spec.description}</p>"
-                           "<p><i>Loading…</i></p>")
-            label.setAlignment(Qt.AlignmentFlag.AlignCenter)
-            label.setWordWrap(True)
-            layout.addWidget(label)
-            index = self.tabs.addTab(page, icon(entry.spec.icon, "plugin.svg"), entry.name)
-            self.tabs.setTabToolTip(index, entry.spec.description or entry.name)
-            self._placeholders[index] = label
-        if not self.host.entries:
-            label = QLabel("<h3>No analysis plugin is available</h3>"
-                           "<p>See Help → Plugins and the log for what failed to load.</p>")
-            label.setAlignment(Qt.AlignmentFlag.AlignCenter)
-            self.tabs.addTab(label, "Welcome")
 
     def _action(self, menu, text: str, slot, shortcut=None, tip: str = "") -> QAction:
         action = QAction(text, self)
@@ -205,30 +181,9 @@ class MainWindow(QMainWindow, FileActions):
         self.setWindowModified(True)
 
     # ----------------------------------------------------------------- tabs
-    def entry_at(self, index: int) -> PluginEntry | None:
-        return self.host.entries[index] if 0 <= index < len(self.host.entries) else None
-
-    @Slot(int)
-    def _on_tab_changed(self, index: int) -> None:
-        entry = self.entry_at(index)
-        if entry is None or entry.panel is not None or entry.error is not None:
-            return
-        panel = self.host.panel(entry)
-        label = self._placeholders.pop(index)
-        if panel is None:
-            label.setText(f"<h3>{entry.name}</h3><p style='color:#c00000'>This plugin's panel "
-                          f"could not be loaded:</p><pre>{entry.error}</pre>"
-                          "<p>Details are in the log.</p>")
-            self._placeholders[index] = label
-            return
-        layout = label.parentWidget().layout()
-        layout.removeWidget(label)
-        label.deleteLater()
-        layout.addWidget(panel)
-
     def current_panel(self) -> PluginPanel | None:
-        entry = self.entry_at(self.tabs.currentIndex())
-        return entry.panel if entry is not None else None
+        """The panel of the shown plugin tab (None if not created or failed)."""
+        return self.tabs.current_panel()
 
     # ---------------------------------------------------------------- tasks
     @property

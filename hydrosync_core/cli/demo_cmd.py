@@ -13,7 +13,14 @@ import time
 from pathlib import Path
 
 from hydrosync_core.cli.terminal import TerminalProgress
-from hydrosync_core.demo import DEMO_SEED, Stage, StageListener, build_demo, key_results
+from hydrosync_core.demo import (
+    DEMO_SEED,
+    Stage,
+    StageListener,
+    build_demo,
+    key_results,
+    truth_text,
+)
 
 
 class _PrintingListener(StageListener):
@@ -68,6 +75,10 @@ def cmd_demo(args: argparse.Namespace) -> int:
                     print(f"  {name}")
                     module = name
                 print(f"    {quantity:<{width}}  {value}")
+    names = {stage.plugin_id: stage.label.split(":")[0] for stage in outcome.stages}
+    for plugin_id, truth in outcome.truth.items():
+        if isinstance(truth, dict):
+            print(f"simulated truth, {names.get(plugin_id, plugin_id)}: {truth_text(truth)}")
     print(f"finished in {elapsed:.1f} s")
     if outcome.failed:
         for stage in outcome.failed:

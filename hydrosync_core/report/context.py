@@ -13,9 +13,9 @@ from dataclasses import dataclass, field
 from datetime import UTC, datetime
 
 from reportlab.graphics.shapes import Drawing, Group
+from reportlab.lib.styles import ParagraphStyle
 from reportlab.platypus import (
     Flowable,
-    KeepTogether,
     LongTable,
     Paragraph,
     Spacer,
@@ -25,6 +25,34 @@ from reportlab.platypus.flowables import HRFlowable
 
 from hydrosync_core.report.charts import Chart
 from hydrosync_core.report.styles import FONT_BOLD, RULE, stylesheet, table_style
+
+
+class Figure(Flowable):
+    """A drawing and its caption as one unsplittable flowable.
+
+    Not a ``KeepTogether``: reportlab does not chain a heading's ``keepWithNext`` onto a
+    container, which left headings alone at the foot of a page above their figure.
+    """
+
+    def __init__(self, drawing, caption: Paragraph, space_before: float = 4.0) -> None:
+        super().__init__()
+        self.drawing = drawing
+        self.caption = caption
+        self.space_before = space_before
+        self._cap_h = 0.0
+
+    def wrap(self, avail_width, avail_height):
+        _, self._cap_h = self.caption.wrap(avail_width, avail_height)
+        self.width = avail_width
+        self.height = self.space_before + self.drawing.height + self._cap_h
+        return self.width, self.height
+
+    def getSpaceAfter(self) -> float:  # noqa: N802 (reportlab API)
+        return self.caption.getSpaceAfter()
+
+    def draw(self) -> None:
+        self.caption.drawOn(self.canv, 0, 0)
+        self.drawing.drawOn(self.canv, 0, self._cap_h)
 
 
 def esc(text) -> str:
@@ -46,7 +74,14 @@ def fmt(value, decimals: int = 3, unit: str = "") -> str:
     text = f"{number:.{decimals}f}"
     if text.strip("-0.") == "":
         text = text.lstrip("-")  # no "-0.000"
-    return f"{text} {unit}".rstrip() if unit else text
+    return _with_unit(text, unit)
+
+
+def _with_unit(text: str, unit: str) -> str:
+    """Append *unit* after a space, except the degree sign which is written closed up."""
+    if not unit:
+        return text
+    return f"{text}{unit}" if unit == "\u00b0" else f"{text} {unit}"
 
 
 def utc_text(iso) -> str:
@@ -65,7 +100,7 @@ def fmt_pm(value, sigma, decimals: int = 3, unit: str = "") -> str:
     main = fmt(value, decimals)
     if fmt(sigma, decimals) != "\u2014":
         main += f" \u00b1 {fmt(sigma, decimals)}"
-    return f"{main} {unit}".rstrip() if unit else main
+    return _with_unit(main, unit)
 
 
 @dataclass
@@ -114,6 +149,7 @@ class ReportContext:
         highlight_rows: Sequence[int] = (),
         extra_style: Sequence[tuple] = (),
         zebra: bool = True,
+        font_size: float = 8.5,
     ) -> list[Flowable]:
         """A table whose header row repeats on each page, with an optional caption above.
 
@@ -135,11 +171,15 @@ class ReportContext:
         fractions = col_widths or [1.0 / n_cols] * n_cols
         widths = [f * self.width for f in fractions]
         head_style = self.styles["CellBold"]
+        if font_size != head_style.fontSize:
+            head_style = ParagraphStyle("CellBoldSmall", parent=head_style, fontSize=font_size,
+                                        leading=font_size + 2)
         head = [Paragraph(h, head_style) for h in header]
         data = [head] + [[c if isinstance(c, Flowable) else str(c) for c in r] for r in rows]
-        style = table_style(len(data), numeric_from=numeric_from, zebra=zebra)
+        style = table_style(len(data), numeric_from=numeric_from, zebra=zebra,
+                            font_size=font_size)
         for i in highlight_rows:
-            style.append(("FONT", (0, i + 1), (-1, i + 1), FONT_BOLD, 8.5))
+            style.append(("FONT", (0, i + 1), (-1, i + 1), FONT_BOLD, font_size))
         style.extend(extra_style)
         table = LongTable(data, colWidths=widths, repeatRows=1, hAlign="LEFT")
         table.setStyle(TableStyle(style))
@@ -166,7 +206,7 @@ class ReportContext:
         """A :class:`Chart` *fraction* of the frame wide (points); call ``figure()`` with it."""
         return Chart(width=self.width * fraction, height=height, **kwargs)
 
-    def figure(self, content, caption: str) -> KeepTogether:
+    def figure(self, content, caption: str) -> Figure:
         """Figure + numbered caption kept on one page.
 
         *content* is a :class:`Chart`, a reportlab Drawing, or a list of Charts placed
@@ -184,4 +224,4 @@ class ReportContext:
         else:
             drawing = content.drawing() if isinstance(content, Chart) else content
         cap = Paragraph(f"<b>Figure {self.figure_count}.</b> {caption}", self.styles["Caption"])
-        return KeepTogether([Spacer(1, 4), drawing, cap])
+        return Figure(drawing, cap)

@@ -19,6 +19,7 @@ from hydrosync_core.report.context import ReportContext, esc, fmt, fmt_pm, utc_t
 from hydrosync_core.report.styles import INK, MUTED, SERIES
 
 RESULT = "results/latency"
+HEADING = "Latency between GNSS heights and attitude"
 
 # Decimals of each printed quantity (tests format the stored values the same way).
 # Δt to the millisecond (sub-step refinement), R to 4 decimals (seed table 1), σ0 in
@@ -91,7 +92,7 @@ def section(project, ctx: ReportContext) -> list[Flowable]:
     warnings = _json_attr(attrs, "warnings", [])
     arm = _json_attr(attrs, "lever_arm_m", params.get("lever_arm_m", [np.nan] * 3))
     out: list[Flowable] = [
-        ctx.heading("Latency between GNSS heights and attitude"),
+        ctx.heading(HEADING),
         ctx.para(
             "Method: correlative approximation (seed 000). Per survey line the GNSS "
             "antenna heights are detrended (eq. 1), the total heave at the antenna is formed "

@@ -14,9 +14,10 @@ from __future__ import annotations
 import json
 
 import numpy as np
-from reportlab.platypus import Flowable
+from reportlab.lib.styles import ParagraphStyle
+from reportlab.platypus import Flowable, Paragraph
 
-from hydrosync_core.report.context import ReportContext, fmt, fmt_pm, utc_text
+from hydrosync_core.report.context import ReportContext, esc, fmt, fmt_pm, utc_text
 from hydrosync_core.report.styles import BAD_TEXT, INK, SERIES
 
 RESULT = "results/pool_calibration"
@@ -146,6 +147,7 @@ def _face_table(project, ctx, res) -> list[Flowable]:
         return []
     t = project.get_table(f"{RESULT}/faces")
     resid = (res.get("joint") or {}).get("residual_rms_m", {})
+    small = ParagraphStyle("UsedFor", parent=ctx.styles["Cell"], fontSize=7.5, leading=9)
     rows = []
     for i, name in enumerate(t["face"]):
         rows.append([
@@ -153,13 +155,13 @@ def _face_table(project, ctx, res) -> list[Flowable]:
             str(int(t["points_mbes"][i])), fmt(1000 * t["rms_laser_m"][i], 1),
             fmt(1000 * t["rms_mbes_m"][i], 1),
             fmt(1000 * resid[name], 1) if name in resid else "\u2014",
-            fmt(t["normal_angle_deg"][i], 3), str(t["used_for"][i]).replace(",", ", ")
-            or "\u2014"])
+            fmt(t["normal_angle_deg"][i], 3),
+            Paragraph(esc(str(t["used_for"][i]).replace(",", ", ") or "\u2014"), small)])
     return [ctx.heading("Target faces", 2)] + ctx.table(
-        ["Face", "Role", "Water", "Laser points", "MBES points", "Laser RMS [mm]",
-         "MBES RMS [mm]", "Joint resid. RMS [mm]", "Normal angle [\u00b0]", "Used for"],
-        rows, col_widths=[0.15, 0.1, 0.08, 0.07, 0.07, 0.08, 0.08, 0.08, 0.09, 0.2],
-        numeric_from=3, extra_style=[("ALIGN", (-1, 0), (-1, -1), "LEFT")],
+        ["Face", "Role", "Water", "Laser pts", "MBES pts", "Laser RMS [mm]",
+         "MBES RMS [mm]", "Joint resid. [mm]", "Normal angle [\u00b0]", "Used for"],
+        rows, col_widths=[0.16, 0.125, 0.085, 0.07, 0.07, 0.07, 0.07, 0.075, 0.08, 0.175],
+        numeric_from=3, extra_style=[("ALIGN", (-1, 0), (-1, -1), "LEFT")], font_size=7.5,
         caption="Faces of the target design, their role inferred from geometry, points "
         "segmented in each cloud, plane-fit RMS, the angle between the laser and the final "
         "multibeam plane normals, and the parameters each face determines.")
@@ -233,22 +235,61 @@ def _plan_figures(project, ctx) -> list[Flowable]:
         "values (black), design face outlines in grey. The vertical scale is stretched "
         "(axes not to the same scale) to separate the faces.")))
     # Elevation seen from the vessel: the faces above water (laser) and below (multibeam).
-    panels = []
-    for title, xyz in (("coarse setup", mb), ("final values", ma)):
-        chart = ctx.chart(height=250, fraction=0.5, xlabel=f"north [m] \u2014 multibeam, {title}",
-                          ylabel="up [m]")
-        outlines(chart, 1, 2)
-        chart.hline(water, color=SERIES[5], dash=(4, 2), width=0.8)
-        sel = _subsample(len(lx), PLOT_POINTS)
-        chart.points(lx[sel, 1], lx[sel, 2], color="#9ec5e8", size=0.6, marker="square")
-        by_role(chart, xyz, mf, 1, 2, "square", "")
-        panels.append(chart)
-    out.append(ctx.figure(panels, (
+    elev = ctx.chart(height=250, xlabel="north [m]", ylabel="up [m]")
+    outlines(elev, 1, 2)
+    elev.hline(water, color=SERIES[5], dash=(4, 2), width=0.8, label="water level")
+    sel = _subsample(len(lx), PLOT_POINTS)
+    elev.points(lx[sel, 1], lx[sel, 2], color="#9ec5e8", size=0.6, marker="square",
+                label="laser")
+    by_role(elev, ma, mf, 1, 2, "square", " (multibeam)")
+    out.append(ctx.figure(elev, (
         "Elevation of the target seen from the vessel (north against up): laser points above "
-        "the water line (light blue, dashed line) and multibeam soundings below it, coloured "
-        "by face role, georeferenced with the coarse setup (left) and the final values "
-        "(right).")))
+        "the water line and multibeam soundings below it, georeferenced with the final values "
+        "and coloured by the role of their face; design outlines in grey.")))
+    panels = [chart for chart in (
+        _profile(ctx, lx, lf, mb, ma, mf, t, roles, role) for role in ("wall", "oblique"))
+        if chart is not None]
+    if panels:
+        for chart in panels:
+            chart.width = ctx.width / len(panels)
+        out.append(ctx.figure(panels, (
+            "Profiles across faces: distance of each point from the laser plane of the face "
+            "against height. Multibeam soundings with the coarse setup (grey) lean or sit off "
+            "the plane; with the final values (colour) they continue the laser points (light "
+            "blue) below the water line.")))
     return out
+
+
+def _profile(ctx, lx, lf, mb, ma, mf, t, roles, role):
+    """Distance to the laser plane of the best face of *role* vs height, before/after."""
+    faces = [k for k in range(len(roles)) if roles[k] == role
+             and np.sum(lf == k) >= 10 and np.sum(mf == k) >= 10]
+    if not faces:
+        return None
+    k = max(faces, key=lambda j: int(np.sum(mf == j)))
+    laser = lx[lf == k]
+    # TLS plane of the laser points (seed eqs. [0051]-[0088]): smallest singular vector.
+    centre = laser.mean(axis=0)
+    normal = np.linalg.svd(laser - centre, full_matrices=False)[2][-1]
+    if normal[np.argmax(np.abs(normal[:2]))] < 0:
+        normal = -normal  # a fixed, readable orientation (east or north positive)
+
+    def dist_cm(p):
+        return 100.0 * (p - centre) @ normal
+
+    name = str(t["face"][k])
+    chart = ctx.chart(height=230, fraction=0.5,
+                      xlabel=f"distance from the laser plane of {name} [cm]", ylabel="up [m]")
+    sel = _subsample(len(laser), PLOT_POINTS // 2)
+    chart.points(dist_cm(laser[sel]), laser[sel, 2], color="#9ec5e8", size=0.7,
+                 marker="square", label="laser")
+    on = np.flatnonzero(mf == k)
+    on = on[_subsample(len(on), PLOT_POINTS // 2)]
+    chart.points(dist_cm(mb[on]), mb[on, 2], color="#a0a0a0", size=0.7, marker="square",
+                 label="coarse")
+    chart.points(dist_cm(ma[on]), ma[on, 2], color=ROLE_COLORS.get(role, INK), size=0.7,
+                 marker="square", label="final")
+    return chart
 
 
 def _iterations(project, ctx) -> list[Flowable]:
@@ -275,7 +316,7 @@ def _iterations(project, ctx) -> list[Flowable]:
         ["Iteration", "Round", "\u03b4roll [\u00b0]", "\u03b4pitch [\u00b0]",
          "\u03b4yaw [\u00b0]", "Roll [\u00b0]", "Pitch [\u00b0]", "Yaw [\u00b0]",
          "Max normal angle [\u00b0]"], rows,
-        col_widths=[0.09, 0.08, 0.11, 0.11, 0.11, 0.11, 0.11, 0.11, 0.17], numeric_from=0,
+        col_widths=[0.11, 0.08, 0.11, 0.11, 0.11, 0.11, 0.11, 0.11, 0.15], numeric_from=0,
         caption="Seed iteration: boresight corrections of each iteration (about the body "
         "axes), the accumulated angles and the largest remaining normal angle. A new round "
         "starts after the lever arm has been re-estimated.")

@@ -98,7 +98,8 @@ def stylesheet() -> StyleSheet1:
     return ss
 
 
-def table_style(n_rows: int, numeric_from: int = 1, zebra: bool = True) -> list[tuple]:
+def table_style(n_rows: int, numeric_from: int = 1, zebra: bool = True,
+                font_size: float = 8.5) -> list[tuple]:
     """Table style commands: shaded bold header row, rules, optional zebra rows.
 
     Parameters
@@ -109,10 +110,13 @@ def table_style(n_rows: int, numeric_from: int = 1, zebra: bool = True) -> list[
         Columns from this index on are right-aligned (numbers).
     zebra : bool
         Shade every other body row to guide the eye across wide tables.
+    font_size : float
+        Points; smaller for wide tables.
     """
+    pad = 4 if font_size >= 8.5 else 2.5
     cmds: list[tuple] = [
-        ("FONT", (0, 0), (-1, 0), FONT_BOLD, 8.5),
-        ("FONT", (0, 1), (-1, -1), FONT, 8.5),
+        ("FONT", (0, 0), (-1, 0), FONT_BOLD, font_size),
+        ("FONT", (0, 1), (-1, -1), FONT, font_size),
         ("TEXTCOLOR", (0, 0), (-1, -1), INK),
         ("BACKGROUND", (0, 0), (-1, 0), HEADER_FILL),
         ("LINEABOVE", (0, 0), (-1, 0), 0.8, ACCENT),
@@ -123,8 +127,8 @@ def table_style(n_rows: int, numeric_from: int = 1, zebra: bool = True) -> list[
         ("ALIGN", (numeric_from, 0), (-1, -1), "RIGHT"),
         ("TOPPADDING", (0, 0), (-1, -1), 2.5),
         ("BOTTOMPADDING", (0, 0), (-1, -1), 2.5),
-        ("LEFTPADDING", (0, 0), (-1, -1), 4),
-        ("RIGHTPADDING", (0, 0), (-1, -1), 4),
+        ("LEFTPADDING", (0, 0), (-1, -1), pad),
+        ("RIGHTPADDING", (0, 0), (-1, -1), pad),
     ]
     if zebra:
         for row in range(2, n_rows, 2):

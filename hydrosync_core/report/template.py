@@ -10,7 +10,7 @@ from __future__ import annotations
 from reportlab.lib.pagesizes import A4
 from reportlab.lib.units import mm
 from reportlab.pdfgen import canvas as rl_canvas
-from reportlab.platypus import BaseDocTemplate, Frame, PageTemplate, Paragraph
+from reportlab.platypus import BaseDocTemplate, Frame, KeepTogether, PageTemplate, Paragraph, Table
 
 from hydrosync_core.report.styles import ACCENT, FONT, MUTED, PAGE_MARGIN, RULE
 
@@ -60,6 +60,26 @@ class NumberedCanvas(rl_canvas.Canvas):
         self.restoreState()
 
 
+class KeepWithStart(KeepTogether):
+    """Keep headings and captions with the *start* of a long table, not with all of it.
+
+    reportlab groups a ``keepWithNext`` paragraph and the next flowable into a
+    KeepTogether, which moves a long (splittable) table whole to the next page and leaves
+    a gap. Here only the table's first rows count towards the height that must fit.
+    """
+
+    FIRST_ROWS = 4
+
+    def split(self, aW, aH):  # noqa: N803 (reportlab API)
+        if getattr(self, "_wrapInfo", None) != (aW, aH):
+            self.wrap(aW, aH)
+        last = self._content[-1] if self._content else None
+        heights = getattr(last, "_rowHeights", None) if isinstance(last, Table) else None
+        if heights and len(heights) > self.FIRST_ROWS:
+            self._H -= sum(heights) - sum(heights[: self.FIRST_ROWS])
+        return super().split(aW, aH)
+
+
 class ReportDocTemplate(BaseDocTemplate):
     """A4 document with one body frame; headings H1/H2 become PDF outline entries."""
 
@@ -68,6 +88,7 @@ class ReportDocTemplate(BaseDocTemplate):
             filename, pagesize=A4, title=title, author=author, subject=subject,
             creator="HydroSync", leftMargin=PAGE_MARGIN, rightMargin=PAGE_MARGIN,
             topMargin=PAGE_MARGIN, bottomMargin=PAGE_MARGIN + 2 * mm,
+            keepTogetherClass=KeepWithStart,
         )
         frame = Frame(self.leftMargin, self.bottomMargin, self.width, self.height, id="body",
                       leftPadding=0, rightPadding=0, topPadding=0, bottomPadding=0)

@@ -16,14 +16,16 @@ from hydrosync_core.cli import main
 from hydrosync_core.demo import (
     DEMO_PROJECT,
     DEMO_REPORT,
+    DEMO_SEED,
     Stage,
     StageListener,
     build_demo,
     key_results,
 )
-from hydrosync_core.plugins import Discovered, PluginSpec, get_spec, plugin_specs
+from hydrosync_core.plugins import Discovered, PluginSpec, get_spec, load_object, plugin_specs
 from hydrosync_core.project import Project
 from hydrosync_core.report import latency_section as lat
+from hydrosync_core.report import pool_section as pool
 
 # ``esc(text)`` called as ``esc(project, seed=…, progress=…)`` raises a TypeError: a
 # stand-in for a plugin whose simulator or run function is broken.
@@ -65,15 +67,33 @@ def test_demo_end_to_end(tmp_path):
     for _name, quantity, value in rows:
         assert re.search(rf"{re.escape(quantity)}\s+{re.escape(value)}", stdout)
         assert value in text
+    assert "not run" not in text and "could not be produced" not in text
+    assert lat.HEADING in text and pool.HEADING in text
     with Project.open(project_path) as project:
         for spec in specs:
             assert project.exists(f"results/{spec.id}"), spec.id
+        # Latency: the simulated survey day has a 0.29 s delay (as the seed's table 1).
         attrs = project.attrs("results/latency")
-        # The simulated survey day has a 0.29 s delay (seed table 1).
         assert abs(attrs["latency_s"] - 0.29) < 0.03
         assert attrs["ci95_low"] < 0.29 < attrs["ci95_high"]
         assert lat.final_value_text(attrs) in text
-        assert "not run" not in text and "could not be produced" not in text
+        table = project.get_table("results/latency/lines")
+        for i in range(len(table["name"])):
+            assert " ".join(lat.line_row(table, i)) in text
+        # Pool: final parameters near the simulator's truth, printed as stored.
+        attrs = project.attrs("results/pool_calibration")
+        truth = load_object(get_spec("pool_calibration").demo)(
+            Project.new("truth"), seed=DEMO_SEED, progress=None)
+        for key in ("roll", "pitch", "yaw"):
+            assert abs(attrs[f"{key}_deg"] - truth["boresight_deg"][key]) < 0.05, key
+        for key in "xyz":
+            assert abs(attrs[f"lever_{key}_m"] - truth["lever_arm_m"][key]) < 0.01, key
+        for _label, value in pool.parameter_rows(attrs):
+            assert value in text
+        faces = project.get_table("results/pool_calibration/faces")
+        for i, name in enumerate(faces["face"]):
+            assert re.search(rf"{name} {faces['role'][i]} {faces['water'][i]} "
+                             rf"{faces['points_laser'][i]} {faces['points_mbes'][i]} ", text)
 
 
 class _Recorder(StageListener):

@@ -89,7 +89,7 @@ def fake_discover():
     return lambda: list(found)
 
 
-def make_project(name: str = "survey") -> Project:
+def _make_project(name: str = "survey") -> Project:
     """A small project: GNSS and attitude tables, a laser point array, a setup document."""
     project = Project.new(name)
     t = np.arange(1000) * 0.1
@@ -103,9 +103,15 @@ def make_project(name: str = "survey") -> Project:
 
 
 @pytest.fixture
+def make_project():
+    """Factory of the small sample project (unsaved, so marked modified)."""
+    return _make_project
+
+
+@pytest.fixture
 def project_file(tmp_path) -> Path:
     path = tmp_path / "survey.h5"
-    make_project().save(path)
+    _make_project().save(path)
     return path
 
 

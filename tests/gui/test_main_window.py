@@ -7,7 +7,6 @@ import sys
 
 import numpy as np
 import pytest
-from conftest import make_project
 from PySide6.QtCore import QSettings, Qt, QTimer
 from PySide6.QtWidgets import QMessageBox
 
@@ -120,7 +119,7 @@ def test_clean_project_is_replaced_without_prompt(qtbot, make_window, project_fi
 
 
 @pytest.mark.parametrize("answer", [Button.Discard, Button.Cancel])
-def test_close_with_unsaved_changes(qtbot, make_window, ui, answer):
+def test_close_with_unsaved_changes(qtbot, make_window, ui, answer, make_project):
     window = make_window(make_project())  # dirty: never saved
     ui.answer = answer
     window.close()
@@ -208,7 +207,7 @@ def test_import_good_and_bad_file(qtbot, make_window, tmp_path, ui):
     assert window.isWindowModified()
 
 
-def test_save_failure_keeps_the_project(qtbot, make_window, tmp_path, ui):
+def test_save_failure_keeps_the_project(qtbot, make_window, tmp_path, ui, make_project):
     window = make_window(make_project())
     ui.save_path = str(tmp_path / "no_such_dir" / "x.h5")
     window._on_save()
@@ -222,7 +221,9 @@ def test_save_failure_keeps_the_project(qtbot, make_window, tmp_path, ui):
     assert window.project.path == tmp_path / "ok.h5" and not window.isWindowModified()
 
 
-def test_export_report_missing_and_present(qtbot, make_window, tmp_path, ui, monkeypatch):
+def test_export_report_missing_and_present(
+    qtbot, make_window, tmp_path, ui, monkeypatch, make_project
+):
     import hydrosync_core.report as report
 
     window = make_window(make_project())
@@ -312,3 +313,19 @@ def test_restarting_a_panel_task_keeps_the_status_until_the_new_one_ends(qtbot, 
     qtbot.waitUntil(lambda: panel.finished_with is not None, timeout=3000)
     qtbot.waitUntil(lambda: not window.busy, timeout=3000)
     assert panel.finished_with == {"steps": 30}
+
+
+def test_open_missing_or_bad_file_reports_and_prunes_recent(qtbot, make_window, tmp_path, ui):
+    window = make_window()
+    bad = tmp_path / "not_a_project.h5"
+    bad.write_text("hello")
+    window.recent.add(bad)
+    window.open_project(str(bad))
+    qtbot.waitUntil(lambda: not window.busy, timeout=5000)
+    window.open_project(str(tmp_path / "gone.h5"))
+    qtbot.waitUntil(lambda: not window.busy, timeout=5000)
+    assert [b[1] for b in ui.boxes] == ["Cannot open project", "Cannot open project"]
+    assert "not_a_project.h5: not a readable HDF5 file" in ui.boxes[0][2]
+    assert ui.boxes[1][2] == f"{tmp_path / 'gone.h5'}: no such project file"
+    assert window.project.name == "Untitled"  # the current project stays
+    assert window.recent.files() == [str(bad.resolve())]  # unreadable but existing: kept

@@ -6,7 +6,6 @@ import json
 
 import numpy as np
 import pytest
-from conftest import make_project
 
 from hydrosync_core.project import Project
 from hydrosync_gui.project_browser import ProjectBrowser, human_size, shape_text
@@ -33,7 +32,7 @@ def browser(qtbot):
     return widget
 
 
-def test_tree_of_a_project(browser):
+def test_tree_of_a_project(browser, make_project):
     browser.set_project(make_project())
     top = [browser.tree.topLevelItem(i).text(0) for i in range(browser.tree.topLevelItemCount())]
     assert top == ["vessel", "raw", "results"]
@@ -63,7 +62,7 @@ def test_string_and_integer_datasets(browser, tmp_path):
         assert browser.row_texts("raw/lines")[1] == "table 2 × 3"
 
 
-def test_attributes_in_detail_pane_and_tooltip(browser, qtbot):
+def test_attributes_in_detail_pane_and_tooltip(browser, qtbot, make_project):
     browser.set_project(make_project())
     selected = []
     browser.sig_selected.connect(selected.append)
@@ -80,7 +79,7 @@ def test_attributes_in_detail_pane_and_tooltip(browser, qtbot):
     assert "source: gnss.csv" in browser.item("raw/gnss").toolTip(0)
 
 
-def test_refresh_keeps_expansion_and_selection_and_shows_new_nodes(browser):
+def test_refresh_keeps_expansion_and_selection_and_shows_new_nodes(browser, make_project):
     project = make_project()
     browser.set_project(project)
     browser.item("raw/gnss").setExpanded(True)

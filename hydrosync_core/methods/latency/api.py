@@ -18,7 +18,7 @@ from hydrosync_core.methods.latency.combine import combine, select_lines
 from hydrosync_core.methods.latency.correlation import heave_at
 from hydrosync_core.methods.latency.detrend import detrend
 from hydrosync_core.methods.latency.diagnose import diagnose
-from hydrosync_core.methods.latency.heave import induced_heave, total_heave
+from hydrosync_core.methods.latency.heave import total_heave, total_heave_deg
 from hydrosync_core.methods.latency.lines import prepare_line, scan_line
 from hydrosync_core.methods.latency.quality import sigma0
 from hydrosync_core.methods.latency.result import LatencyParams, LatencyResult, LineResult
@@ -79,9 +79,8 @@ def estimate_latency(
     p = params if isinstance(params, LatencyParams) else LatencyParams.from_dict(params)
     t_g, hgt, att, arm = _check_inputs(gnss, attitude, lever_arm)
     t_att = att["time"]
-    roll, pitch = np.radians(att["roll"]), np.radians(att["pitch"])
     # Seed eq. 2: total heave at the antenna, at attitude rate.
-    h_att = total_heave(att["heave"], roll, pitch, arm)
+    h_att = total_heave_deg(att["heave"], att["roll"], att["pitch"], arm)
     lo, hi = p.range_s
     dts = np.linspace(lo, hi, int(round((hi - lo) / p.step_s)) + 1)
     g_int, a_int = float(np.median(np.diff(t_g))), float(np.median(np.diff(t_att)))
@@ -136,7 +135,8 @@ def estimate_latency(
     if comb.n_used == 0 or not med > p.min_r:
         report(progress, 0.95, "testing heave sign and lever arm")
         coarse = np.arange(lo, hi + 1e-12, max(p.step_s, 0.02))
-        diagnostics, more = diagnose(prepared, t_att, att["heave"], roll, pitch, arm, coarse)
+        diagnostics, more = diagnose(prepared, t_att, att["heave"], np.radians(att["roll"]),
+                                     np.radians(att["pitch"]), arm, coarse)
         warnings += more
     converged = comb.n_used > 0
     best = f"{np.nanmax(r_max):.3f}" if np.any(np.isfinite(r_max)) else "none"
@@ -199,7 +199,6 @@ def line_series(
         empty = np.empty(0)
         return {"time": empty, "height": empty, "heave_before": empty, "heave_after": empty}
     h, _ = detrend(tags, hgt[sel], int(p.detrend_degree))
-    roll, pitch = np.radians(att["roll"]), np.radians(att["pitch"])
-    h_att = att["heave"] + induced_heave(roll, pitch, arm)
+    h_att = total_heave_deg(att["heave"], att["roll"], att["pitch"], arm)
     H = heave_at(tags, np.array([0.0, dt]), att["time"], h_att)
     return {"time": tags, "height": h, "heave_before": H[0], "heave_after": H[1]}

@@ -35,3 +35,20 @@ def induced_heave(roll: np.ndarray, pitch: np.ndarray, lever_arm) -> np.ndarray:
 def total_heave(heave: np.ndarray, roll: np.ndarray, pitch: np.ndarray, lever_arm) -> np.ndarray:
     """Total heave H_T = H_M + H_R at the antenna (m, up); angles in radians (seed eq. 2)."""
     return np.asarray(heave, dtype=float) + induced_heave(roll, pitch, lever_arm)
+
+
+def total_heave_deg(
+    heave: np.ndarray, roll_deg: np.ndarray, pitch_deg: np.ndarray, lever_arm,
+    chunk: int = 1 << 20,
+) -> np.ndarray:
+    """:func:`total_heave` from angles in degrees, in chunks to bound temporary memory.
+
+    A day of 100 Hz attitude has ~10⁷ samples; the trigonometric temporaries of one
+    pass would cost several hundred MB.
+    """
+    out = np.empty(len(heave))
+    for lo in range(0, len(heave), chunk):
+        sl = slice(lo, lo + chunk)
+        out[sl] = total_heave(heave[sl], np.radians(roll_deg[sl]), np.radians(pitch_deg[sl]),
+                              lever_arm)
+    return out

@@ -38,7 +38,7 @@ from hydrosync_core.methods.latency.api import estimate_latency, synchronise
 from hydrosync_core.methods.latency.combine import combine
 from hydrosync_core.methods.latency.correlation import heave_at
 from hydrosync_core.methods.latency.detrend import detrend
-from hydrosync_core.methods.latency.heave import total_heave
+from hydrosync_core.methods.latency.heave import total_heave_deg
 from hydrosync_core.methods.latency.quality import sigma0
 from hydrosync_core.methods.latency.result import LatencyParams, LatencyResult
 from hydrosync_core.progress import sub_progress
@@ -137,8 +137,9 @@ def recombine(project: Project, used: np.ndarray, weighting: str | None = None) 
     gnss, attitude, _ = read_inputs(project)
     t_g, hgt = np.asarray(gnss["time"], float), np.asarray(gnss["height"], float)
     t_att = np.asarray(attitude["time"], float)
-    h_att = total_heave(np.asarray(attitude["heave"], float), np.radians(attitude["roll"]),
-                        np.radians(attitude["pitch"]), arm)
+    h_att = total_heave_deg(np.asarray(attitude["heave"], float),
+                            np.asarray(attitude["roll"], float),
+                            np.asarray(attitude["pitch"], float), arm)
     p = LatencyParams.from_dict(params)
     after = np.full(table["name"].size, np.nan)
     if comb.n_used:

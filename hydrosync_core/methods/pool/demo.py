@@ -6,13 +6,17 @@ import numpy as np
 
 from hydrosync_core.progress import report
 from hydrosync_core.project.vessel import set_sensor
-from hydrosync_core.simulate.pool_pass import simulate_pool_pass
+from hydrosync_core.simulate.pool_pass import PoolPassConfig, simulate_pool_pass
 
 
-def fill_demo(project, seed: int = 0, progress=None) -> dict:
-    """Write raw/pool/{lidar, mbes, ins, setup, target} and the vessel sheet; return truth."""
+def fill_demo(project, seed: int = 0, progress=None,
+              config: PoolPassConfig | None = None) -> dict:
+    """Write raw/pool/{lidar, mbes, ins, setup, target} and the vessel sheet; return truth.
+
+    *config* (optional) overrides the simulation settings (tests use smaller data sets).
+    """
     report(progress, 0.0, "simulating a pool calibration pass")
-    sim = simulate_pool_pass(seed=seed)
+    sim = simulate_pool_pass(config, seed=seed)
     project.put("raw/pool/lidar", sim["lidar"],
                 attrs={"frame": "target ENU", "units": "m", "source": "simulated"})
     project.put_table("raw/pool/mbes", {k: np.asarray(v) for k, v in sim["mbes"].items()},

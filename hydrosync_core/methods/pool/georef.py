@@ -83,6 +83,9 @@ def prepare(mbes: dict, ins: dict, max_gap_s: float | None = None,
     t_ins = np.asarray(ins["time"], dtype=float)
     if len(t_ins) < 2:
         raise InputError(source, "the INS trajectory needs at least 2 epochs")
+    if np.any(np.diff(t_ins) <= 0):
+        raise InputError(source, "INS times must be strictly increasing (sorted, no "
+                         "duplicates)", field="time")
     ping_t, ping_of = np.unique(np.asarray(mbes["time"], dtype=float), return_inverse=True)
     # Locate each ping in the INS time series; j is the interval [t_j, t_j+1].
     j = np.searchsorted(t_ins, ping_t, side="right") - 1

@@ -100,8 +100,12 @@ def euler_jacobian(r_m: np.ndarray, h: float = 1e-7) -> np.ndarray:
 
 def adjust(ctx: GeorefContext, obs: dict[str, tuple[np.ndarray, PlaneFit]], r_m0: np.ndarray,
            lever0: np.ndarray, *, huber_m: float = 0.03, max_iter: int = 30,
-           tol: float = 1e-9, cond_max: float = 1e10, cancel=None) -> JointFit:
-    """Gauss-Newton / IRLS solution from the start values (r_m0, lever0)."""
+           tol: float = 1e-9, cond_max: float = 1e10, fix: tuple[str, ...] = (),
+           cancel=None) -> JointFit:
+    """Gauss-Newton / IRLS solution from the start values (r_m0, lever0).
+
+    *fix* names parameters (of NAMES) held at their start values.
+    """
     r_m, lever = r_m0.copy(), np.asarray(lever0, float).copy()
     n_obs = sum(len(i) for i, _ in obs.values())
     if n_obs < 6:
@@ -112,7 +116,7 @@ def adjust(ctx: GeorefContext, obs: dict[str, tuple[np.ndarray, PlaneFit]], r_m0
     scale[scale == 0] = 1.0
     js = jac / scale
     w, v = np.linalg.eigh(js.T @ js)
-    free = np.ones(6, dtype=bool)
+    free = np.array([n not in fix for n in NAMES])
     for k in np.flatnonzero(w < w.max() / cond_max):
         free[np.argmax(np.abs(v[:, k]))] = False
     fixed = tuple(n for n, f in zip(NAMES, free, strict=True) if not f)

@@ -147,7 +147,11 @@ def solve(seg, params=None, progress=None, cancel=None) -> PoolResult:
     obs = _joint_obs(seg, mfaces, mp)
     joint, r_final, l_final, method = None, r_m, lever, "seed"
     try:
-        fit = adjust(seg.ctx, obs, r_m, lever, huber_m=p["huber_m"], cancel=cancel)
+        # Without a horizontal face the vertical offset rests only on the vessel's roll
+        # and pitch motion: fixed rather than reported as a weak, possibly wrong number.
+        has_h = any(seg.roles[n].role == "horizontal" for n in obs)
+        fit = adjust(seg.ctx, obs, r_m, lever, huber_m=p["huber_m"], cancel=cancel,
+                     fix=() if has_h else ("lever_z",))
     except (ValueError, np.linalg.LinAlgError) as exc:
         warnings.append(f"joint adjustment failed ({exc}); the seed solution is reported")
         fit = None

@@ -1,0 +1,208 @@
+"""Views of the laser and multibeam clouds coloured by face (target ENU, m).
+
+Two interchangeable views with the same API (``draw(names, clouds)``, ``set_after(bool)``,
+``clear()``): :class:`GLCloudView` (3-D, pyqtgraph.opengl) where an OpenGL context can be
+created, and :class:`ProjectionView` (2-D plan E-N and section N-U) everywhere else,
+e.g. under ``QT_QPA_PLATFORM=offscreen``. ``clouds`` is a dict of the stored plan arrays:
+``laser_xyz`` (n, 3), ``laser_face`` (n,), ``mbes_before_xyz`` (m, 3), ``mbes_after_xyz``
+(m, 3) or None, ``mbes_face`` (m,), face indices into *names* (-1 = on no face).
+"""
+
+from __future__ import annotations
+
+import functools
+
+import numpy as np
+import pyqtgraph as pg
+from PySide6.QtWidgets import QHBoxLayout, QVBoxLayout, QWidget
+
+# Qualitative palette (tab20 order, strong colours first): neighbouring faces differ.
+PALETTE = ("#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd", "#8c564b", "#e377c2",
+           "#17becf", "#bcbd22", "#7f7f7f", "#aec7e8", "#ffbb78", "#98df8a", "#ff9896",
+           "#c5b0d5", "#c49c94", "#f7b6d2", "#9edae5", "#dbdb8d", "#393b79")
+UNASSIGNED = "#c8c8c8"
+
+
+def face_colour(k: int) -> str:
+    """Hex colour of face index *k* (-1 = soundings on no face: light grey)."""
+    return UNASSIGNED if k < 0 else PALETTE[k % len(PALETTE)]
+
+
+@functools.cache
+def gl_available() -> bool:
+    """True if pyqtgraph.opengl imports and a real OpenGL context can be made current.
+
+    The offscreen/minimal platforms never give one ("QOpenGLWidget: Failed to create
+    context"), so they are refused without trying; elsewhere a context is created on an
+    offscreen surface, which fails cleanly on machines without GL drivers.
+    """
+    from PySide6.QtGui import QGuiApplication, QOffscreenSurface, QOpenGLContext
+
+    if QGuiApplication.instance() is None:
+        return False
+    if QGuiApplication.platformName() in ("offscreen", "minimal", "vnc"):
+        return False
+    try:
+        import pyqtgraph.opengl  # noqa: F401  (needs PyOpenGL)
+    except Exception:
+        return False
+    surface = QOffscreenSurface()
+    surface.create()
+    context = QOpenGLContext()
+    ok = surface.isValid() and context.create() and context.makeCurrent(surface)
+    if ok:
+        context.doneCurrent()
+    surface.destroy()
+    return bool(ok)
+
+
+def _split(face: np.ndarray) -> dict[int, np.ndarray]:
+    """Row indices per face index (sorted keys, -1 first)."""
+    return {int(k): np.flatnonzero(face == k) for k in np.unique(face)}
+
+
+class ProjectionView(QWidget):
+    """Plan (E-N) and section (N-U) scatter plots, one item per face and cloud.
+
+    ``laser_items[k]`` / ``mbes_items[k]`` are ``(plan_item, section_item)`` pairs of
+    :class:`pyqtgraph.ScatterPlotItem` holding the points of face *k*.
+    """
+
+    def __init__(self, parent: QWidget | None = None) -> None:
+        super().__init__(parent)
+        self.plan = pg.PlotWidget(title="Plan view")
+        self.section = pg.PlotWidget(title="Section (looking along east)")
+        for plot, (xl, yl) in ((self.plan, ("East", "North")),
+                               (self.section, ("North", "Up"))):
+            plot.setBackground("w")
+            plot.setLabel("bottom", xl, units="m")
+            plot.setLabel("left", yl, units="m")
+            plot.showGrid(x=True, y=True, alpha=0.25)
+            plot.setAspectLocked(True)
+        lay = QHBoxLayout(self)
+        lay.setContentsMargins(0, 0, 0, 0)
+        lay.addWidget(self.plan, 1)
+        lay.addWidget(self.section, 1)
+        self.laser_items: dict[int, tuple] = {}
+        self.mbes_items: dict[int, tuple] = {}
+        self._mbes: dict[int, tuple[np.ndarray, np.ndarray | None]] = {}
+        self.after = False
+
+    def clear(self) -> None:
+        self.plan.clear()
+        self.section.clear()
+        self.laser_items, self.mbes_items, self._mbes = {}, {}, {}
+
+    def _pair(self, xyz: np.ndarray, colour: str, symbol: str, size: float) -> tuple:
+        pair = []
+        for plot, (i, j) in ((self.plan, (0, 1)), (self.section, (1, 2))):
+            item = pg.ScatterPlotItem(x=xyz[:, i], y=xyz[:, j], symbol=symbol, size=size,
+                                      pen=None, brush=pg.mkBrush(colour))
+            plot.addItem(item)
+            pair.append(item)
+        return tuple(pair)
+
+    def draw(self, names: list[str], clouds: dict) -> None:
+        """Draw *clouds* (see module doc); the multibeam as corrected if ``self.after``."""
+        self.clear()
+        for k, rows in _split(clouds["laser_face"]).items():
+            # Laser: small, half-transparent discs under the soundings.
+            colour = pg.mkColor(face_colour(k))
+            colour.setAlpha(110)
+            self.laser_items[k] = self._pair(clouds["laser_xyz"][rows], colour, "o", 3)
+        before, after = clouds["mbes_before_xyz"], clouds.get("mbes_after_xyz")
+        for k, rows in _split(clouds["mbes_face"]).items():
+            self._mbes[k] = (before[rows], None if after is None else after[rows])
+            # Soundings on no face (floor, water column) are context only: small and grey.
+            size, symbol = (2, "o") if k < 0 else (4, "t")
+            self.mbes_items[k] = self._pair(self._mbes_xyz(k), face_colour(k), symbol, size)
+            for item in self.mbes_items[k]:
+                item.setZValue(-1 if k < 0 else 1)
+        self._frame(clouds)
+
+    def _mbes_xyz(self, k: int) -> np.ndarray:
+        before, after = self._mbes[k]
+        return after if self.after and after is not None else before
+
+    def set_after(self, after: bool) -> None:
+        """Show the multibeam georeferenced with the final (True) or coarse values."""
+        self.after = after
+        for k, (plan, section) in self.mbes_items.items():
+            xyz = self._mbes_xyz(k)
+            plan.setData(x=xyz[:, 0], y=xyz[:, 1])
+            section.setData(x=xyz[:, 1], y=xyz[:, 2])
+
+    def _frame(self, clouds: dict) -> None:
+        # Zoom on the target (laser + face soundings), not on the whole pool floor.
+        parts = [clouds["laser_xyz"], clouds["mbes_before_xyz"][clouds["mbes_face"] >= 0]]
+        pts = np.concatenate([p for p in parts if len(p)] or [np.zeros((0, 3))])
+        if len(pts) == 0:
+            return
+        lo, hi = pts.min(axis=0), pts.max(axis=0)
+        pad = 0.05 * (hi - lo).max() + 0.2
+        self.plan.setRange(xRange=(lo[0] - pad, hi[0] + pad), yRange=(lo[1] - pad, hi[1] + pad))
+        self.section.setRange(xRange=(lo[1] - pad, hi[1] + pad),
+                              yRange=(lo[2] - pad, hi[2] + pad))
+
+
+class GLCloudView(QWidget):
+    """3-D view (pyqtgraph.opengl); only constructed when :func:`gl_available`."""
+
+    def __init__(self, parent: QWidget | None = None) -> None:
+        import pyqtgraph.opengl as gl
+
+        super().__init__(parent)
+        self._gl = gl
+        self.view = gl.GLViewWidget()
+        self.view.setBackgroundColor("w")
+        QVBoxLayout(self).addWidget(self.view)
+        self.laser_item = None
+        self.mbes_item = None
+        self._mbes: tuple[np.ndarray, np.ndarray | None] | None = None
+        self.after = False
+
+    def clear(self) -> None:
+        for item in (self.laser_item, self.mbes_item):
+            if item is not None:
+                self.view.removeItem(item)
+        self.laser_item = self.mbes_item = None
+        self._mbes = None
+
+    @staticmethod
+    def _rgba(face: np.ndarray, alpha: float) -> np.ndarray:
+        table = np.array([pg.mkColor(face_colour(k)).getRgbF() for k in range(len(PALETTE))])
+        rgba = np.where((face >= 0)[:, None], table[np.maximum(face, 0) % len(PALETTE)],
+                        pg.mkColor(UNASSIGNED).getRgbF())
+        rgba[:, 3] = alpha
+        return rgba.astype(np.float32)
+
+    def draw(self, names: list[str], clouds: dict) -> None:
+        gl = self._gl
+        self.clear()
+        laser = np.asarray(clouds["laser_xyz"], np.float32)
+        self._mbes = (np.asarray(clouds["mbes_before_xyz"], np.float32),
+                      None if clouds.get("mbes_after_xyz") is None
+                      else np.asarray(clouds["mbes_after_xyz"], np.float32))
+        self.laser_item = gl.GLScatterPlotItem(
+            pos=laser, color=self._rgba(clouds["laser_face"], 0.45), size=2, pxMode=True)
+        self.mbes_item = gl.GLScatterPlotItem(
+            pos=self._mbes_xyz(), color=self._rgba(clouds["mbes_face"], 1.0), size=3,
+            pxMode=True)
+        for item in (self.laser_item, self.mbes_item):
+            item.setGLOptions("translucent")  # additive blending vanishes on white
+            self.view.addItem(item)
+        if len(laser):
+            lo, hi = laser.min(axis=0), laser.max(axis=0)
+            centre = (lo + hi) / 2
+            self.view.opts["center"] = pg.Vector(*centre)
+            self.view.setCameraPosition(distance=float(2.0 * (hi - lo).max() + 1.0),
+                                        elevation=25, azimuth=200)
+
+    def _mbes_xyz(self) -> np.ndarray:
+        before, after = self._mbes
+        return after if self.after and after is not None else before
+
+    def set_after(self, after: bool) -> None:
+        self.after = after
+        if self.mbes_item is not None:
+            self.mbes_item.setData(pos=self._mbes_xyz())

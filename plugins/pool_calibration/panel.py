@@ -1,0 +1,353 @@
+"""The Pool Calibration panel: parameters, Segment / Run all, clouds, faces, convergence.
+
+A thin view over :mod:`hydrosync_core.methods.pool`: "Segment" runs
+:func:`~hydrosync_core.methods.pool.api.segment` in a worker and shows the faces found
+with the coarse setup (kept in memory, nothing written); "Run all" runs
+:func:`~hydrosync_core.methods.pool.project_run.run` in a worker, which replaces
+``/results/pool_calibration``; everything shown afterwards is read back from there.
+"""
+
+from __future__ import annotations
+
+import json
+
+import numpy as np
+from PySide6.QtCore import Qt
+from PySide6.QtWidgets import (
+    QButtonGroup,
+    QCheckBox,
+    QGroupBox,
+    QHBoxLayout,
+    QLabel,
+    QPushButton,
+    QRadioButton,
+    QSplitter,
+    QTabWidget,
+    QVBoxLayout,
+    QWidget,
+)
+
+from hydrosync_core.methods.pool import api, project_run
+from hydrosync_core.methods.pool.project_run import RESULT
+from hydrosync_gui.plugin_panel import PluginPanel
+from hydrosync_gui.widgets.param_form import ParamField, ParamForm
+from plugins.pool_calibration.cloud_views import (
+    GLCloudView,
+    ProjectionView,
+    face_colour,
+    gl_available,
+)
+from plugins.pool_calibration.preview import segmentation_preview
+from plugins.pool_calibration.views import (
+    ConvergencePlot,
+    FaceTable,
+    IterationTable,
+    ValuesTable,
+)
+
+FIELDS = [
+    ParamField("crop_tol_m", "Crop tolerance", 0.3, unit="m", minimum=0.01, maximum=5.0,
+               decimals=3, tooltip="how far from the design faces points are kept; at least "
+               "the error of the coarse setup at the target"),
+    ParamField("min_points", "Min points per face", 30, minimum=3, maximum=1_000_000,
+               tooltip="faces with fewer points in either cloud are not used"),
+    ParamField("tol_deg", "Angle tolerance", 1e-4, unit="°", minimum=1e-7, maximum=1.0,
+               decimals=7, step=1e-5, tooltip="seed iteration stops when every angle "
+               "correction is below this"),
+    ParamField("max_iter", "Max iterations / round", 30, minimum=1, maximum=1000),
+    ParamField("max_rounds", "Max rounds", 6, minimum=1, maximum=100,
+               tooltip="angle iteration + lever-arm step repeated at most this often"),
+    ParamField("final", "Final values", "joint", choices=("joint", "seed"),
+               tooltip="joint least squares (with σ) or the seed (patent) solution"),
+]
+PLAN = ("laser_xyz", "laser_face", "mbes_before_xyz", "mbes_after_xyz", "mbes_face")
+WARN_STYLE = ("QLabel { background: #fff3cd; border: 1px solid #d39e00; border-radius: 3px;"
+              " color: #6b3d00; padding: 6px; }")
+
+
+class PoolCalibrationPanel(PluginPanel):
+    """Multibeam boresight and lever arm from the pool target (seed 003 + joint fit)."""
+
+    def __init__(self, spec=None, parent: QWidget | None = None) -> None:
+        if spec is None:
+            from plugins.pool_calibration import SPEC
+
+            spec = SPEC
+        super().__init__(spec, parent)
+        self.segmentation: api.Segmentation | None = None
+        self._preview: tuple[dict, dict] | None = None  # (faces, clouds) of a Segment
+        self._bound_project = None
+        self.names: list[str] = []
+        self.clouds: dict | None = None
+
+        self.form = ParamForm(FIELDS)
+        self.segment_button = QPushButton("Segment")
+        self.segment_button.setToolTip("find the faces in both clouds with the coarse setup "
+                                       "(nothing is stored)")
+        self.segment_button.clicked.connect(self._on_segment)
+        self.run_button = QPushButton("Run all")
+        self.run_button.setToolTip("segment, iterate, adjust and store the results")
+        self.run_button.clicked.connect(self._on_run)
+        self.summary = QLabel()
+        self.summary.setObjectName("pool_summary")
+        self.summary.setWordWrap(True)
+        self.summary.setTextInteractionFlags(Qt.TextInteractionFlag.TextSelectableByMouse)
+        self.warnings = QLabel()
+        self.warnings.setObjectName("pool_warnings")
+        self.warnings.setWordWrap(True)
+        self.warnings.setStyleSheet(WARN_STYLE)
+        self.warnings.setVisible(False)
+        self.values = ValuesTable()
+        self.values.setMinimumHeight(200)
+        self.values.clear_values()
+
+        box = QGroupBox("Parameters")
+        QVBoxLayout(box).addWidget(self.form)
+        buttons = QHBoxLayout()
+        buttons.addWidget(self.segment_button)
+        buttons.addWidget(self.run_button)
+        values_box = QGroupBox("Boresight and lever arm (body FRD)")
+        QVBoxLayout(values_box).addWidget(self.values)
+        left = QWidget()
+        lay = QVBoxLayout(left)
+        lay.addWidget(box)
+        lay.addLayout(buttons)
+        lay.addWidget(self.summary)
+        lay.addWidget(self.warnings)
+        lay.addWidget(values_box, 1)
+
+        self.before_radio = QRadioButton("Before (coarse setup)")
+        self.after_radio = QRadioButton("After (final values)")
+        self.before_radio.setChecked(True)
+        group = QButtonGroup(self)
+        group.addButton(self.before_radio)
+        group.addButton(self.after_radio)
+        self.after_radio.toggled.connect(self._on_after_toggled)
+        self.cloud_view = GLCloudView() if gl_available() else ProjectionView()
+        self.legend = QLabel()
+        self.legend.setWordWrap(True)
+        self.legend.setTextFormat(Qt.TextFormat.RichText)
+        toggle = QHBoxLayout()
+        toggle.addWidget(QLabel("Multibeam georeferenced:"))
+        toggle.addWidget(self.before_radio)
+        toggle.addWidget(self.after_radio)
+        toggle.addStretch(1)
+        clouds = QWidget()
+        cl = QVBoxLayout(clouds)
+        cl.setContentsMargins(0, 0, 0, 0)
+        cl.addLayout(toggle)
+        cl.addWidget(self.cloud_view, 1)
+        cl.addWidget(self.legend)
+
+        self.face_table = FaceTable()
+        self.iteration_table = IterationTable()
+        self.convergence = ConvergencePlot()
+        self.log_check = QCheckBox("log |Δ|")
+        self.log_check.setChecked(True)
+        self.log_check.toggled.connect(self._draw_convergence)
+        conv = QWidget()
+        cv = QVBoxLayout(conv)
+        cv.setContentsMargins(0, 0, 0, 0)
+        cv.addWidget(self.log_check)
+        cv.addWidget(self.convergence, 1)
+        self.tabs = QTabWidget()
+        self.tabs.addTab(self.face_table, "Faces")
+        self.tabs.addTab(self.iteration_table, "Iterations")
+        bottom = QSplitter(Qt.Orientation.Horizontal)
+        bottom.addWidget(self.tabs)
+        bottom.addWidget(conv)
+        bottom.setSizes([620, 380])
+        right = QSplitter(Qt.Orientation.Vertical)
+        right.addWidget(clouds)
+        right.addWidget(bottom)
+        right.setSizes([480, 340])
+        split = QSplitter(Qt.Orientation.Horizontal)
+        split.addWidget(left)
+        split.addWidget(right)
+        split.setStretchFactor(1, 1)
+        split.setSizes([430, 970])
+        QVBoxLayout(self).addWidget(split)
+
+    # ------------------------------------------------------------- parameters
+    def params(self) -> dict:
+        """Parameters for the core: the plugin defaults overridden by the form."""
+        return dict(self.spec.default_params) | self.form.values()
+
+    def _load_params(self) -> None:
+        stored = self.project.get_json(RESULT, None) if self.project.exists(RESULT) else None
+        p = dict(self.spec.default_params) | dict(stored or {})
+        self.form.set_values({k: p[k] for k in self.form.fields if k in p})
+
+    # ---------------------------------------------------------------- drawing
+    def refresh(self) -> None:
+        project = self.project
+        if project is not self._bound_project:
+            self._bound_project = project
+            self.segmentation, self._preview = None, None
+            if project is not None:
+                self._load_params()
+        missing = self.spec.missing_inputs(project) if project is not None else ["a project"]
+        self._enable(not missing and not self.busy)
+        if missing:
+            self.segmentation, self._preview = None, None
+            self._clear("<b>Needs data</b>: " + ", ".join(
+                f"/{m}" if "/" in m else m for m in missing) + ". Import the laser cloud, "
+                "multibeam soundings, INS, setup.json and target.json (or create demo data).")
+        elif self._preview is not None:
+            self._show_preview()
+        elif project.exists(f"{RESULT}/faces"):
+            self._show_results()
+        else:
+            self._clear("Data ready. <b>Segment</b> to check the faces found with the coarse "
+                        "setup, or <b>Run all</b> to calibrate.")
+
+    def _enable(self, on: bool) -> None:
+        self.segment_button.setEnabled(on)
+        self.run_button.setEnabled(on)
+
+    def _clear(self, text: str) -> None:
+        self.summary.setText(text)
+        self._set_warnings([])
+        self.values.clear_values()
+        self.face_table.clear()
+        self.iteration_table.clear()
+        self.convergence.show_table(None, None, self.log_check.isChecked())
+        self.cloud_view.clear()
+        self.names, self.clouds = [], None
+        self.legend.setText("")
+        self.after_radio.setEnabled(False)
+
+    def _set_warnings(self, warnings: list[str]) -> None:
+        self.warnings.setText("<br>".join(f"⚠ {w}" for w in warnings))
+        self.warnings.setVisible(bool(warnings))
+
+    def _draw_clouds(self, names: list[str], clouds: dict) -> None:
+        self.names, self.clouds = names, clouds
+        has_after = clouds.get("mbes_after_xyz") is not None
+        self.after_radio.setEnabled(has_after)
+        if not has_after:
+            self.before_radio.setChecked(True)
+        self.cloud_view.after = self.after_radio.isChecked()
+        self.cloud_view.draw(names, clouds)
+        shown = np.union1d(clouds["laser_face"], clouds["mbes_face"])
+        swatches = [f"<span style='color:{face_colour(int(k))}'>■</span>&nbsp;{names[int(k)]}"
+                    for k in shown if k >= 0]
+        self.legend.setText(
+            "&nbsp;&nbsp; ".join(swatches) + "<br><span style='color:#555'>faint discs: "
+            "laser (reference) · triangles: multibeam · grey dots: soundings on no face"
+            "</span>")
+
+    def _show_preview(self) -> None:
+        faces, clouds = self._preview
+        n_used = int(np.sum((faces["points_laser"] >= self.params()["min_points"])
+                            & (faces["points_mbes"] >= self.params()["min_points"])))
+        self.summary.setText(
+            f"<b>Segmentation</b> with the coarse setup (not stored): {n_used} of "
+            f"{len(faces['face'])} faces have enough points in both clouds. "
+            "<b>Run all</b> to calibrate.")
+        self._set_warnings(list(self.segmentation.warnings) if self.segmentation else [])
+        self.values.clear_values()
+        self.face_table.fill(faces)
+        self.iteration_table.clear()
+        self.convergence.show_table(None, None, self.log_check.isChecked())
+        self._draw_clouds([str(n) for n in faces["face"]], clouds)
+        self.tabs.setCurrentWidget(self.face_table)
+
+    def _show_results(self) -> None:
+        project = self.project
+        attrs = project.attrs(RESULT)
+        result = project.get_json(f"{RESULT}/result", {}) or {}
+        joint = result.get("joint") or {}
+        text = (f"<b>{'Joint' if attrs.get('method') == 'joint' else 'Seed'} solution</b>, "
+                f"{'converged' if attrs.get('converged') else '<b>NOT converged</b>'}. "
+                f"{result.get('message', '')}")
+        if joint.get("sigma0_m") is not None:
+            text += (f"<br>σ0 = {1000 * joint['sigma0_m']:.1f} mm from "
+                     f"{joint.get('n_observations', 0)} soundings")
+        text += f"<br><span style='color:#666'>run {attrs.get('run_utc', '?')}</span>"
+        self.summary.setText(text)
+        self._set_warnings(json.loads(attrs.get("warnings", "[]")))
+        self.values.fill(attrs, result)
+        faces = project.get_table(f"{RESULT}/faces")
+        self.face_table.fill(faces)
+        self.iteration_table.fill(project.get_table(f"{RESULT}/iterations"))
+        self._draw_convergence()
+        if all(project.exists(f"{RESULT}/plan/{k}") for k in PLAN):
+            clouds = {k: project.get(f"{RESULT}/plan/{k}") for k in PLAN}
+            self._draw_clouds([str(n) for n in faces["face"]], clouds)
+        else:
+            self.cloud_view.clear()
+
+    def _draw_convergence(self) -> None:
+        project = self.project
+        if (self._preview is not None or project is None
+                or not project.exists(f"{RESULT}/iterations")):
+            self.convergence.show_table(None, None, self.log_check.isChecked())
+            return
+        tol = (project.get_json(RESULT, {}) or {}).get("tol_deg")
+        self.convergence.show_table(project.get_table(f"{RESULT}/iterations"), tol,
+                                    self.log_check.isChecked())
+
+    # ------------------------------------------------------------------ slots
+    def _on_after_toggled(self, after: bool) -> None:
+        self.cloud_view.set_after(after)
+
+    def _on_segment(self) -> None:
+        if self.project is None:
+            return
+        project, params = self.project, self.params()
+
+        def task(progress, cancel):
+            seg = api.segment(np.asarray(project.get("raw/pool/lidar"), float),
+                              project.get_table("raw/pool/mbes"),
+                              project.get_table("raw/pool/ins"),
+                              project.get_json("raw/pool/setup"),
+                              project.get_json("raw/pool/target"), params, progress, cancel)
+            return seg, segmentation_preview(seg, int(params.get("plan_points", 20000)))
+
+        self._enable(False)
+        self.start_work(task, self._on_segmented, label="Segmentation")
+        self.worker.signals.sig_done.connect(self.refresh_buttons)
+
+    def _on_segmented(self, out) -> None:
+        self.segmentation, self._preview = out
+        self._show_preview()
+        faces = self._preview[0]
+        self.sig_status.emit(
+            "Segmentation: " + ", ".join(
+                f"{f} {a}/{b}" for f, a, b in zip(faces["face"], faces["points_laser"],
+                                                  faces["points_mbes"], strict=True) if a or b)
+            + " (laser/multibeam points)")
+
+    def _on_run(self) -> None:
+        if self.project is None:
+            return
+        project, params = self.project, self.params()
+        stored = {"result": None}
+
+        def task(progress, cancel):
+            # project_run.run stores nothing until the computation is complete, so a
+            # cancel before that leaves the previous results untouched.
+            stored["result"] = project_run.run(project, params, progress, cancel)
+            return stored["result"]
+
+        self._enable(False)
+        self.start_work(task, self._on_run_finished, label="Pool calibration")
+        self.worker.signals.sig_done.connect(lambda: self._on_run_done(stored["result"]))
+
+    def _on_run_finished(self, result) -> None:
+        extra = f"; {len(result.warnings)} warning(s)" if result.warnings else ""
+        self.sig_status.emit(f"Pool calibration: {result.message}{extra}")
+
+    def _on_run_done(self, result) -> None:
+        # Also after a late cancel: once run() returned, the stored results are complete.
+        if result is not None:
+            self._preview = None
+            self.refresh()
+            self.sig_project_modified.emit()
+        self.refresh_buttons()
+
+    def refresh_buttons(self) -> None:
+        project = self.project
+        ok = project is not None and not self.spec.missing_inputs(project)
+        self._enable(ok and not self.busy)

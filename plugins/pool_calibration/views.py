@@ -1,0 +1,213 @@
+"""The pool panel's tables and convergence plot (degrees and metres, as stored)."""
+
+from __future__ import annotations
+
+import numpy as np
+import pyqtgraph as pg
+from PySide6.QtCore import Qt
+from PySide6.QtGui import QColor
+from PySide6.QtWidgets import QAbstractItemView, QHeaderView, QTableWidget, QTableWidgetItem
+
+from hydrosync_gui.widgets.columns_table import ColumnsTable, ColumnsTableModel
+from plugins.pool_calibration.cloud_views import face_colour
+
+#: Face table: stored column -> (header, unit, display scale, format).
+FACE_COLUMNS = {
+    "face": ("Face", "", 1, None), "role": ("Role", "", 1, None),
+    "water": ("Water", "", 1, None), "points_laser": ("Laser pts", "", 1, None),
+    "points_mbes": ("MBES pts", "", 1, None),
+    "rms_laser_m": ("RMS laser", "mm", 1000, "{:.2f}"),
+    "rms_mbes_m": ("RMS MBES", "mm", 1000, "{:.2f}"),
+    "normal_angle_deg": ("Normal Δ", "°", 1, "{:.3f}"),
+    "used_for": ("Used for", "", 1, None),
+}
+FACE_TIPS = {"RMS laser": "RMS distance of the face's laser points to their fitted plane",
+             "RMS MBES": "RMS distance of the face's soundings to their fitted plane "
+                         "(final values)",
+             "Normal Δ": "angle between the laser and multibeam plane normals (final values)",
+             "Used for": "parameters this face determines"}
+
+#: Iteration table: stored column -> (header, unit, format).
+ITERATION_COLUMNS = {
+    "iteration": ("Iteration", "", None), "round": ("Round", "", None),
+    "d_roll_deg": ("Δ roll", "°", "{:+.2e}"), "d_pitch_deg": ("Δ pitch", "°", "{:+.2e}"),
+    "d_yaw_deg": ("Δ yaw", "°", "{:+.2e}"), "roll_deg": ("Roll", "°", "{:.5f}"),
+    "pitch_deg": ("Pitch", "°", "{:.5f}"), "yaw_deg": ("Yaw", "°", "{:.5f}"),
+    "max_normal_angle_deg": ("Max normal angle", "°", "{:.4f}"),
+}
+
+#: Final-values table rows: (label, key in boresight_deg / lever_arm_m, group, unit).
+VALUE_ROWS = (("Roll", "roll", "boresight_deg", "°"), ("Pitch", "pitch", "boresight_deg", "°"),
+              ("Yaw", "yaw", "boresight_deg", "°"),
+              ("Lever x (fwd)", "x", "lever_arm_m", "m"),
+              ("Lever y (stbd)", "y", "lever_arm_m", "m"),
+              ("Lever z (down)", "z", "lever_arm_m", "m"))
+VALUE_COLUMNS = ("Final", "± σ", "Seed", "Coarse", "Δ coarse")
+VALUE_TIPS = ("final values (joint solution unless 'Final values' = seed)",
+              "1-σ of the joint least-squares solution", "seed (patent) iteration solution",
+              "coarse setup from setup.json (installation drawing)", "final − coarse")
+RIGHT = Qt.AlignmentFlag.AlignRight | Qt.AlignmentFlag.AlignVCenter
+CURVES = (("d_roll_deg", "Δ roll", "#d62728"), ("d_pitch_deg", "Δ pitch", "#1f77b4"),
+          ("d_yaw_deg", "Δ yaw", "#2ca02c"))
+
+
+class _TipModel(ColumnsTableModel):
+    """Columns model with header tool tips; *swatch*: colour the first column by face."""
+
+    def __init__(self, tips: dict, swatch: bool, parent=None) -> None:
+        super().__init__(parent)
+        self.tips, self.swatch = tips, swatch
+
+    def data(self, index, role: int = Qt.ItemDataRole.DisplayRole):
+        if (self.swatch and index.isValid() and index.column() == 0
+                and role == Qt.ItemDataRole.DecorationRole):
+            return QColor(face_colour(index.row()))
+        return super().data(index, role)
+
+    def headerData(self, section: int, orientation, role=Qt.ItemDataRole.DisplayRole):  # noqa: N802
+        if role == Qt.ItemDataRole.ToolTipRole and orientation == Qt.Orientation.Horizontal:
+            name = self._names[section] if section < len(self._names) else ""
+            return self.tips.get(name)
+        return super().headerData(section, orientation, role)
+
+
+class FaceTable(ColumnsTable):
+    """One row per design face (row k = face index k of the plan arrays)."""
+
+    def __init__(self, parent=None) -> None:
+        super().__init__(parent)
+        self.table_model = _TipModel(FACE_TIPS, True, self)
+        self.setModel(self.table_model)
+        self.verticalHeader().setVisible(False)
+
+    def fill(self, faces: dict) -> None:
+        """Show a faces table (stored layout; missing columns are left out)."""
+        cols, units, formats = {}, {}, {}
+        for key, (header, unit, scale, fmt) in FACE_COLUMNS.items():
+            if key in faces:
+                values = np.asarray(faces[key])
+                cols[header] = values * scale if scale != 1 else values
+                units[header], formats[header] = unit, fmt
+        self.set_columns(cols, units, {k: v for k, v in formats.items() if v})
+
+
+class IterationTable(ColumnsTable):
+    """The seed iteration log: one row per angle iteration."""
+
+    def __init__(self, parent=None) -> None:
+        super().__init__(parent)
+        self.verticalHeader().setVisible(False)
+
+    def fill(self, table: dict) -> None:
+        cols = {h: np.asarray(table[k]) for k, (h, _u, _f) in ITERATION_COLUMNS.items()}
+        units = {h: u for h, u, _f in ITERATION_COLUMNS.values()}
+        formats = {h: f for h, _u, f in ITERATION_COLUMNS.values() if f}
+        self.set_columns(cols, units, formats)
+
+
+def _fmt(value, digits: int, sign: bool = False) -> str:
+    if value is None or not np.isfinite(value):
+        return "–"
+    return f"{value:+.{digits}f}" if sign else f"{value:.{digits}f}"
+
+
+class ValuesTable(QTableWidget):
+    """Final boresight and lever arm beside σ, the seed solution and the coarse setup."""
+
+    def __init__(self, parent=None) -> None:
+        super().__init__(len(VALUE_ROWS), len(VALUE_COLUMNS), parent)
+        self.setHorizontalHeaderLabels(list(VALUE_COLUMNS))
+        for col, tip in enumerate(VALUE_TIPS):
+            self.horizontalHeaderItem(col).setToolTip(tip)
+        self.setVerticalHeaderLabels([f"{label} [{unit}]" for label, _k, _g, unit in VALUE_ROWS])
+        self.setEditTriggers(QAbstractItemView.EditTrigger.NoEditTriggers)
+        self.horizontalHeader().setSectionResizeMode(QHeaderView.ResizeMode.Stretch)
+        self.verticalHeader().setSectionResizeMode(QHeaderView.ResizeMode.ResizeToContents)
+        self.setVerticalScrollBarPolicy(Qt.ScrollBarPolicy.ScrollBarAlwaysOff)
+        self.setHorizontalScrollBarPolicy(Qt.ScrollBarPolicy.ScrollBarAlwaysOff)
+        self.verticalHeader().setDefaultSectionSize(22)
+        # Exactly as tall as its rows: the panel's spare height goes to the plots.
+        self.setFixedHeight(self.horizontalHeader().sizeHint().height()
+                            + 22 * len(VALUE_ROWS) + 2 * self.frameWidth())
+
+    def fill(self, attrs: dict | None, result: dict | None) -> None:
+        """*attrs*: stored result attrs (final values and σ); *result*: the result JSON."""
+        result = result or {}
+        for row, (_label, key, group, unit) in enumerate(VALUE_ROWS):
+            # Angles to 1e-4 ° and lever arms to 0.1 mm: below the joint σ of a good pass.
+            digits = 4
+            attr = f"{key}_deg" if unit == "°" else f"lever_{key}_m"
+            final = float(attrs[attr]) if attrs and attr in attrs else None
+            sigma = (float(attrs.get(f"sigma_{attr}", np.nan)) if attrs else None)
+            seed = (result.get("seed") or {}).get(group, {}).get(key)
+            coarse = (result.get("coarse") or {}).get(group, {}).get(key)
+            delta = None if final is None or coarse is None else final - coarse
+            texts = (_fmt(final, digits), _fmt(sigma, digits), _fmt(seed, digits),
+                     _fmt(coarse, digits), _fmt(delta, digits, sign=True))
+            for col, text in enumerate(texts):
+                item = QTableWidgetItem(text)
+                item.setTextAlignment(RIGHT)
+                if col == 0:
+                    font = item.font()
+                    font.setBold(True)
+                    item.setFont(font)
+                self.setItem(row, col, item)
+
+    def clear_values(self) -> None:
+        self.fill(None, None)
+
+    def value(self, row: int, column: int) -> str:
+        return self.item(row, column).text()
+
+
+class ConvergencePlot(pg.PlotWidget):
+    """Angle corrections per iteration; log10 |Δ| (default) or signed, rounds marked."""
+
+    def __init__(self, parent=None) -> None:
+        super().__init__(parent)
+        self.setBackground("w")
+        self.setLabel("bottom", "iteration")
+        self.showGrid(x=True, y=True, alpha=0.3)
+        # Bottom left: the corrections fall from the top left towards the bottom right.
+        legend = self.addLegend(offset=(10, -10), brush=pg.mkBrush(255, 255, 255, 220),
+                                pen=pg.mkPen((160, 160, 160)), labelTextColor="k")
+        legend.setZValue(10)
+        self.curves = {key: self.plot([], [], pen=pg.mkPen(colour, width=2), symbol="o",
+                                      symbolSize=5, symbolBrush=colour, symbolPen=None,
+                                      name=name, connect="finite")
+                       for key, name, colour in CURVES}
+        self.tolerance = self.plot([], [], name="tolerance", pen=pg.mkPen(
+            (110, 110, 110), width=1.5, style=Qt.PenStyle.DashLine))
+        self.round_lines: list[pg.InfiniteLine] = []
+        self.log = True
+
+    def show_table(self, table: dict | None, tol_deg: float | None, log: bool = True) -> None:
+        self.log = log
+        for line in self.round_lines:
+            self.removeItem(line)
+        self.round_lines = []
+        self.setLogMode(y=log)
+        self.setLabel("left", "|angle correction|" if log else "angle correction", units="°")
+        if table is None or len(table.get("iteration", ())) == 0:
+            for item in self.curves.values():
+                item.setData([], [])
+            self.tolerance.setData([], [])
+            return
+        x = np.asarray(table["iteration"], float)
+        for key, item in self.curves.items():
+            y = np.asarray(table[key], float)
+            if log:  # exact zeros have no logarithm: leave a gap instead of -inf
+                y = np.where(y == 0, np.nan, np.abs(y))
+            item.setData(x, y)
+        # A new round starts after the seed lever-arm step moved the soundings.
+        rounds = np.asarray(table["round"])
+        for xi in x[1:][np.diff(rounds) != 0]:
+            line = pg.InfiniteLine(xi - 0.5, angle=90,
+                                   pen=pg.mkPen((170, 170, 170), style=Qt.PenStyle.DotLine))
+            self.addItem(line)
+            self.round_lines.append(line)
+        if log and tol_deg and tol_deg > 0:  # in linear scale it would sit on zero
+            self.tolerance.setData([x[0], x[-1]], [tol_deg, tol_deg])
+        else:
+            self.tolerance.setData([], [])
+        self.enableAutoRange()

@@ -155,6 +155,9 @@ def build_demo(out_dir: str | Path, *, seed: int = DEMO_SEED,
         outcome.stages.append(stage)
         if stage.ok:
             outcome.results[spec.id] = result
+        else:
+            # Whatever a failed run left half-written must not reach the report.
+            project.delete(f"results/{spec.id}")
 
     check_cancel(cancel)
     index += 1

@@ -90,7 +90,8 @@ def build_report(project, pdf_path: str | os.PathLike, progress=None, cancel=Non
     doc_title = f"HydroSync report \u2014 {project.name or 'Untitled project'}"
     with atomic_path(pdf_path) as tmp:
         doc = ReportDocTemplate(str(tmp), title=doc_title, author="HydroSync",
-                                subject="Sensor calibration report")
+                                subject="Sensor calibration report", progress=progress,
+                                cancel=cancel)
         ctx = ReportContext(width=doc.width)
         story: list[Flowable] = cover_page(project, ctx, statuses)
         story += contents_and_summary(ctx, statuses)

@@ -13,6 +13,7 @@ from dataclasses import dataclass, field
 from datetime import UTC, datetime
 
 from reportlab.graphics.shapes import Drawing, Group
+from reportlab.lib.enums import TA_RIGHT
 from reportlab.lib.styles import ParagraphStyle
 from reportlab.platypus import (
     Flowable,
@@ -53,6 +54,12 @@ class Figure(Flowable):
     def draw(self) -> None:
         self.caption.drawOn(self.canv, 0, 0)
         self.drawing.drawOn(self.canv, 0, self._cap_h)
+
+
+def markup(text: str) -> str:
+    """Give ``<sub>`` a small drop: reportlab's default (half the font size) makes the
+    subscript touch the next line."""
+    return str(text).replace("<sub>", '<sub rise="2" size="7">')
 
 
 def esc(text) -> str:
@@ -129,7 +136,7 @@ class ReportContext:
 
     def para(self, text: str, style: str = "Body") -> Paragraph:
         """A paragraph; *text* may use reportlab mark-up (``<b>``, ``<i>``, ``<sub>``)."""
-        return Paragraph(text, self.styles[style])
+        return Paragraph(markup(text), self.styles[style])
 
     def warning(self, text: str) -> Paragraph:
         return Paragraph(f"<b>Warning:</b> {esc(text)}", self.styles["Warning"])
@@ -150,6 +157,7 @@ class ReportContext:
         extra_style: Sequence[tuple] = (),
         zebra: bool = True,
         font_size: float = 8.5,
+        left_columns: Sequence[int] = (),
     ) -> list[Flowable]:
         """A table whose header row repeats on each page, with an optional caption above.
 
@@ -166,6 +174,8 @@ class ReportContext:
             Columns from this index on are right-aligned.
         highlight_rows : sequence of int
             Body row indices (0-based) printed in bold (e.g. the combined result).
+        left_columns : sequence of int
+            Text columns at or after *numeric_from* that stay left-aligned.
         """
         n_cols = len(header)
         fractions = col_widths or [1.0 / n_cols] * n_cols
@@ -174,10 +184,14 @@ class ReportContext:
         if font_size != head_style.fontSize:
             head_style = ParagraphStyle("CellBoldSmall", parent=head_style, fontSize=font_size,
                                         leading=font_size + 2)
-        head = [Paragraph(h, head_style) for h in header]
+        head_right = ParagraphStyle("CellBoldRight", parent=head_style, alignment=TA_RIGHT)
+        right = [i >= numeric_from and i not in left_columns for i in range(n_cols)]
+        head = [Paragraph(markup(h), head_right if right[i] else head_style)
+                for i, h in enumerate(header)]
         data = [head] + [[c if isinstance(c, Flowable) else str(c) for c in r] for r in rows]
         style = table_style(len(data), numeric_from=numeric_from, zebra=zebra,
                             font_size=font_size)
+        style += [("ALIGN", (c, 0), (c, -1), "LEFT") for c in left_columns]
         for i in highlight_rows:
             style.append(("FONT", (0, i + 1), (-1, i + 1), FONT_BOLD, font_size))
         style.extend(extra_style)
@@ -187,7 +201,7 @@ class ReportContext:
         if caption:
             self.table_count += 1
             # TableCaption keeps with the table (at least its first rows).
-            out.append(Paragraph(f"<b>Table {self.table_count}.</b> {caption}",
+            out.append(Paragraph(f"<b>Table {self.table_count}.</b> {markup(caption)}",
                                  self.styles["TableCaption"]))
         out.append(table)
         out.append(Spacer(1, 8))
@@ -223,5 +237,6 @@ class ReportContext:
                 x += chart.width
         else:
             drawing = content.drawing() if isinstance(content, Chart) else content
-        cap = Paragraph(f"<b>Figure {self.figure_count}.</b> {caption}", self.styles["Caption"])
+        cap = Paragraph(f"<b>Figure {self.figure_count}.</b> {markup(caption)}",
+                        self.styles["Caption"])
         return Figure(drawing, cap)

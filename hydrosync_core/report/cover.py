@@ -103,7 +103,7 @@ def cover_page(project, ctx: ReportContext, statuses: list[ModuleStatus]) -> lis
     ]
     rows = [[Paragraph(f"<b>{esc(k)}</b>", ctx.styles["Cell"]),
              Paragraph(esc(v), ctx.styles["Cell"])] for k, v in pairs]
-    info = Table(rows, colWidths=[0.3 * ctx.width, 0.7 * ctx.width], hAlign="LEFT")
+    info = Table(rows, colWidths=[0.26 * ctx.width, 0.74 * ctx.width], hAlign="LEFT")
     info.setStyle(TableStyle([
         ("VALIGN", (0, 0), (-1, -1), "TOP"),
         ("LINEBELOW", (0, 0), (-1, -1), 0.4, RULE),
@@ -158,8 +158,8 @@ def contents_and_summary(ctx: ReportContext, statuses: list[ModuleStatus]) -> li
                                    f"{esc(s.software_version)}" if i == 0 else "",
                                    ctx.styles["Small"])])
     out += ctx.table(["Module", "Quantity", "Value", "Computed (UTC, version)"], rows,
-                     col_widths=[0.18, 0.3, 0.3, 0.22], numeric_from=4, zebra=False,
-                     extra_style=separators,
+                     col_widths=[0.17, 0.31, 0.28, 0.24], numeric_from=4, zebra=False,
+                     extra_style=[("VALIGN", (0, 1), (-1, -1), "TOP"), *separators],
                      caption="Key results of every module. Values are the final, corrected "
                      "values; uncertainties are one standard deviation unless stated.")
     not_run = [s.spec.name for s in statuses if not s.has_results]

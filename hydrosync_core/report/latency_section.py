@@ -79,7 +79,7 @@ def summary(project) -> list[tuple[str, str]]:
     if used.any():
         before = np.nanmedian(np.asarray(table["sigma0_before_m"], float)[used])
         after = np.nanmedian(np.asarray(table["sigma0_after_m"], float)[used])
-        rows.append(("\u03c30 before \u2192 after (median of used lines)",
+        rows.append(("\u03c3\u2080 before \u2192 after (median of used lines)",
                      f"{fmt(before, SIGMA0_DECIMALS)} \u2192 {fmt(after, SIGMA0_DECIMALS)} m"))
     return rows
 
@@ -109,7 +109,7 @@ def section(project, ctx: ReportContext) -> list[Flowable]:
         ("Joint estimate (all used lines at once)",
          fmt(attrs.get("joint_latency_s"), DT_DECIMALS, "s")),
         ("Lines used", f"{int(attrs.get('n_used', 0))} of {len(table['name'])}, weights: "
-                       + {"r": "R_max", "inverse_variance": "1/\u03c3\u00b2"}.get(
+                       + {"r": "peak correlation R", "inverse_variance": "1/\u03c3\u00b2"}.get(
                            str(attrs.get("weighting")), str(attrs.get("weighting")))),
         ("Outcome", str(attrs.get("message", ""))),
         ("Lever arm GNSS antenna \u2212 motion sensor (x fwd, y stbd, z down)",
@@ -251,7 +251,7 @@ def _before_after_figures(project, ctx, table, attrs, params, arm) -> list[Flowa
         out.append(ctx.figure(chart, (
             f"Line {name}, the {label} used line "
             f"(R<sub>max</sub> = {fmt(table['r_max'][i], R_DECIMALS)}): "
-            f"\u03c30 {fmt(table['sigma0_before_m'][i], SIGMA0_DECIMALS)} m before, "
+            f"\u03c3<sub>0</sub> {fmt(table['sigma0_before_m'][i], SIGMA0_DECIMALS)} m before, "
             f"{fmt(table['sigma0_after_m'][i], SIGMA0_DECIMALS)} m after synchronisation "
             f"over the whole line; a {EXCERPT_S:.0f}-s excerpt from its middle (seed fig. 4).")))
     return out

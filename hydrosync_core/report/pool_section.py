@@ -18,7 +18,8 @@ from reportlab.lib.styles import ParagraphStyle
 from reportlab.platypus import Flowable, Paragraph
 
 from hydrosync_core.report.context import ReportContext, esc, fmt, fmt_pm, utc_text
-from hydrosync_core.report.styles import BAD_TEXT, INK, SERIES
+from hydrosync_core.report.pool_figures import plan_figures
+from hydrosync_core.report.styles import BAD_TEXT, SERIES
 
 RESULT = "results/pool_calibration"
 HEADING = "Pool calibration of multibeam boresight and lever arm"
@@ -27,14 +28,11 @@ HEADING = "Pool calibration of multibeam boresight and lever arm"
 # joint adjustment's 1-σ are a few millidegrees and tenths of millimetres).
 ANGLE_DECIMALS = 3
 LEVER_DECIMALS = 4
-PLOT_POINTS = 2500  # per cloud and panel: enough to see the faces, light in the PDF
 
 ANGLES = (("roll", "Boresight roll", "\u00b0"), ("pitch", "Boresight pitch", "\u00b0"),
           ("yaw", "Boresight yaw", "\u00b0"))
 LEVERS = (("x", "Lever arm x (forward)", "m"), ("y", "Lever arm y (starboard)", "m"),
           ("z", "Lever arm z (down)", "m"))
-ROLE_COLORS = {"wall": SERIES[0], "oblique": SERIES[1], "perpendicular": SERIES[2],
-               "horizontal": SERIES[3], "parallel": SERIES[4], "other": SERIES[5]}
 
 
 def _result(project) -> dict:
@@ -87,7 +85,7 @@ def section(project, ctx: ReportContext) -> list[Flowable]:
         out.append(ctx.warning(text))
     out += _face_table(project, ctx, res)
     out += _joint_tables(ctx, res)
-    out += _plan_figures(project, ctx)
+    out += plan_figures(project, ctx)
     out += _iterations(project, ctx)
     return out
 
@@ -139,7 +137,7 @@ def _run_info(ctx, attrs, res) -> list[Flowable]:
               ("Computed", f"{utc_text(attrs.get('run_utc'))} with HydroSync "
                            f"{attrs.get('software_version', '?')}")]
     return ctx.key_values(pairs, caption="Pool calibration: solution statistics.",
-                          key_width=0.32)
+                          key_width=0.38)
 
 
 def _face_table(project, ctx, res) -> list[Flowable]:
@@ -161,7 +159,7 @@ def _face_table(project, ctx, res) -> list[Flowable]:
         ["Face", "Role", "Water", "Laser pts", "MBES pts", "Laser RMS [mm]",
          "MBES RMS [mm]", "Joint resid. [mm]", "Normal angle [\u00b0]", "Used for"],
         rows, col_widths=[0.16, 0.125, 0.085, 0.07, 0.07, 0.07, 0.07, 0.075, 0.08, 0.175],
-        numeric_from=3, extra_style=[("ALIGN", (-1, 0), (-1, -1), "LEFT")], font_size=7.5,
+        numeric_from=3, left_columns=[9], font_size=7.5,
         caption="Faces of the target design, their role inferred from geometry, points "
         "segmented in each cloud, plane-fit RMS, the angle between the laser and the final "
         "multibeam plane normals, and the parameters each face determines.")
@@ -182,114 +180,6 @@ def _joint_tables(ctx, res) -> list[Flowable]:
         ["", *names], rows, col_widths=[0.16] + [0.84 / n] * n, extra_style=strong,
         caption="Correlation matrix of the joint adjustment's parameters. Values above 0.9 "
         "in magnitude (red) mean the pass geometry barely separates the two parameters.")
-
-
-def _subsample(n: int, k: int) -> np.ndarray:
-    """At most *k* evenly spread indices of *n* (deterministic)."""
-    return np.arange(n) if n <= k else np.linspace(0, n - 1, k).astype(int)
-
-
-def _plan_figures(project, ctx) -> list[Flowable]:
-    base = f"{RESULT}/plan"
-    needed = ("laser_xyz", "laser_face", "mbes_before_xyz", "mbes_after_xyz", "mbes_face")
-    if not all(project.exists(f"{base}/{k}") for k in needed):
-        return []
-    t = project.get_table(f"{RESULT}/faces")
-    roles = np.asarray(t["role"]).astype(str)
-    lx = np.asarray(project.get(f"{base}/laser_xyz"), float)
-    lf = np.asarray(project.get(f"{base}/laser_face"), int)
-    mb = np.asarray(project.get(f"{base}/mbes_before_xyz"), float)
-    ma = np.asarray(project.get(f"{base}/mbes_after_xyz"), float)
-    mf = np.asarray(project.get(f"{base}/mbes_face"), int)
-    on = mf >= 0
-    mb, ma, mf = mb[on], ma[on], mf[on]
-    target = project.get_json("raw/pool/target", {}) or {}
-    faces = target.get("faces", [])
-    water = float(target.get("water_level_m", 0.0))
-    out: list[Flowable] = [ctx.heading("Segmented point clouds", 2)]
-
-    def outlines(chart, ix, iy):
-        for face in faces:
-            c = np.asarray(face["corners"], float)
-            chart.polygon(c[:, ix], c[:, iy], color="#8a8a8a", width=0.4)
-
-    def by_role(chart, xyz, face_idx, ix, iy, marker, label_suffix):
-        for role, color in ROLE_COLORS.items():
-            sel = np.flatnonzero(roles[face_idx] == role) if len(face_idx) else []
-            if len(sel) == 0:
-                continue
-            sel = sel[_subsample(len(sel), PLOT_POINTS // 2)]
-            chart.points(xyz[sel, ix], xyz[sel, iy], color=color, size=0.8, marker=marker,
-                         label=f"{role}{label_suffix}")
-
-    # Plan view: north along the page (the wall runs north), east across.
-    plan = ctx.chart(height=250, xlabel="north [m]", ylabel="east [m]")
-    outlines(plan, 1, 0)
-    by_role(plan, lx, lf, 1, 0, "circle", " (laser)")
-    sel = _subsample(len(ma), PLOT_POINTS)
-    plan.points(ma[sel, 1], ma[sel, 0], color=INK, size=0.5, marker="square",
-                label="multibeam, final values")
-    out.append(ctx.figure(plan, (
-        "Plan view of the segmented clouds in the target frame (ENU): laser points coloured "
-        "by the role of their face, multibeam soundings on faces georeferenced with the final "
-        "values (black), design face outlines in grey. The vertical scale is stretched "
-        "(axes not to the same scale) to separate the faces.")))
-    # Elevation seen from the vessel: the faces above water (laser) and below (multibeam).
-    elev = ctx.chart(height=250, xlabel="north [m]", ylabel="up [m]")
-    outlines(elev, 1, 2)
-    elev.hline(water, color=SERIES[5], dash=(4, 2), width=0.8, label="water level")
-    sel = _subsample(len(lx), PLOT_POINTS)
-    elev.points(lx[sel, 1], lx[sel, 2], color="#9ec5e8", size=0.6, marker="square",
-                label="laser")
-    by_role(elev, ma, mf, 1, 2, "square", " (multibeam)")
-    out.append(ctx.figure(elev, (
-        "Elevation of the target seen from the vessel (north against up): laser points above "
-        "the water line and multibeam soundings below it, georeferenced with the final values "
-        "and coloured by the role of their face; design outlines in grey.")))
-    panels = [chart for chart in (
-        _profile(ctx, lx, lf, mb, ma, mf, t, roles, role) for role in ("wall", "oblique"))
-        if chart is not None]
-    if panels:
-        for chart in panels:
-            chart.width = ctx.width / len(panels)
-        out.append(ctx.figure(panels, (
-            "Profiles across faces: distance of each point from the laser plane of the face "
-            "against height. Multibeam soundings with the coarse setup (grey) lean or sit off "
-            "the plane; with the final values (colour) they continue the laser points (light "
-            "blue) below the water line.")))
-    return out
-
-
-def _profile(ctx, lx, lf, mb, ma, mf, t, roles, role):
-    """Distance to the laser plane of the best face of *role* vs height, before/after."""
-    faces = [k for k in range(len(roles)) if roles[k] == role
-             and np.sum(lf == k) >= 10 and np.sum(mf == k) >= 10]
-    if not faces:
-        return None
-    k = max(faces, key=lambda j: int(np.sum(mf == j)))
-    laser = lx[lf == k]
-    # TLS plane of the laser points (seed eqs. [0051]-[0088]): smallest singular vector.
-    centre = laser.mean(axis=0)
-    normal = np.linalg.svd(laser - centre, full_matrices=False)[2][-1]
-    if normal[np.argmax(np.abs(normal[:2]))] < 0:
-        normal = -normal  # a fixed, readable orientation (east or north positive)
-
-    def dist_cm(p):
-        return 100.0 * (p - centre) @ normal
-
-    name = str(t["face"][k])
-    chart = ctx.chart(height=230, fraction=0.5,
-                      xlabel=f"distance from the laser plane of {name} [cm]", ylabel="up [m]")
-    sel = _subsample(len(laser), PLOT_POINTS // 2)
-    chart.points(dist_cm(laser[sel]), laser[sel, 2], color="#9ec5e8", size=0.7,
-                 marker="square", label="laser")
-    on = np.flatnonzero(mf == k)
-    on = on[_subsample(len(on), PLOT_POINTS // 2)]
-    chart.points(dist_cm(mb[on]), mb[on, 2], color="#a0a0a0", size=0.7, marker="square",
-                 label="coarse")
-    chart.points(dist_cm(ma[on]), ma[on, 2], color=ROLE_COLORS.get(role, INK), size=0.7,
-                 marker="square", label="final")
-    return chart
 
 
 def _iterations(project, ctx) -> list[Flowable]:

@@ -12,6 +12,7 @@ from reportlab.lib.units import mm
 from reportlab.pdfgen import canvas as rl_canvas
 from reportlab.platypus import BaseDocTemplate, Frame, KeepTogether, PageTemplate, Paragraph, Table
 
+from hydrosync_core.progress import check_cancel, report
 from hydrosync_core.report.styles import ACCENT, FONT, MUTED, PAGE_MARGIN, RULE
 
 
@@ -83,7 +84,8 @@ class KeepWithStart(KeepTogether):
 class ReportDocTemplate(BaseDocTemplate):
     """A4 document with one body frame; headings H1/H2 become PDF outline entries."""
 
-    def __init__(self, filename: str, *, title: str, author: str, subject: str) -> None:
+    def __init__(self, filename: str, *, title: str, author: str, subject: str,
+                 progress=None, cancel=None) -> None:
         super().__init__(
             filename, pagesize=A4, title=title, author=author, subject=subject,
             creator="HydroSync", leftMargin=PAGE_MARGIN, rightMargin=PAGE_MARGIN,
@@ -94,6 +96,13 @@ class ReportDocTemplate(BaseDocTemplate):
                       leftPadding=0, rightPadding=0, topPadding=0, bottomPadding=0)
         self.addPageTemplates([PageTemplate(id="body", frames=[frame])])
         self._outline_count = 0
+        self._progress = progress
+        self._cancel = cancel
+
+    def afterPage(self) -> None:  # noqa: N802 (reportlab API)
+        """Let a long layout be followed and cancelled page by page."""
+        check_cancel(self._cancel)
+        report(self._progress, 0.8, f"laying out page {self.page}")
 
     def afterFlowable(self, flowable) -> None:  # noqa: N802 (reportlab API)
         """Register H1/H2 headings as bookmarks and table-of-contents entries."""

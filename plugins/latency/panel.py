@@ -38,7 +38,9 @@ FIELDS = [
                tooltip="polynomial removed from each line's heights (tide)"),
     ParamField("skip_s", "Skip at line start", 0.0, unit="s", minimum=0, maximum=600,
                decimals=1, tooltip="unsteady run-in after the line start (seed: 60 s)"),
-    ParamField("weighting", "Weights", "r", choices=("r", "inverse_variance")),
+    ParamField("weighting", "Weights", "r", choices=("r", "inverse_variance"),
+               tooltip="r: each line weighted by its R max (seed); inverse_variance: by "
+               "1/uncertainty²"),
     ParamField("lever_x", "Lever arm x (fwd)", 0.0, unit="m", minimum=-100, maximum=100),
     ParamField("lever_y", "Lever arm y (stbd)", 0.0, unit="m", minimum=-100, maximum=100),
     ParamField("lever_z", "Lever arm z (down)", 0.0, unit="m", minimum=-100, maximum=100),

@@ -103,7 +103,8 @@ class CorrelationPlot(pg.PlotWidget):
             width = 3 if i == selected else 1.5
             pen = pg.mkPen(line_colour(i, n), width=width,
                            style=Qt.PenStyle.SolidLine if used else Qt.PenStyle.DotLine)
-            self.curves.append(self.plot(grid, np.nan_to_num(r, nan=0.0), pen=pen,
+            # Lines without data have NaN curves: draw nothing rather than a false zero.
+            self.curves.append(self.plot(grid, r, pen=pen, connect="finite",
                                          name=str(table["name"][i])))
         ok = np.isfinite(table["latency_s"])
         brushes = [pg.mkBrush(line_colour(i, n)) for i in np.flatnonzero(ok)]

@@ -70,7 +70,7 @@ class ProjectionView(QWidget):
 
     def __init__(self, parent: QWidget | None = None) -> None:
         super().__init__(parent)
-        self.plan = pg.PlotWidget(title="Plan view")
+        self.plan = pg.PlotWidget(title="Plan view (axes not to scale)")
         self.section = pg.PlotWidget(title="Section (looking along east)")
         for plot, (xl, yl) in ((self.plan, ("East", "North")),
                                (self.section, ("North", "Up"))):
@@ -78,7 +78,9 @@ class ProjectionView(QWidget):
             plot.setLabel("bottom", xl, units="m")
             plot.setLabel("left", yl, units="m")
             plot.showGrid(x=True, y=True, alpha=0.25)
-            plot.setAspectLocked(True)
+        # The section keeps true shape; the plan stretches east so that a misfit of a few
+        # centimetres across the wall and the blocks is visible at the scale of the target.
+        self.section.setAspectLocked(True)
         lay = QHBoxLayout(self)
         lay.setContentsMargins(0, 0, 0, 0)
         lay.addWidget(self.plan, 1)
@@ -115,7 +117,9 @@ class ProjectionView(QWidget):
             self._mbes[k] = (before[rows], None if after is None else after[rows])
             # Soundings on no face (floor, water column) are context only: small and grey.
             size, symbol = (2, "o") if k < 0 else (4, "t")
-            self.mbes_items[k] = self._pair(self._mbes_xyz(k), face_colour(k), symbol, size)
+            colour = pg.mkColor(face_colour(k))
+            colour.setAlpha(120 if k < 0 else 255)
+            self.mbes_items[k] = self._pair(self._mbes_xyz(k), colour, symbol, size)
             for item in self.mbes_items[k]:
                 item.setZValue(-1 if k < 0 else 1)
         self._frame(clouds)
@@ -139,10 +143,11 @@ class ProjectionView(QWidget):
         if len(pts) == 0:
             return
         lo, hi = pts.min(axis=0), pts.max(axis=0)
-        pad = 0.05 * (hi - lo).max() + 0.2
-        self.plan.setRange(xRange=(lo[0] - pad, hi[0] + pad), yRange=(lo[1] - pad, hi[1] + pad))
-        self.section.setRange(xRange=(lo[1] - pad, hi[1] + pad),
-                              yRange=(lo[2] - pad, hi[2] + pad))
+        pad = 0.05 * (hi - lo) + 0.2
+        self.plan.setRange(xRange=(lo[0] - pad[0], hi[0] + pad[0]),
+                           yRange=(lo[1] - pad[1], hi[1] + pad[1]), padding=0)
+        self.section.setRange(xRange=(lo[1] - pad[1], hi[1] + pad[1]),
+                              yRange=(lo[2] - pad[2], hi[2] + pad[2]))
 
 
 class GLCloudView(QWidget):

@@ -43,6 +43,7 @@ from plugins.pool_calibration.views import (
     FaceTable,
     IterationTable,
     ValuesTable,
+    convergence_legend,
 )
 
 FIELDS = [
@@ -98,9 +99,12 @@ class PoolCalibrationPanel(PluginPanel):
         self.warnings.setStyleSheet(WARN_STYLE)
         self.warnings.setVisible(False)
         self.values = ValuesTable()
-        self.values.setMinimumHeight(200)
         self.values.clear_values()
 
+        self.convergence = ConvergencePlot()
+        self.log_check = QCheckBox("log |Δ|")
+        self.log_check.setChecked(True)
+        self.log_check.toggled.connect(self._draw_convergence)
         box = QGroupBox("Parameters")
         QVBoxLayout(box).addWidget(self.form)
         buttons = QHBoxLayout()
@@ -108,13 +112,23 @@ class PoolCalibrationPanel(PluginPanel):
         buttons.addWidget(self.run_button)
         values_box = QGroupBox("Boresight and lever arm (body FRD)")
         QVBoxLayout(values_box).addWidget(self.values)
+        conv_box = QGroupBox("Convergence of the seed angle iteration")
+        cv = QVBoxLayout(conv_box)
+        conv_top = QHBoxLayout()
+        conv_top.addWidget(self.log_check)
+        conv_top.addStretch(1)
+        conv_top.addWidget(QLabel(convergence_legend()))
+        cv.addLayout(conv_top)
+        cv.addWidget(self.convergence, 1)
         left = QWidget()
         lay = QVBoxLayout(left)
+        lay.setContentsMargins(0, 0, 4, 0)
         lay.addWidget(box)
         lay.addLayout(buttons)
         lay.addWidget(self.summary)
         lay.addWidget(self.warnings)
-        lay.addWidget(values_box, 1)
+        lay.addWidget(values_box)
+        lay.addWidget(conv_box, 1)
 
         self.before_radio = QRadioButton("Before (coarse setup)")
         self.after_radio = QRadioButton("After (final values)")
@@ -141,31 +155,18 @@ class PoolCalibrationPanel(PluginPanel):
 
         self.face_table = FaceTable()
         self.iteration_table = IterationTable()
-        self.convergence = ConvergencePlot()
-        self.log_check = QCheckBox("log |Δ|")
-        self.log_check.setChecked(True)
-        self.log_check.toggled.connect(self._draw_convergence)
-        conv = QWidget()
-        cv = QVBoxLayout(conv)
-        cv.setContentsMargins(0, 0, 0, 0)
-        cv.addWidget(self.log_check)
-        cv.addWidget(self.convergence, 1)
         self.tabs = QTabWidget()
         self.tabs.addTab(self.face_table, "Faces")
         self.tabs.addTab(self.iteration_table, "Iterations")
-        bottom = QSplitter(Qt.Orientation.Horizontal)
-        bottom.addWidget(self.tabs)
-        bottom.addWidget(conv)
-        bottom.setSizes([620, 380])
         right = QSplitter(Qt.Orientation.Vertical)
         right.addWidget(clouds)
-        right.addWidget(bottom)
-        right.setSizes([480, 340])
+        right.addWidget(self.tabs)
+        right.setSizes([520, 300])
         split = QSplitter(Qt.Orientation.Horizontal)
         split.addWidget(left)
         split.addWidget(right)
         split.setStretchFactor(1, 1)
-        split.setSizes([430, 970])
+        split.setSizes([450, 950])
         QVBoxLayout(self).addWidget(split)
 
     # ------------------------------------------------------------- parameters
@@ -244,7 +245,9 @@ class PoolCalibrationPanel(PluginPanel):
         self.summary.setText(
             f"<b>Segmentation</b> with the coarse setup (not stored): {n_used} of "
             f"{len(faces['face'])} faces have enough points in both clouds. "
-            "<b>Run all</b> to calibrate.")
+            "<b>Run all</b> to calibrate"
+            + (" (replaces the stored results)." if self.project.exists(f"{RESULT}/faces")
+               else "."))
         self._set_warnings(list(self.segmentation.warnings) if self.segmentation else [])
         self.values.clear_values()
         self.face_table.fill(faces)

@@ -38,10 +38,11 @@ ITERATION_COLUMNS = {
 
 #: Final-values table rows: (label, key in boresight_deg / lever_arm_m, group, unit).
 VALUE_ROWS = (("Roll", "roll", "boresight_deg", "°"), ("Pitch", "pitch", "boresight_deg", "°"),
-              ("Yaw", "yaw", "boresight_deg", "°"),
-              ("Lever x (fwd)", "x", "lever_arm_m", "m"),
-              ("Lever y (stbd)", "y", "lever_arm_m", "m"),
-              ("Lever z (down)", "z", "lever_arm_m", "m"))
+              ("Yaw", "yaw", "boresight_deg", "°"), ("Lever x", "x", "lever_arm_m", "m"),
+              ("Lever y", "y", "lever_arm_m", "m"), ("Lever z", "z", "lever_arm_m", "m"))
+ROW_TIPS = ("boresight roll (+ starboard down)", "boresight pitch (+ bow up)",
+            "boresight yaw (+ clockwise)", "lever arm forward", "lever arm starboard",
+            "lever arm down")
 VALUE_COLUMNS = ("Final", "± σ", "Seed", "Coarse", "Δ coarse")
 VALUE_TIPS = ("final values (joint solution unless 'Final values' = seed)",
               "1-σ of the joint least-squares solution", "seed (patent) iteration solution",
@@ -120,9 +121,12 @@ class ValuesTable(QTableWidget):
         for col, tip in enumerate(VALUE_TIPS):
             self.horizontalHeaderItem(col).setToolTip(tip)
         self.setVerticalHeaderLabels([f"{label} [{unit}]" for label, _k, _g, unit in VALUE_ROWS])
+        for row, tip in enumerate(ROW_TIPS):
+            self.verticalHeaderItem(row).setToolTip(tip)
         self.setEditTriggers(QAbstractItemView.EditTrigger.NoEditTriggers)
-        self.horizontalHeader().setSectionResizeMode(QHeaderView.ResizeMode.Stretch)
-        self.verticalHeader().setSectionResizeMode(QHeaderView.ResizeMode.ResizeToContents)
+        self.horizontalHeader().setSectionResizeMode(QHeaderView.ResizeMode.ResizeToContents)
+        self.horizontalHeader().setStretchLastSection(True)
+        self.verticalHeader().setSectionResizeMode(QHeaderView.ResizeMode.Fixed)
         self.setVerticalScrollBarPolicy(Qt.ScrollBarPolicy.ScrollBarAlwaysOff)
         self.setHorizontalScrollBarPolicy(Qt.ScrollBarPolicy.ScrollBarAlwaysOff)
         self.verticalHeader().setDefaultSectionSize(22)
@@ -160,6 +164,14 @@ class ValuesTable(QTableWidget):
         return self.item(row, column).text()
 
 
+def convergence_legend() -> str:
+    """Rich-text legend of :class:`ConvergencePlot`."""
+    items = [f"<span style='color:{c}'>━</span>&nbsp;{name}" for _k, name, c in CURVES]
+    items += ["<span style='color:#6e6e6e'>╌</span>&nbsp;tolerance",
+              "<span style='color:#aaa'>┆</span>&nbsp;new round"]
+    return "&nbsp;&nbsp; ".join(items)
+
+
 class ConvergencePlot(pg.PlotWidget):
     """Angle corrections per iteration; log10 |Δ| (default) or signed, rounds marked."""
 
@@ -168,16 +180,14 @@ class ConvergencePlot(pg.PlotWidget):
         self.setBackground("w")
         self.setLabel("bottom", "iteration")
         self.showGrid(x=True, y=True, alpha=0.3)
-        # Bottom left: the corrections fall from the top left towards the bottom right.
-        legend = self.addLegend(offset=(10, -10), brush=pg.mkBrush(255, 255, 255, 220),
-                                pen=pg.mkPen((160, 160, 160)), labelTextColor="k")
-        legend.setZValue(10)
+        # The legend is outside the plot (:func:`convergence_legend`): the curves fill
+        # every corner of it.
         self.curves = {key: self.plot([], [], pen=pg.mkPen(colour, width=2), symbol="o",
                                       symbolSize=5, symbolBrush=colour, symbolPen=None,
-                                      name=name, connect="finite")
-                       for key, name, colour in CURVES}
-        self.tolerance = self.plot([], [], name="tolerance", pen=pg.mkPen(
-            (110, 110, 110), width=1.5, style=Qt.PenStyle.DashLine))
+                                      connect="finite")
+                       for key, _name, colour in CURVES}
+        self.tolerance = self.plot([], [], pen=pg.mkPen((110, 110, 110), width=1.5,
+                                                        style=Qt.PenStyle.DashLine))
         self.round_lines: list[pg.InfiniteLine] = []
         self.log = True
 

@@ -155,3 +155,11 @@ def test_skip_removes_run_in_and_inverse_variance_weights():
     raw = estimate_latency(day["gnss"], day["attitude"], day["lines"], cfg.lever_arm_m)
     # The squat transient of the run-in is not linear: keeping it lowers the correlation.
     assert np.mean([ln.r_max for ln in raw.lines]) < np.mean([ln.r_max for ln in res.lines])
+
+
+def test_heading_interpolates_across_north():
+    att = {"time": np.array([0.0, 1.0, 2.0]), "roll": np.zeros(3), "pitch": np.zeros(3),
+           "heading": np.array([350.0, 10.0, 30.0]), "heave": np.zeros(3)}
+    gnss = {"time": np.array([0.25, 0.75, 1.5]), "height": np.zeros(3)}
+    sync = synchronise(gnss, att, (0, 0, 0), 0.0)
+    np.testing.assert_allclose(sync["heading"], [355.0, 5.0, 20.0])

@@ -130,6 +130,16 @@ def test_cancel_leaves_previous_file(latency_project, tmp_path):
     with pytest.raises(Cancelled):
         build_report(latency_project, target, cancel=stop)
     assert target.read_bytes() == b"previous"
+    # Cancelled in the middle of the page layout (after the first page).
+    stop.clear()
+
+    def progress(_fraction, message):
+        if message.startswith("laying out page"):
+            stop.set()
+
+    with pytest.raises(Cancelled):
+        build_report(latency_project, target, progress=progress, cancel=stop)
+    assert target.read_bytes() == b"previous"
     assert list(tmp_path.iterdir()) == [target]
 
 
@@ -159,3 +169,20 @@ def test_cli_report_bad_input(kind, tmp_path, capsys):
     assert err.startswith("hydrosync report: ") and "\n" not in err
     assert not out.exists()
     assert not any(p.suffix in (".pdf", ".tmp", ".txt") for p in tmp_path.rglob("*"))
+
+
+def test_report_when_no_line_passes_the_threshold(tmp_path):
+    """A latency run without a final value still reports its lines and says why."""
+    project = Project.new("Rough sea")
+    spec = get_spec("latency")
+    load_object(spec.demo)(project, seed=2, progress=None)
+    result = spec.load_run()(project, dict(spec.default_params, min_r=0.999), None, None)
+    assert not result.converged
+    text = " ".join(pdf_pages(build_report(project, tmp_path / "r.pdf")))
+    assert LATENCY_HEADING in text
+    assert "Latency \u0394t (GNSS tags late), 1\u03c3 \u2014" in text
+    assert result.message in text
+    assert "Before and after synchronisation" not in text
+    table = project.get_table("results/latency/lines")
+    for i in range(len(table["name"])):
+        assert " ".join(lat.line_row(table, i)) in text

@@ -84,6 +84,9 @@ def estimate_latency(
     lo, hi = p.range_s
     dts = np.linspace(lo, hi, int(round((hi - lo) / p.step_s)) + 1)
     g_int, a_int = float(np.median(np.diff(t_g))), float(np.median(np.diff(t_att)))
+    for column in ("name", "start", "end"):
+        if column not in lines:
+            raise InputError("lines", f"missing column {column}", field=column)
     names = [str(n) for n in np.asarray(lines["name"]).ravel()]
     starts = np.asarray(lines["start"], dtype=float).ravel()
     ends = np.asarray(lines["end"], dtype=float).ravel()
@@ -154,9 +157,13 @@ def _attitude_at(attitude: Mapping, times: np.ndarray) -> dict[str, np.ndarray]:
     t = np.asarray(attitude["time"], dtype=float)
     out = {c: np.interp(times, t, np.asarray(attitude[c], dtype=float))
            for c in ("roll", "pitch", "heave")}
-    # Heading wraps at 360 deg: interpolate the unwrapped angle.
-    unwrapped = np.unwrap(np.radians(np.asarray(attitude["heading"], dtype=float)))
-    out["heading"] = np.degrees(np.interp(times, t, unwrapped)) % 360.0
+    # Heading wraps at 360 deg: interpolate along the shorter arc between the two
+    # neighbouring samples (no unwrapping of the whole record: memory of the output only).
+    heading = np.asarray(attitude["heading"], dtype=float)
+    k = np.clip(np.searchsorted(t, times), 1, t.size - 1)
+    h0, h1 = heading[k - 1], heading[k]
+    w = (times - t[k - 1]) / (t[k] - t[k - 1])
+    out["heading"] = (h0 + w * ((h1 - h0 + 180.0) % 360.0 - 180.0)) % 360.0
     return out
 
 

@@ -3,8 +3,9 @@
 Unknowns: a small rotation δ (rad, about the body FRD axes, applied as
 ``R_m <- Rot(δ)·R_m``) and a lever-arm change Δl (m, body FRD). Observations: the
 signed distances of the multibeam points of each face to that face's reference plane
-(the laser plane of the same face, or for a below-water horizontal face the above-water
-laser plane moved by the design height difference)::
+(the laser plane of the same face, or for a below-water horizontal face its design plane
+raised by the as-built height offset measured by the laser on the above-water tops,
+i.e. the seed's design height difference of step 4.2)::
 
     r_i = n_k · p_i - d_k,   p_i = o + A_i (R_m x_i + l)            (A_i = C·R_b)
     ∂r_i/∂Δl = a_i = A_iᵀ n_k,   ∂r_i/∂δ = (R_m x_i) × a_i
@@ -12,10 +13,13 @@ laser plane moved by the design height difference)::
 Gauss-Newton with Huber iteratively reweighted least squares (outliers left by the
 segmentation get small weights). Covariance ``σ0² (JᵀWJ)⁻¹`` with ``σ0²`` the weighted
 residual variance, plus the part propagated from the reference planes' own fit
-uncertainty (laser TLS planes; the as-built height offset of the design planes); σ and correlations are reported for (roll, pitch, yaw) Euler angles
-of the boresight (propagated through the numeric Jacobian of the Euler angles with
-respect to δ) and the three lever-arm components. A parameter whose column of the
-normal matrix is (nearly) in its null space is fixed and reported as undetermined.
+uncertainty (laser TLS planes; the as-built height offset of the design planes). σ and
+correlations are reported for the (roll, pitch, yaw) Euler angles of the boresight
+(through the numeric Jacobian of the Euler angles with respect to δ) and the three
+lever-arm components. A parameter whose column of the normal matrix is (nearly) in its
+null space, or that the caller names in ``fix``, is held and reported as undetermined.
+The formal σ ignores correlated errors between soundings of one ping (sound speed,
+refraction), so treat it as a lower bound.
 """
 
 from __future__ import annotations

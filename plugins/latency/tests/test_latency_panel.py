@@ -88,3 +88,18 @@ def test_demo_run_table_curves_and_toggle(panel, qtbot):
         panel.table.selectRow(2)
         qtbot.wait(100)  # let the layouts settle before the screenshot
         panel.grab().save(SCREENSHOT)
+
+
+def test_wrong_lever_arm_shows_no_latency_and_the_likely_cause(panel, qtbot):
+    project = Project.new("demo")
+    truth = fill_demo(project, seed=1)
+    panel.set_project(project)
+    x, y, z = truth["lever_arm_m"]
+    panel.form.set_values({"step_s": 0.02, "lever_y": -y})
+    with qtbot.waitSignal(panel.sig_busy, timeout=30_000, check_params_cb=lambda b: not b):
+        panel.run_button.click()
+    qtbot.waitUntil(lambda: panel.table.rowCount() == 13, timeout=10_000)
+    assert "No latency" in panel.summary.text()
+    assert "y sign is probably wrong" in panel.summary.text()
+    assert not panel.r_plot.final_line.isVisible()
+    assert all(not panel.table.used()[r] for r in range(13))

@@ -1,0 +1,271 @@
+"""The Pool Calibration panel on an empty and a demo project (pytest-qt, offscreen).
+
+One calibration per module: the module fixture runs ``project_run.run`` on the demo
+project once (about 5 s); the panel tests then read that stored result. The run started
+from the panel itself works on a saved copy so the shared project stays as stored.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+
+import numpy as np
+import pytest
+from PySide6.QtCore import Qt
+
+from hydrosync_core.methods.pool import project_run
+from hydrosync_core.methods.pool.demo import fill_demo
+from hydrosync_core.project import Project
+from plugins.pool_calibration.cloud_views import ProjectionView, gl_available
+from plugins.pool_calibration.panel import PoolCalibrationPanel
+from plugins.pool_calibration.views import FACE_COLUMNS, VALUE_ROWS
+
+RESULT = "results/pool_calibration"
+SCREENSHOT = "/work/main/docs/pool-panel.png"
+PLAN = ("laser_xyz", "laser_face", "mbes_before_xyz", "mbes_after_xyz", "mbes_face")
+
+
+@pytest.fixture(scope="module")
+def demo():
+    """(project with a stored calibration, truth) — computed once for the module."""
+    project = Project.new("pool demo")
+    truth = fill_demo(project, seed=0)
+    project_run.run(project, {})
+    return project, truth
+
+
+@pytest.fixture
+def panel(qtbot):
+    idle = []
+    widget = PoolCalibrationPanel()
+    # No leaked thread: qtbot closes the widget after the test, once its worker is done.
+    qtbot.addWidget(widget, before_close_func=lambda w: idle.append(w.wait_idle(60.0)))
+    widget.resize(1400, 900)
+    widget.show()
+    yield widget
+    assert widget.wait_idle(60.0)
+    qtbot.wait(20)  # deliver the last worker signals while the widget is alive
+
+
+def _copy(project: Project, tmp_path) -> Project:
+    path = tmp_path / "copy.h5"
+    project.save(path)
+    return Project.open(path)
+
+
+def _snapshot(project: Project) -> dict:
+    """Everything stored under the result, as comparable plain values."""
+    out = {"attrs": dict(project.attrs(RESULT)),
+           "faces": project.get_table(f"{RESULT}/faces"),
+           "iterations": project.get_table(f"{RESULT}/iterations"),
+           "result": project.get_json(f"{RESULT}/result")}
+    out.update({k: project.get(f"{RESULT}/plan/{k}") for k in PLAN})
+    return out
+
+
+def _same(a: dict, b: dict) -> bool:
+    for key in a:
+        x, y = a[key], b[key]
+        if isinstance(x, dict) and key in ("faces", "iterations"):
+            if x.keys() != y.keys() or not all(np.array_equal(x[c], y[c]) for c in x):
+                return False
+        elif isinstance(x, np.ndarray):
+            if not np.array_equal(x, y):
+                return False
+        elif key == "attrs":
+            if x.keys() != y.keys() or any(
+                    not (x[k] == y[k] or (isinstance(x[k], float) and np.isnan(x[k])
+                                          and np.isnan(y[k]))) for k in x):
+                return False
+        elif x != y:
+            return False
+    return True
+
+
+def test_empty_project_needs_data(panel):
+    panel.set_project(Project.new("empty"))
+    text = panel.summary.text()
+    assert "Needs data" in text
+    for path in ("/raw/pool/lidar", "/raw/pool/mbes", "/raw/pool/ins", "/raw/pool/setup",
+                 "/raw/pool/target"):
+        assert path in text
+    assert not panel.run_button.isEnabled() and not panel.segment_button.isEnabled()
+    assert panel.face_table.model().rowCount() == 0
+    assert panel.values.value(0, 0) == "–"
+    assert not panel.warnings.isVisible()
+
+
+def test_demo_results_shown(panel, demo, qtbot):
+    project, truth = demo
+    panel.set_project(project)
+    attrs = project.attrs(RESULT)
+    # The stored calibration is near the simulated truth (otherwise the checks below
+    # would compare the panel with a broken result).
+    for k in ("roll", "pitch", "yaw"):
+        assert attrs[f"{k}_deg"] == pytest.approx(truth["boresight_deg"][k], abs=0.05)
+    for k in "xyz":
+        assert attrs[f"lever_{k}_m"] == pytest.approx(truth["lever_arm_m"][k], abs=0.01)
+
+    # Face table: one row per stored face, every cell equal to the stored value.
+    faces = project.get_table(f"{RESULT}/faces")
+    model = panel.face_table.model()
+    assert model.rowCount() == len(faces["face"]) == 17
+    headers = [model.headerData(c, Qt.Orientation.Horizontal)
+               for c in range(model.columnCount())]
+    for col, key in enumerate(FACE_COLUMNS):
+        header, unit, scale, _fmt = FACE_COLUMNS[key]
+        assert headers[col].startswith(header)
+        for row in range(model.rowCount()):
+            text, stored = model.text(row, col), faces[key][row]
+            if isinstance(stored, str | np.str_):
+                assert text == stored
+            elif np.issubdtype(np.asarray(stored).dtype, np.integer):
+                assert int(text) == stored
+            elif np.isnan(stored):
+                assert text == ""
+            else:
+                assert float(text) / scale == pytest.approx(stored, abs=0.006 / scale)
+    # Iteration table and convergence curves hold the stored iterations.
+    iters = project.get_table(f"{RESULT}/iterations")
+    assert panel.iteration_table.model().rowCount() == len(iters["iteration"]) > 3
+    assert float(panel.iteration_table.model().text(0, 2)) == pytest.approx(
+        iters["d_roll_deg"][0], rel=1e-2)
+    x, y = panel.convergence.curves["d_yaw_deg"].getData()
+    np.testing.assert_array_equal(x, iters["iteration"])
+    np.testing.assert_allclose(y, np.abs(iters["d_yaw_deg"]))  # log mode: |Δ|
+    panel.log_check.setChecked(False)
+    np.testing.assert_allclose(panel.convergence.curves["d_yaw_deg"].getData()[1],
+                               iters["d_yaw_deg"])
+    tol_x = panel.convergence.tolerance.getData()[0]
+    assert tol_x is None or len(tol_x) == 0  # tolerance drawn in log scale only
+    panel.log_check.setChecked(True)
+
+    # Final values, σ, seed and coarse setup as stored (4 decimals shown).
+    result = project.get_json(f"{RESULT}/result")
+    for row, (_label, key, group, unit) in enumerate(VALUE_ROWS):
+        attr = f"{key}_deg" if unit == "°" else f"lever_{key}_m"
+        assert float(panel.values.value(row, 0)) == pytest.approx(attrs[attr], abs=5e-5)
+        assert float(panel.values.value(row, 1)) == pytest.approx(attrs[f"sigma_{attr}"],
+                                                                  abs=5e-5)
+        assert float(panel.values.value(row, 2)) == pytest.approx(result["seed"][group][key],
+                                                                  abs=5e-5)
+        coarse = result["coarse"][group][key]
+        assert float(panel.values.value(row, 3)) == pytest.approx(coarse, abs=5e-5)
+        assert float(panel.values.value(row, 4)) == pytest.approx(attrs[attr] - coarse,
+                                                                  abs=5e-5)
+    # Warnings as stored: prominent box when present, hidden when none.
+    warnings = json.loads(attrs["warnings"])
+    assert panel.warnings.isVisible() == bool(warnings)
+    for w in warnings:
+        assert w in panel.warnings.text()
+    assert "converged" in panel.summary.text()
+
+    # Offscreen there is no GL context: the 2-D projections hold the stored plan arrays.
+    assert not gl_available()
+    view = panel.cloud_view
+    assert isinstance(view, ProjectionView)
+    plan = {k: project.get(f"{RESULT}/plan/{k}") for k in PLAN}
+    assert set(view.laser_items) == set(np.unique(plan["laser_face"]).tolist())
+    for k, (plan_item, section_item) in view.laser_items.items():
+        pts = plan["laser_xyz"][plan["laser_face"] == k]
+        np.testing.assert_array_equal(np.column_stack(plan_item.getData()), pts[:, :2])
+        np.testing.assert_array_equal(np.column_stack(section_item.getData()), pts[:, 1:])
+        assert faces["points_laser"][k] > 0  # plan face index k is faces-table row k
+    assert sum(len(i[0].getData()[0]) for i in view.laser_items.values()) == len(
+        plan["laser_xyz"])
+    assert set(view.mbes_items) == set(np.unique(plan["mbes_face"]).tolist())
+    for name in (str(faces["face"][k]) for k in view.laser_items):
+        assert name in panel.legend.text()
+
+    # Before/after toggle swaps the multibeam arrays (and only those).
+    def mbes_xy(k):
+        return np.column_stack(view.mbes_items[k][0].getData())
+
+    k = int(np.flatnonzero(faces["points_mbes"])[0])
+    rows = plan["mbes_face"] == k
+    np.testing.assert_array_equal(mbes_xy(k), plan["mbes_before_xyz"][rows, :2])
+    laser_before = np.column_stack(view.laser_items[k][0].getData())
+    panel.after_radio.setChecked(True)
+    np.testing.assert_array_equal(mbes_xy(k), plan["mbes_after_xyz"][rows, :2])
+    np.testing.assert_array_equal(
+        np.column_stack(view.mbes_items[k][1].getData()), plan["mbes_after_xyz"][rows, 1:])
+    np.testing.assert_array_equal(np.column_stack(view.laser_items[k][0].getData()),
+                                  laser_before)
+    assert np.abs(plan["mbes_after_xyz"] - plan["mbes_before_xyz"]).max() > 0.05
+    panel.before_radio.setChecked(True)
+    np.testing.assert_array_equal(mbes_xy(k), plan["mbes_before_xyz"][rows, :2])
+
+    if os.path.isdir(os.path.dirname(SCREENSHOT)):
+        panel.after_radio.setChecked(True)
+        qtbot.wait(150)  # let the layouts settle before the screenshot
+        panel.grab().save(SCREENSHOT)
+
+
+def test_parameters_loaded_from_stored_run(panel, demo):
+    project, _truth = demo
+    panel.set_project(project)
+    stored = project.get_json(RESULT)
+    values = panel.form.values()
+    for key in ("crop_tol_m", "tol_deg", "max_iter", "final"):
+        assert values[key] == stored[key]
+    panel.form.set_values({"max_iter": 7, "final": "seed"})
+    params = panel.params()
+    assert params["max_iter"] == 7 and params["final"] == "seed"
+    assert params["plan_points"] == 20000  # defaults not in the form are kept
+
+
+def test_segment_then_run_in_worker(panel, demo, qtbot, tmp_path):
+    project = _copy(demo[0], tmp_path)
+    project.delete(RESULT)
+    panel.set_project(project)
+    assert "Data ready" in panel.summary.text()
+    statuses = []
+    panel.sig_status.connect(statuses.append)
+
+    # Segment: a worker, results kept in memory only, faces with points listed.
+    with qtbot.waitSignal(panel.sig_busy, timeout=60_000, check_params_cb=lambda b: not b):
+        panel.segment_button.click()
+        assert not panel.run_button.isEnabled()  # one task at a time
+    assert panel.segmentation is not None and not project.exists(RESULT)
+    faces = panel._preview[0]
+    model = panel.face_table.model()
+    assert model.rowCount() == len(panel.segmentation.design)
+    wall = list(faces["face"]).index("wall")
+    assert int(model.text(wall, 3)) == len(panel.segmentation.laser_points["wall"]) > 1000
+    assert int(model.text(wall, 4)) == len(panel.segmentation.mbes_faces["wall"]) > 1000
+    assert any(s.startswith("Segmentation: wall") for s in statuses)
+    assert not panel.after_radio.isEnabled()  # no corrected soundings yet
+    assert panel.run_button.isEnabled()
+
+    # Run all: a worker writes the results, the panel redraws from them.
+    modified = []
+    panel.sig_project_modified.connect(lambda: modified.append(1))
+    panel.form.set_values({"final": "seed"})
+    panel.run_button.click()
+    qtbot.waitUntil(lambda: bool(modified), timeout=120_000)
+    attrs = project.attrs(RESULT)
+    assert attrs["method"] == "seed" and project.get_json(RESULT)["final"] == "seed"
+    assert np.isnan(attrs["sigma_roll_deg"])  # no joint σ for the seed solution
+    assert float(panel.values.value(0, 0)) == pytest.approx(attrs["roll_deg"], abs=5e-5)
+    assert panel.values.value(0, 1) == "–"
+    assert panel.face_table.model().rowCount() == 17
+    assert panel.after_radio.isEnabled()
+    assert any(s.startswith("Pool calibration: ") for s in statuses)
+
+
+def test_cancel_right_after_start_keeps_project(panel, demo, qtbot, tmp_path):
+    project = _copy(demo[0], tmp_path)
+    before = _snapshot(project)
+    panel.set_project(project)
+    statuses, modified = [], []
+    panel.sig_status.connect(statuses.append)
+    panel.sig_project_modified.connect(lambda: modified.append(1))
+    with qtbot.waitSignal(panel.sig_busy, timeout=30_000, check_params_cb=lambda b: not b):
+        panel.run_button.click()
+        panel.cancel_work()  # what the status bar's Cancel does
+    assert "Pool calibration cancelled" in statuses
+    assert not modified
+    assert _same(before, _snapshot(project))
+    assert panel.run_button.isEnabled() and panel.segment_button.isEnabled()
+    assert panel.face_table.model().rowCount() == 17  # still showing the stored run

@@ -133,7 +133,8 @@ def test_demo_results_shown(panel, demo, qtbot):
         iters["d_roll_deg"][0], rel=1e-2)
     x, y = panel.convergence.curves["d_yaw_deg"].getData()
     np.testing.assert_array_equal(x, iters["iteration"])
-    np.testing.assert_allclose(y, np.abs(iters["d_yaw_deg"]))  # log mode: |Δ|
+    # Log mode: the item holds log10 |Δ|.
+    np.testing.assert_allclose(10 ** y, np.abs(iters["d_yaw_deg"]), rtol=1e-12)
     panel.log_check.setChecked(False)
     np.testing.assert_allclose(panel.convergence.curves["d_yaw_deg"].getData()[1],
                                iters["d_yaw_deg"])
@@ -246,9 +247,12 @@ def test_segment_then_run_in_worker(panel, demo, qtbot, tmp_path):
     qtbot.waitUntil(lambda: bool(modified), timeout=120_000)
     attrs = project.attrs(RESULT)
     assert attrs["method"] == "seed" and project.get_json(RESULT)["final"] == "seed"
-    assert np.isnan(attrs["sigma_roll_deg"])  # no joint σ for the seed solution
-    assert float(panel.values.value(0, 0)) == pytest.approx(attrs["roll_deg"], abs=5e-5)
-    assert panel.values.value(0, 1) == "–"
+    result = project.get_json(f"{RESULT}/result")
+    for row, (_label, key, group, _unit) in enumerate(VALUE_ROWS):
+        # Final = the seed solution, shown in both columns.
+        assert panel.values.value(row, 0) == panel.values.value(row, 2)
+        assert float(panel.values.value(row, 0)) == pytest.approx(result["seed"][group][key],
+                                                                  abs=5e-5)
     assert panel.face_table.model().rowCount() == 17
     assert panel.after_radio.isEnabled()
     assert any(s.startswith("Pool calibration: ") for s in statuses)

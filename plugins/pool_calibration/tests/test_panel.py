@@ -64,14 +64,18 @@ def _snapshot(project: Project) -> dict:
     return out
 
 
+def _equal(x: np.ndarray, y: np.ndarray) -> bool:
+    return np.array_equal(x, y, equal_nan=np.asarray(x).dtype.kind == "f")
+
+
 def _same(a: dict, b: dict) -> bool:
     for key in a:
         x, y = a[key], b[key]
         if isinstance(x, dict) and key in ("faces", "iterations"):
-            if x.keys() != y.keys() or not all(np.array_equal(x[c], y[c]) for c in x):
+            if x.keys() != y.keys() or not all(_equal(x[c], y[c]) for c in x):
                 return False
         elif isinstance(x, np.ndarray):
-            if not np.array_equal(x, y):
+            if not _equal(x, y):
                 return False
         elif key == "attrs":
             if x.keys() != y.keys() or any(

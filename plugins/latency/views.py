@@ -132,16 +132,18 @@ class SeriesPlot(pg.PlotWidget):
         self.setLabel("bottom", "time since line start", units="s")
         self.setLabel("left", "height / heave", units="m")
         self.showGrid(x=True, y=True, alpha=0.3)
-        legend = self.addLegend(offset=(-10, 5), brush=pg.mkBrush(255, 255, 255, 220),
-                                pen=pg.mkPen((160, 160, 160)), labelTextColor="k")
+        # One row of legend entries above the curves; show_series leaves headroom for it.
+        legend = self.addLegend(offset=(10, 2), brush=pg.mkBrush(255, 255, 255, 200),
+                                pen=pg.mkPen((160, 160, 160)), labelTextColor="k",
+                                colCount=3)
         legend.setZValue(10)
         self.height_item = self.plot([], [], pen=pg.mkPen("k", width=2),
-                                     name="GNSS height (detrended)")
+                                     name="GNSS height")
         self.before_item = self.plot([], [], pen=pg.mkPen((214, 39, 40), width=1.5,
                                                           style=Qt.PenStyle.DashLine),
-                                     name="total heave, Δt = 0")
+                                     name="heave, Δt = 0")
         self.after_item = self.plot([], [], pen=pg.mkPen((31, 119, 180), width=1.5),
-                                    name="total heave, synchronised")
+                                    name="heave, synchronised")
 
     def show_series(self, series: dict | None, title: str = "") -> None:
         if series is None or series["time"].size == 0:
@@ -153,4 +155,8 @@ class SeriesPlot(pg.PlotWidget):
         self.height_item.setData(t, series["height"])
         self.before_item.setData(t, series["heave_before"] - series["heave_before"].mean())
         self.after_item.setData(t, series["heave_after"] - series["heave_after"].mean())
+        after = series["heave_after"] - series["heave_after"].mean()
+        values = np.concatenate([series["height"], after])
+        low, high = float(np.min(values)), float(np.max(values))
+        self.setYRange(low, high + 0.3 * (high - low), padding=0.02)
         self.setTitle(title)

@@ -28,18 +28,23 @@ def face_colour(k: int) -> str:
     return UNASSIGNED if k < 0 else PALETTE[k % len(PALETTE)]
 
 
-@functools.cache
 def gl_available() -> bool:
     """True if pyqtgraph.opengl imports and a real OpenGL context can be made current.
 
     The offscreen/minimal platforms never give one ("QOpenGLWidget: Failed to create
     context"), so they are refused without trying; elsewhere a context is created on an
-    offscreen surface, which fails cleanly on machines without GL drivers.
+    offscreen surface, which fails cleanly on machines without GL drivers. Needs the
+    QApplication; the answer is then cached for the process.
     """
+    from PySide6.QtGui import QGuiApplication
+
+    return QGuiApplication.instance() is not None and _probe_gl()
+
+
+@functools.cache
+def _probe_gl() -> bool:
     from PySide6.QtGui import QGuiApplication, QOffscreenSurface, QOpenGLContext
 
-    if QGuiApplication.instance() is None:
-        return False
     if QGuiApplication.platformName() in ("offscreen", "minimal", "vnc"):
         return False
     try:

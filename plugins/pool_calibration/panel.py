@@ -22,6 +22,7 @@ from PySide6.QtWidgets import (
     QPushButton,
     QRadioButton,
     QSplitter,
+    QStackedWidget,
     QTabWidget,
     QVBoxLayout,
     QWidget,
@@ -150,7 +151,14 @@ class PoolCalibrationPanel(PluginPanel):
         cl = QVBoxLayout(clouds)
         cl.setContentsMargins(0, 0, 0, 0)
         cl.addLayout(toggle)
-        cl.addWidget(self.cloud_view, 1)
+        self.cloud_placeholder = QLabel("The laser and multibeam clouds are drawn here after "
+                                        "<b>Segment</b> or <b>Run all</b>.")
+        self.cloud_placeholder.setAlignment(Qt.AlignmentFlag.AlignCenter)
+        self.cloud_placeholder.setStyleSheet("QLabel { background: white; color: #777; }")
+        self.cloud_stack = QStackedWidget()
+        self.cloud_stack.addWidget(self.cloud_placeholder)
+        self.cloud_stack.addWidget(self.cloud_view)
+        cl.addWidget(self.cloud_stack, 1)
         cl.addWidget(self.legend)
 
         self.face_table = FaceTable()
@@ -214,6 +222,7 @@ class PoolCalibrationPanel(PluginPanel):
         self.iteration_table.clear()
         self.convergence.show_table(None, None, self.log_check.isChecked())
         self.cloud_view.clear()
+        self.cloud_stack.setCurrentWidget(self.cloud_placeholder)
         self.names, self.clouds = [], None
         self.legend.setText("")
         self.after_radio.setEnabled(False)
@@ -230,6 +239,7 @@ class PoolCalibrationPanel(PluginPanel):
             self.before_radio.setChecked(True)
         self.cloud_view.after = self.after_radio.isChecked()
         self.cloud_view.draw(names, clouds)
+        self.cloud_stack.setCurrentWidget(self.cloud_view)
         shown = np.union1d(clouds["laser_face"], clouds["mbes_face"])
         swatches = [f"<span style='color:{face_colour(int(k))}'>■</span>&nbsp;{names[int(k)]}"
                     for k in shown if k >= 0]
@@ -280,6 +290,7 @@ class PoolCalibrationPanel(PluginPanel):
             self._draw_clouds([str(n) for n in faces["face"]], clouds)
         else:
             self.cloud_view.clear()
+            self.cloud_stack.setCurrentWidget(self.cloud_placeholder)
 
     def _draw_convergence(self) -> None:
         project = self.project

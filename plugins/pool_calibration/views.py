@@ -126,6 +126,7 @@ class ValuesTable(QTableWidget):
         self.setEditTriggers(QAbstractItemView.EditTrigger.NoEditTriggers)
         self.horizontalHeader().setSectionResizeMode(QHeaderView.ResizeMode.ResizeToContents)
         self.horizontalHeader().setStretchLastSection(True)
+        self.horizontalHeader().setMinimumSectionSize(60)
         self.verticalHeader().setSectionResizeMode(QHeaderView.ResizeMode.Fixed)
         self.setVerticalScrollBarPolicy(Qt.ScrollBarPolicy.ScrollBarAlwaysOff)
         self.setHorizontalScrollBarPolicy(Qt.ScrollBarPolicy.ScrollBarAlwaysOff)
@@ -202,7 +203,9 @@ class ConvergencePlot(pg.PlotWidget):
             for item in self.curves.values():
                 item.setData([], [])
             self.tolerance.setData([], [])
+            self.setTitle("<span style='color:#777'>no iterations yet (Run all)</span>")
             return
+        self.setTitle(None)
         x = np.asarray(table["iteration"], float)
         for key, item in self.curves.items():
             y = np.asarray(table[key], float)

@@ -54,6 +54,12 @@ def _copy(project: Project, tmp_path) -> Project:
     return Project.open(path)
 
 
+def _thin(project: Project, step: int = 3) -> None:
+    """Keep every *step*-th multibeam sounding: the same pass, a faster worker run."""
+    mbes = project.get_table("raw/pool/mbes")
+    project.put_table("raw/pool/mbes", {k: v[::step] for k, v in mbes.items()})
+
+
 def _snapshot(project: Project) -> dict:
     """Everything stored under the result, as comparable plain values."""
     out = {"attrs": dict(project.attrs(RESULT)),
@@ -98,6 +104,7 @@ def test_empty_project_needs_data(panel):
     assert panel.face_table.model().rowCount() == 0
     assert panel.values.value(0, 0) == "–"
     assert not panel.warnings.isVisible()
+    assert panel.cloud_stack.currentWidget() is panel.cloud_placeholder
 
 
 def test_demo_results_shown(panel, demo, qtbot):
@@ -223,6 +230,7 @@ def test_parameters_loaded_from_stored_run(panel, demo):
 def test_segment_then_run_in_worker(panel, demo, qtbot, tmp_path):
     project = _copy(demo[0], tmp_path)
     project.delete(RESULT)
+    _thin(project)
     panel.set_project(project)
     assert "Data ready" in panel.summary.text()
     statuses = []
@@ -239,6 +247,7 @@ def test_segment_then_run_in_worker(panel, demo, qtbot, tmp_path):
     wall = list(faces["face"]).index("wall")
     assert int(model.text(wall, 3)) == len(panel.segmentation.laser_points["wall"]) > 1000
     assert int(model.text(wall, 4)) == len(panel.segmentation.mbes_faces["wall"]) > 1000
+    assert panel.cloud_stack.currentWidget() is panel.cloud_view
     assert any(s.startswith("Segmentation: wall") for s in statuses)
     assert not panel.after_radio.isEnabled()  # no corrected soundings yet
     assert panel.run_button.isEnabled()
@@ -277,3 +286,20 @@ def test_cancel_right_after_start_keeps_project(panel, demo, qtbot, tmp_path):
     assert _same(before, _snapshot(project))
     assert panel.run_button.isEnabled() and panel.segment_button.isEnabled()
     assert panel.face_table.model().rowCount() == 17  # still showing the stored run
+
+
+@pytest.mark.gl
+def test_gl_view_toggle(panel, demo):
+    if not gl_available():
+        pytest.skip("no OpenGL context on this platform (offscreen): 2-D fallback tested")
+    from plugins.pool_calibration.cloud_views import GLCloudView
+
+    project, _truth = demo
+    panel.set_project(project)
+    view = panel.cloud_view
+    assert isinstance(view, GLCloudView)
+    np.testing.assert_allclose(view.mbes_item.pos,
+                               project.get(f"{RESULT}/plan/mbes_before_xyz"), atol=1e-4)
+    panel.after_radio.setChecked(True)
+    np.testing.assert_allclose(view.mbes_item.pos,
+                               project.get(f"{RESULT}/plan/mbes_after_xyz"), atol=1e-4)

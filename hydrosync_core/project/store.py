@@ -8,11 +8,11 @@ from __future__ import annotations
 
 import json
 import os
-from pathlib import Path
 
 import h5py
 import numpy as np
 
+from hydrosync_core.atomic import atomic_path
 from hydrosync_core.project.nodes import DatasetNode, GroupNode
 from hydrosync_core.project.schema import dataset_options
 
@@ -58,23 +58,6 @@ def write_tree(group: h5py.Group, node: GroupNode) -> None:
 
 def atomic_write(path: str | os.PathLike, root: GroupNode) -> None:
     """Write *root* to *path* through ``path.tmp`` + fsync + ``os.replace``."""
-    path = Path(path)
-    tmp = path.with_name(path.name + ".tmp")
-    try:
-        with h5py.File(tmp, "w", libver=("earliest", "latest")) as f:
-            write_tree(f, root)
-            f.flush()
-        with open(tmp, "rb+") as fh:
-            os.fsync(fh.fileno())
-        os.replace(tmp, path)
-    except BaseException:
-        tmp.unlink(missing_ok=True)
-        raise
-    try:
-        dir_fd = os.open(path.parent, os.O_RDONLY)
-    except OSError:
-        return
-    try:
-        os.fsync(dir_fd)
-    finally:
-        os.close(dir_fd)
+    with atomic_path(path) as tmp, h5py.File(tmp, "w", libver=("earliest", "latest")) as f:
+        write_tree(f, root)
+        f.flush()

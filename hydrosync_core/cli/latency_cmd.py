@@ -62,7 +62,8 @@ def _run_csv(args: argparse.Namespace) -> int:
     files = {"gnss": args.gnss, "attitude": args.attitude, "lines": args.lines}
     try:
         params = LatencyParams.from_dict(_params(args))
-        gnss, attitude = read_gnss_csv(args.gnss), read_attitude_csv(args.attitude)
+        gnss = read_gnss_csv(args.gnss)
+        attitude = read_attitude_csv(args.attitude, args.heave_positive)
         lines = read_lines_csv(args.lines)
         result = estimate_latency(gnss, attitude, lines, args.lever_arm, params)
     except InputError as exc:
@@ -117,6 +118,8 @@ def register(sub: argparse._SubParsersAction) -> None:
     p.add_argument("project", nargs="?", type=Path, help="project file (.h5) instead of CSVs")
     p.add_argument("--gnss", type=Path, help="gnss.csv (time, height)")
     p.add_argument("--attitude", type=Path, help="attitude.csv (time, roll, pitch, heading, heave)")
+    p.add_argument("--heave-positive", choices=("up", "down"), default="up",
+                   help="heave sign convention of attitude.csv (formats.md: up; default up)")
     p.add_argument("--lines", type=Path, help="lines.csv (name, start, end)")
     p.add_argument("--lever-arm", nargs=3, type=float, metavar=("X", "Y", "Z"),
                    help="antenna relative to the motion sensor, body frame FRD, m")

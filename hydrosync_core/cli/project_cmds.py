@@ -7,6 +7,7 @@ from pathlib import Path
 
 from hydrosync_core.errors import InputError
 from hydrosync_core.importers.kinds import KINDS, import_file
+from hydrosync_core.importers.survey_csv import read_attitude_csv
 from hydrosync_core.project import Project
 
 
@@ -39,12 +40,16 @@ def cmd_import(args: argparse.Namespace) -> int:
 
 
 def _import_one(project: Project, kind: str, file: str, args: argparse.Namespace) -> str:
-    """Import one file; the attitude log honours ``--heave-positive``."""
+    """Import one file; attitude files honour ``--heave-positive``."""
     heave = getattr(args, "heave_positive", None)
     if kind == "attitude_log" and heave:
         from hydrosync_core.importers.log_import import store_attitude_log
 
         return store_attitude_log(project, KINDS[kind].target, Path(file), heave_positive=heave)
+    if kind == "attitude" and heave:
+        columns = read_attitude_csv(file, heave_positive=heave)
+        project.put_table(KINDS[kind].target, columns, source=str(file), heave_sign_in_file=heave)
+        return f"{len(columns['time'])} rows from {Path(file).name} into /{KINDS[kind].target}"
     return import_file(project, kind, file)
 
 
@@ -111,8 +116,9 @@ def register(sub: argparse._SubParsersAction) -> None:
         p.add_argument(f"--{name}", metavar="FILE", help=kind.description)
     p.add_argument(
         "--heave-positive", choices=("up", "down"), default=None,
-        help="direction of positive heave in an --attitude_log file (required for "
-        "PSXN,23 and PASHR; Seapath PSXN,23 is documented positive down)",
+        help="direction of positive heave in the --attitude CSV (formats.md: up) or the "
+        "--attitude_log file (required for PSXN,23 and PASHR; Seapath PSXN,23 is "
+        "documented positive down); stored heave is always positive up",
     )
     p.set_defaults(func=cmd_import)
 

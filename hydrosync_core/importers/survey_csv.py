@@ -22,9 +22,21 @@ def read_gnss_csv(path: str | os.PathLike) -> dict[str, np.ndarray]:
     return read_numeric_csv(path, ["time", "height"], ["lat", "lon", "quality"], min_rows=2)
 
 
-def read_attitude_csv(path: str | os.PathLike) -> dict[str, np.ndarray]:
-    """Attitude: time (s), roll, pitch, heading (deg), heave (m, positive up)."""
-    return read_numeric_csv(path, ["time", "roll", "pitch", "heading", "heave"], min_rows=2)
+def read_attitude_csv(
+    path: str | os.PathLike, heave_positive: str = "up"
+) -> dict[str, np.ndarray]:
+    """Attitude: time (s), roll, pitch, heading (deg), heave (m).
+
+    ``formats.md`` fixes heave positive up; a file written positive down (Kongsberg
+    convention) is read with ``heave_positive="down"`` — stated, never guessed. The
+    returned heave is always positive up.
+    """
+    if heave_positive not in ("up", "down"):
+        raise InputError(str(path), f"heave sign must be 'up' or 'down', not {heave_positive!r}")
+    table = read_numeric_csv(path, ["time", "roll", "pitch", "heading", "heave"], min_rows=2)
+    if heave_positive == "down":
+        table["heave"] = -table["heave"]
+    return table
 
 
 def read_lines_csv(path: str | os.PathLike) -> dict[str, np.ndarray]:

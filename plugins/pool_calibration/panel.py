@@ -174,7 +174,7 @@ class PoolCalibrationPanel(PluginPanel):
         split.addWidget(left)
         split.addWidget(right)
         split.setStretchFactor(1, 1)
-        split.setSizes([450, 950])
+        split.setSizes([475, 925])
         QVBoxLayout(self).addWidget(split)
 
     # ------------------------------------------------------------- parameters
@@ -317,14 +317,17 @@ class PoolCalibrationPanel(PluginPanel):
                               project.get_table("raw/pool/ins"),
                               project.get_json("raw/pool/setup"),
                               project.get_json("raw/pool/target"), params, progress, cancel)
-            return seg, segmentation_preview(seg, int(params.get("plan_points", 20000)))
+            return project, seg, segmentation_preview(seg, int(params.get("plan_points", 20000)))
 
         self._enable(False)
         self.start_work(task, self._on_segmented, label="Segmentation")
         self.worker.signals.sig_done.connect(self.refresh_buttons)
 
     def _on_segmented(self, out) -> None:
-        self.segmentation, self._preview = out
+        project, seg, preview = out
+        if project is not self.project:  # another project was opened meanwhile
+            return
+        self.segmentation, self._preview = seg, preview
         self._show_preview()
         faces = self._preview[0]
         self.sig_status.emit(
@@ -347,15 +350,16 @@ class PoolCalibrationPanel(PluginPanel):
 
         self._enable(False)
         self.start_work(task, self._on_run_finished, label="Pool calibration")
-        self.worker.signals.sig_done.connect(lambda: self._on_run_done(stored["result"]))
+        self.worker.signals.sig_done.connect(
+            lambda: self._on_run_done(project, stored["result"]))
 
     def _on_run_finished(self, result) -> None:
         extra = f"; {len(result.warnings)} warning(s)" if result.warnings else ""
         self.sig_status.emit(f"Pool calibration: {result.message}{extra}")
 
-    def _on_run_done(self, result) -> None:
+    def _on_run_done(self, project, result) -> None:
         # Also after a late cancel: once run() returned, the stored results are complete.
-        if result is not None:
+        if result is not None and project is self.project:
             self._preview = None
             self.refresh()
             self.sig_project_modified.emit()

@@ -63,3 +63,14 @@ def test_info_on_garbage_is_exit_2(tmp_path, capsys):
     garbage.write_bytes(b"\x00" * 100)
     assert main(["info", str(garbage)]) == 2
     assert "not a readable HDF5 file" in capsys.readouterr().err
+
+
+def test_import_attitude_csv_positive_down(tmp_path, capsys):
+    project = tmp_path / "p.h5"
+    attitude = tmp_path / "attitude.csv"
+    attitude.write_text("time,roll,pitch,heading,heave\n1,0,0,0,0.25\n2,0,0,0,-0.5\n")
+    args = ["import", str(project), "--attitude", str(attitude), "--heave-positive", "down"]
+    assert main(args) == 0
+    with Project.open(project) as p:
+        assert p.get_table("raw/attitude")["heave"].tolist() == [-0.25, 0.5]
+        assert p.attrs("raw/attitude")["heave_sign_in_file"] == "down"

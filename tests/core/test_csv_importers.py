@@ -80,3 +80,13 @@ def test_mbes_keeps_beams_of_one_ping_in_order(tmp_path):
     table = survey_csv.read_mbes_csv(path)
     np.testing.assert_array_equal(table["time"], [1, 1, 2, 2])
     np.testing.assert_array_equal(table["y"], [-1, 1, 1, -1])
+
+
+def test_heave_sign_is_explicit(tmp_path):
+    path = _write(tmp_path, "attitude.csv",
+                  "time,roll,pitch,heading,heave\n1,0,0,0,0.25\n2,0,0,0,-0.5\n")
+    np.testing.assert_array_equal(survey_csv.read_attitude_csv(path)["heave"], [0.25, -0.5])
+    down = survey_csv.read_attitude_csv(path, heave_positive="down")
+    np.testing.assert_array_equal(down["heave"], [-0.25, 0.5])
+    with pytest.raises(InputError, match="heave sign must be 'up' or 'down'"):
+        survey_csv.read_attitude_csv(path, heave_positive="sideways")

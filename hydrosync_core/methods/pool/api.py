@@ -30,7 +30,7 @@ from hydrosync_core.progress import check_cancel, report, sub_progress
 DEFAULT_PARAMS = {
     # Segmentation (m): design-guided crop, RANSAC and DBSCAN thresholds.
     "crop_tol_m": 0.3, "refine_tol_m": 0.1, "refine_ransac_m": 0.03,
-    "face_margin_m": 0.1, "water_margin_m": 0.1,
+    "face_margin_m": 0.1, "water_margin_m": 0.1, "refine_band_sigma": 4.0,
     "ransac_laser_m": 0.02, "ransac_mbes_m": 0.1, "dbscan_laser_m": 0.15,
     "dbscan_mbes_m": 0.5, "min_points": 30, "max_points_per_face": 20000,
     "laser_voxel_m": 0.02, "laser_voxel_above_points": 2_000_000, "max_gap_s": None,

@@ -67,14 +67,49 @@ def _ransac_dbscan(pts: np.ndarray, thresh: float, eps: float, min_points: int,
     return inliers[labels == biggest]
 
 
+def band_refit(pts: np.ndarray, start: np.ndarray, k_sigma: float, limit: float,
+               max_iter: int = 10) -> np.ndarray:
+    """Indices into *pts* (n, 3, m) within ``k_sigma`` robust σ of their own TLS plane.
+
+    Starts from the RANSAC/DBSCAN selection *start* and iterates fit -> select until the
+    selection is stable. Why: the RANSAC band is centred on a 3-point plane, so when that
+    plane is slightly tilted the band cuts the noise distribution asymmetrically at one
+    end of the face and the kept points lean towards the RANSAC plane (a bias of a few
+    hundredths of a degree on a 6 m wall, and a random one: open3d's RANSAC is
+    multi-threaded, hence not repeatable). A band of ±k·σ (σ = 1.4826·MAD of the
+    distances) around the points' own least-squares plane is symmetric about the fit, so
+    its fixed point does not depend on the RANSAC draw and truncates a negligible tail.
+    The band never exceeds *limit* m (the crop tolerance).
+    """
+    from hydrosync_core.methods.pool.planes import fit_plane
+
+    sel = np.asarray(start)
+    if len(sel) < 10:
+        return sel
+    for _ in range(max_iter):
+        plane = fit_plane(pts[sel])
+        dist = pts @ plane.normal - plane.d
+        d_sel = dist[sel]
+        # Robust σ of the current selection (MAD), then a symmetric band about the fit.
+        sigma = 1.4826 * float(np.median(np.abs(d_sel - np.median(d_sel))))
+        new = np.flatnonzero(np.abs(dist) < min(limit, k_sigma * max(sigma, 1e-6)))
+        if len(new) < 10 or np.array_equal(new, sel):
+            break
+        sel = new
+    return sel
+
+
 def segment_cloud(points: np.ndarray, faces: list[DesignFace], water_level: float,
                   side: str, *, tol: float = 0.3, margin: float = 0.1,
                   water_margin: float = 0.1, ransac_m: float = 0.05, dbscan_eps: float = 0.3,
                   min_points: int = 10, max_points: int = 20000, max_angle_deg: float = 15.0,
-                  seed: int = 0, progress=None, cancel=None) -> dict[str, FaceSegment]:
+                  band_sigma: float = 0.0, seed: int = 0, progress=None,
+                  cancel=None) -> dict[str, FaceSegment]:
     """Segment *points* (N, 3, target ENU, m) into *faces*.
 
-    *side* is ``"above"`` (laser) or ``"below"`` (multibeam). Returns a
+    *side* is ``"above"`` (laser) or ``"below"`` (multibeam). With ``band_sigma > 0`` the
+    RANSAC/DBSCAN selection is replaced by the symmetric band of :func:`band_refit`
+    (±band_sigma robust σ about the face's own TLS plane, within the crop). Returns a
     :class:`FaceSegment` per face name (possibly empty).
     """
     rng = np.random.default_rng(seed)
@@ -96,6 +131,8 @@ def segment_cloud(points: np.ndarray, faces: list[DesignFace], water_level: floa
             idx = np.sort(rng.choice(idx, max_points, replace=False))
         keep = _ransac_dbscan(pts[idx], ransac_m, dbscan_eps, min_points, face.normal,
                               max_angle_deg)
+        if band_sigma > 0 and len(keep) >= min_points:
+            keep = band_refit(pts[idx], keep, band_sigma, tol)
         sel = np.sort(cand[idx[keep]])
         out[face.name] = FaceSegment(face.name, sel, cropped, len(keep))
         report(progress, (k + 1) / len(faces), f"segmented {face.name} ({side} water)")

@@ -1,7 +1,7 @@
 """Speed of the real-log importers: the corpus files and a large synthetic tagged log.
 
 Prints seconds per file (and MB/s) for the GNSS and attitude importers on every log of
-``/work/shared/data/real-logs`` (when present) and on a synthetic 20 MB openrvdas-style
+``../shared/data/real-logs`` (when present) and on a synthetic 20 MB openrvdas-style
 log (ISO tags, GGA 10 Hz + PSXN,23 50 Hz), and for the point-cloud reader on the LAS/LAZ
 files. Run: ``.venv/bin/python benchmarks/bench_log_import.py``.
 """
@@ -13,11 +13,12 @@ import time
 from functools import reduce
 from pathlib import Path
 
+from hydrosync_core.datasets import real_logs_dir
 from hydrosync_core.errors import InputError
 from hydrosync_core.importers.log_import import import_attitude_log, import_gnss_log
 from hydrosync_core.importers.pointcloud import read_point_cloud
 
-REAL = Path("/work/shared/data/real-logs")
+REAL = real_logs_dir()
 
 
 def _nmea(body: str) -> str:

@@ -42,10 +42,10 @@ class InputError(HydroSyncError):
 
     def one_line(self) -> str:
         """Return ``file:line: field 'x': message`` with the parts that are known."""
-        where = self.file or "<input>"
+        where = self.file or ""
         if self.line is not None:
             where += f":{self.line}"
-        text = f"{where}: "
+        text = f"{where}: " if where else ""
         if self.field:
             text += f"field '{self.field}': "
         return (text + self.message).replace("\n", " ")

@@ -79,6 +79,33 @@ def cmd_info(args: argparse.Namespace) -> int:
     return 0
 
 
+def cmd_vessel(args: argparse.Namespace) -> int:
+    from hydrosync_core.project.vessel import set_sensor, vessel_config
+
+    project = _open_project(args.project)
+    for name, *xyz in args.set or []:
+        try:
+            offset = [float(v) for v in xyz]
+        except ValueError:
+            raise InputError(None, f"--set {name}: offsets must be numbers, got {xyz}") from None
+        set_sensor(project, name, offset)
+    if args.name is not None:
+        config = vessel_config(project)
+        config["name"] = args.name
+        project.put_json("vessel", config)
+    if project.dirty:
+        project.save()
+    config = vessel_config(project)
+    print(f"vessel: {config.get('name') or '(unnamed)'}  [{config.get('frame', '')}]")
+    for name, sensor in config.get("sensors", {}).items():
+        x, y, z = sensor["offset_m"]
+        angles = sensor.get("angles_deg")
+        extra = (f"  roll {angles.get('roll', 0):+.3f} pitch {angles.get('pitch', 0):+.3f} "
+                 f"yaw {angles.get('yaw', 0):+.3f} deg") if angles else ""
+        print(f"  {name:<12} x {x:+8.3f}  y {y:+8.3f}  z {z:+8.3f} m{extra}")
+    return 0
+
+
 def cmd_run(args: argparse.Namespace) -> int:
     from hydrosync_core.cli.terminal import TerminalProgress
     from hydrosync_core.plugins import plugin_specs
@@ -125,6 +152,18 @@ def register(sub: argparse._SubParsersAction) -> None:
     p = sub.add_parser("info", help="list a project's contents")
     p.add_argument("project", help="project file (.h5)")
     p.set_defaults(func=cmd_info)
+
+    p = sub.add_parser(
+        "vessel", help="show or edit the vessel offset sheet of a project",
+        description="Show the vessel offset sheet; --set changes one sensor's offset "
+        "(body frame: x forward, y starboard, z down; metres from the reference point). "
+        "A whole sheet is imported with 'hydrosync import P --vessel vessel.json'.",
+    )
+    p.add_argument("project", help="project file (.h5)")
+    p.add_argument("--set", nargs=4, action="append", metavar=("SENSOR", "X", "Y", "Z"),
+                   help="set a sensor's offset, m (repeatable); e.g. --set gnss -1.5 2 -6")
+    p.add_argument("--name", help="vessel name")
+    p.set_defaults(func=cmd_vessel)
 
     p = sub.add_parser("run", help="run one plugin headless on a project and save the results")
     p.add_argument("plugin", help="plugin id (e.g. latency, pool_calibration)")

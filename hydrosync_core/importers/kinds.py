@@ -11,7 +11,7 @@ from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
 
-from hydrosync_core.importers import pool_json, survey_csv
+from hydrosync_core.importers import pool_json, survey_csv, vessel_json
 from hydrosync_core.project import Project, schema
 
 
@@ -76,6 +76,8 @@ for _kind in (
                f"{schema.RAW_POOL}/setup", _json(pool_json.read_setup_json)),
     ImportKind("target", "pool target.json (target design)", f"{schema.RAW_POOL}/target",
                _json(pool_json.read_target_json)),
+    ImportKind("vessel", "vessel offset sheet vessel.json (sensor offsets, body FRD)",
+               schema.VESSEL, _json(vessel_json.read_vessel_json)),
 ):
     register_kind(_kind)
 

@@ -14,15 +14,12 @@ import json
 import numpy as np
 from PySide6.QtCore import Qt
 from PySide6.QtWidgets import (
-    QButtonGroup,
     QCheckBox,
     QGroupBox,
     QHBoxLayout,
     QLabel,
     QPushButton,
-    QRadioButton,
     QSplitter,
-    QStackedWidget,
     QTabWidget,
     QVBoxLayout,
     QWidget,
@@ -32,12 +29,7 @@ from hydrosync_core.methods.pool import api, project_run
 from hydrosync_core.methods.pool.project_run import RESULT
 from hydrosync_gui.plugin_panel import PluginPanel
 from hydrosync_gui.widgets.param_form import ParamField, ParamForm
-from plugins.pool_calibration.cloud_views import (
-    GLCloudView,
-    ProjectionView,
-    face_colour,
-    gl_available,
-)
+from plugins.pool_calibration.cloud_box import CloudBox
 from plugins.pool_calibration.preview import segmentation_preview
 from plugins.pool_calibration.views import (
     ConvergencePlot,
@@ -79,8 +71,6 @@ class PoolCalibrationPanel(PluginPanel):
         self.segmentation: api.Segmentation | None = None
         self._preview: tuple[dict, dict] | None = None  # (faces, clouds) of a Segment
         self._bound_project = None
-        self.names: list[str] = []
-        self.clouds: dict | None = None
 
         self.form = ParamForm(FIELDS)
         self.segment_button = QPushButton("Segment")
@@ -131,35 +121,11 @@ class PoolCalibrationPanel(PluginPanel):
         lay.addWidget(values_box)
         lay.addWidget(conv_box, 1)
 
-        self.before_radio = QRadioButton("Before (coarse setup)")
-        self.after_radio = QRadioButton("After (final values)")
-        self.before_radio.setChecked(True)
-        group = QButtonGroup(self)
-        group.addButton(self.before_radio)
-        group.addButton(self.after_radio)
-        self.after_radio.toggled.connect(self._on_after_toggled)
-        self.cloud_view = GLCloudView() if gl_available() else ProjectionView()
-        self.legend = QLabel()
-        self.legend.setWordWrap(True)
-        self.legend.setTextFormat(Qt.TextFormat.RichText)
-        toggle = QHBoxLayout()
-        toggle.addWidget(QLabel("Multibeam georeferenced:"))
-        toggle.addWidget(self.before_radio)
-        toggle.addWidget(self.after_radio)
-        toggle.addStretch(1)
-        clouds = QWidget()
-        cl = QVBoxLayout(clouds)
-        cl.setContentsMargins(0, 0, 0, 0)
-        cl.addLayout(toggle)
-        self.cloud_placeholder = QLabel("The laser and multibeam clouds are drawn here after "
-                                        "<b>Segment</b> or <b>Run all</b>.")
-        self.cloud_placeholder.setAlignment(Qt.AlignmentFlag.AlignCenter)
-        self.cloud_placeholder.setStyleSheet("QLabel { background: white; color: #777; }")
-        self.cloud_stack = QStackedWidget()
-        self.cloud_stack.addWidget(self.cloud_placeholder)
-        self.cloud_stack.addWidget(self.cloud_view)
-        cl.addWidget(self.cloud_stack, 1)
-        cl.addWidget(self.legend)
+        self.cloud_box = CloudBox()
+        # Shortcuts used by the tests and the shell's screenshots.
+        self.cloud_view = self.cloud_box.view
+        self.before_radio, self.after_radio = (self.cloud_box.before_radio,
+                                               self.cloud_box.after_radio)
 
         self.face_table = FaceTable()
         self.iteration_table = IterationTable()
@@ -167,7 +133,7 @@ class PoolCalibrationPanel(PluginPanel):
         self.tabs.addTab(self.face_table, "Faces")
         self.tabs.addTab(self.iteration_table, "Iterations")
         right = QSplitter(Qt.Orientation.Vertical)
-        right.addWidget(clouds)
+        right.addWidget(self.cloud_box)
         right.addWidget(self.tabs)
         right.setSizes([520, 300])
         split = QSplitter(Qt.Orientation.Horizontal)
@@ -221,32 +187,11 @@ class PoolCalibrationPanel(PluginPanel):
         self.face_table.clear()
         self.iteration_table.clear()
         self.convergence.show_table(None, None, self.log_check.isChecked())
-        self.cloud_view.clear()
-        self.cloud_stack.setCurrentWidget(self.cloud_placeholder)
-        self.names, self.clouds = [], None
-        self.legend.setText("")
-        self.after_radio.setEnabled(False)
+        self.cloud_box.clear()
 
     def _set_warnings(self, warnings: list[str]) -> None:
         self.warnings.setText("<br>".join(f"⚠ {w}" for w in warnings))
         self.warnings.setVisible(bool(warnings))
-
-    def _draw_clouds(self, names: list[str], clouds: dict) -> None:
-        self.names, self.clouds = names, clouds
-        has_after = clouds.get("mbes_after_xyz") is not None
-        self.after_radio.setEnabled(has_after)
-        if not has_after:
-            self.before_radio.setChecked(True)
-        self.cloud_view.after = self.after_radio.isChecked()
-        self.cloud_view.draw(names, clouds)
-        self.cloud_stack.setCurrentWidget(self.cloud_view)
-        shown = np.union1d(clouds["laser_face"], clouds["mbes_face"])
-        swatches = [f"<span style='color:{face_colour(int(k))}'>■</span>&nbsp;{names[int(k)]}"
-                    for k in shown if k >= 0]
-        self.legend.setText(
-            "&nbsp;&nbsp; ".join(swatches) + "<br><span style='color:#555'>faint discs: "
-            "laser (reference) · triangles: multibeam · grey dots: soundings on no face"
-            "</span>")
 
     def _show_preview(self) -> None:
         faces, clouds = self._preview
@@ -263,7 +208,7 @@ class PoolCalibrationPanel(PluginPanel):
         self.face_table.fill(faces)
         self.iteration_table.clear()
         self.convergence.show_table(None, None, self.log_check.isChecked())
-        self._draw_clouds([str(n) for n in faces["face"]], clouds)
+        self.cloud_box.draw([str(n) for n in faces["face"]], clouds)
         self.tabs.setCurrentWidget(self.face_table)
 
     def _show_results(self) -> None:
@@ -287,10 +232,9 @@ class PoolCalibrationPanel(PluginPanel):
         self._draw_convergence()
         if all(project.exists(f"{RESULT}/plan/{k}") for k in PLAN):
             clouds = {k: project.get(f"{RESULT}/plan/{k}") for k in PLAN}
-            self._draw_clouds([str(n) for n in faces["face"]], clouds)
+            self.cloud_box.draw([str(n) for n in faces["face"]], clouds)
         else:
-            self.cloud_view.clear()
-            self.cloud_stack.setCurrentWidget(self.cloud_placeholder)
+            self.cloud_box.clear()
 
     def _draw_convergence(self) -> None:
         project = self.project
@@ -303,9 +247,6 @@ class PoolCalibrationPanel(PluginPanel):
                                     self.log_check.isChecked())
 
     # ------------------------------------------------------------------ slots
-    def _on_after_toggled(self, after: bool) -> None:
-        self.cloud_view.set_after(after)
-
     def _on_segment(self) -> None:
         if self.project is None:
             return

@@ -82,13 +82,16 @@ class FaceTable(ColumnsTable):
         self.verticalHeader().setVisible(False)
 
     def fill(self, faces: dict) -> None:
-        """Show a faces table (stored layout; missing columns are left out)."""
+        """Show a faces table (stored layout; missing columns are shown blank)."""
         cols, units, formats = {}, {}, {}
+        n = len(faces["face"])
         for key, (header, unit, scale, fmt) in FACE_COLUMNS.items():
             if key in faces:
                 values = np.asarray(faces[key])
                 cols[header] = values * scale if scale != 1 else values
-                units[header], formats[header] = unit, fmt
+            else:  # e.g. after Segment alone: same columns, blank until a run
+                cols[header] = np.full(n, "") if key == "used_for" else np.full(n, np.nan)
+            units[header], formats[header] = unit, fmt
         self.set_columns(cols, units, {k: v for k, v in formats.items() if v})
 
 
@@ -197,9 +200,10 @@ class ConvergencePlot(pg.PlotWidget):
         for line in self.round_lines:
             self.removeItem(line)
         self.round_lines = []
-        self.setLogMode(y=log)
+        empty = table is None or len(table.get("iteration", ())) == 0
+        self.setLogMode(y=log and not empty)  # an empty log axis shows odd 2…9 ticks
         self.setLabel("left", "|angle correction|" if log else "angle correction", units="°")
-        if table is None or len(table.get("iteration", ())) == 0:
+        if empty:
             for item in self.curves.values():
                 item.setData([], [])
             self.tolerance.setData([], [])

@@ -7,8 +7,11 @@ from pathlib import Path
 
 import pytest
 
-REAL = Path("/work/shared/data/real-logs")
-needs_real = pytest.mark.skipif(
+from hydrosync_core.datasets import real_logs_dir
+
+REAL = real_logs_dir()
+REAL_LOGS = REAL
+needs_real = needs_real_logs = pytest.mark.skipif(
     not (REAL / "README.md").exists(), reason=f"real-log corpus {REAL} not present"
 )
 

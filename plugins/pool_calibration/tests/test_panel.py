@@ -106,7 +106,7 @@ def test_empty_project_needs_data(panel):
     assert panel.face_table.model().rowCount() == 0
     assert panel.values.value(0, 0) == "–"
     assert not panel.warnings.isVisible()
-    assert panel.cloud_stack.currentWidget() is panel.cloud_placeholder
+    assert panel.cloud_box.stack.currentWidget() is panel.cloud_box.placeholder
 
 
 def test_demo_results_shown(panel, demo, qtbot):
@@ -190,7 +190,7 @@ def test_demo_results_shown(panel, demo, qtbot):
         plan["laser_xyz"])
     assert set(view.mbes_items) == set(np.unique(plan["mbes_face"]).tolist())
     for name in (str(faces["face"][k]) for k in view.laser_items):
-        assert name in panel.legend.text()
+        assert name in panel.cloud_box.legend.text()
 
     # Before/after toggle swaps the multibeam arrays (and only those).
     def mbes_xy(k):
@@ -249,7 +249,7 @@ def test_segment_then_run_in_worker(panel, demo, qtbot, tmp_path):
     wall = list(faces["face"]).index("wall")
     assert int(model.text(wall, 3)) == len(panel.segmentation.laser_points["wall"]) > 1000
     assert int(model.text(wall, 4)) == len(panel.segmentation.mbes_faces["wall"]) > 1000
-    assert panel.cloud_stack.currentWidget() is panel.cloud_view
+    assert panel.cloud_box.stack.currentWidget() is panel.cloud_view
     assert any(s.startswith("Segmentation: wall") for s in statuses)
     assert not panel.after_radio.isEnabled()  # no corrected soundings yet
     assert panel.run_button.isEnabled()

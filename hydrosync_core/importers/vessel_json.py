@@ -1,0 +1,55 @@
+"""Reader of a vessel offset sheet (``vessel.json``) for ``/vessel``.
+
+Format (body frame FRD: x forward, y starboard, z down; metres; degrees)::
+
+    {"name": "MV Example",
+     "sensors": {"motion": {"offset_m": [0, 0, 0]},
+                 "gnss": {"offset_m": [-1.5, 2.0, -6.0]},
+                 "multibeam": {"offset_m": [1.2, 2.45, 1.8],
+                               "angles_deg": {"roll": -35, "pitch": 0, "yaw": 0}}}}
+"""
+
+from __future__ import annotations
+
+import math
+import os
+from pathlib import Path
+
+from hydrosync_core.errors import InputError
+from hydrosync_core.importers.pool_json import read_json
+from hydrosync_core.project.model import default_vessel
+
+
+def _finite(path: Path, value, field: str) -> float:
+    if isinstance(value, bool) or not isinstance(value, int | float) or not math.isfinite(value):
+        raise InputError(str(path), f"expected a finite number, got {value!r}", field=field)
+    return float(value)
+
+
+def read_vessel_json(path: str | os.PathLike) -> dict:
+    """Validate and return the vessel sheet (offsets in m, body FRD; angles in deg)."""
+    path = Path(path)
+    document = read_json(path)
+    sensors = document.get("sensors")
+    if not isinstance(sensors, dict) or not sensors:
+        raise InputError(str(path), "expected an object of sensors", field="sensors")
+    sheet = default_vessel()
+    sheet["name"] = str(document.get("name", ""))
+    for name, sensor in sensors.items():
+        where = f"sensors.{name}"
+        offset = sensor.get("offset_m") if isinstance(sensor, dict) else None
+        if not isinstance(offset, list) or len(offset) != 3:
+            raise InputError(str(path), "offset_m must be [x, y, z]", field=f"{where}.offset_m")
+        entry: dict = {"offset_m": [_finite(path, v, f"{where}.offset_m") for v in offset]}
+        angles = sensor.get("angles_deg")
+        if angles is not None:
+            if not isinstance(angles, dict) or set(angles) - {"roll", "pitch", "yaw"}:
+                raise InputError(
+                    str(path), "angles_deg takes roll, pitch, yaw", field=f"{where}.angles_deg"
+                )
+            entry["angles_deg"] = {
+                k: _finite(path, v, f"{where}.angles_deg.{k}") for k, v in angles.items()
+            }
+        entry.update({k: v for k, v in sensor.items() if k not in ("offset_m", "angles_deg")})
+        sheet["sensors"][str(name)] = entry
+    return sheet

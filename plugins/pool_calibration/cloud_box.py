@@ -70,9 +70,13 @@ class CloudBox(QWidget):
     def draw(self, names: list[str], clouds: dict) -> None:
         """Show *clouds* (plan-array layout, see :mod:`.cloud_views`) for faces *names*."""
         has_after = clouds.get("mbes_after_xyz") is not None
+        newly_available = has_after and not self.after_radio.isEnabled()
         self.after_radio.setEnabled(has_after)
         if not has_after:
             self.before_radio.setChecked(True)
+        elif newly_available:
+            # Fresh results: show the corrected soundings first; the user toggles back.
+            self.after_radio.setChecked(True)
         self.view.after = self.after_radio.isChecked()
         self.view.draw(names, clouds)
         self.stack.setCurrentWidget(self.view)

@@ -44,6 +44,7 @@ class GeorefContext:
     rot : (P, 3, 3) ``C · R_b`` at each kept ping time (body FRD -> ENU).
     keep : (M,) mask over the input soundings: True where georeferenced.
     dropped_pings, dropped_soundings : counts of pings/soundings in INS gaps or outside.
+    ping_time : (P,) time (s) of each kept ping (None when built by hand).
     """
 
     x_m: np.ndarray
@@ -53,6 +54,7 @@ class GeorefContext:
     keep: np.ndarray
     dropped_pings: int
     dropped_soundings: int
+    ping_time: np.ndarray | None = None
 
     @property
     def mean_rot(self) -> np.ndarray:
@@ -112,6 +114,7 @@ def prepare(mbes: dict, ins: dict, max_gap_s: float | None = None,
     return GeorefContext(
         x_m=x_m, ping=new_index[ping_of[keep]], origin=origin, rot=rot, keep=keep,
         dropped_pings=int((~ok_ping).sum()), dropped_soundings=int((~keep).sum()),
+        ping_time=tp,
     )
 
 

@@ -199,6 +199,9 @@ def test_demo_results_shown(panel, demo, qtbot):
 
     k = int(np.flatnonzero(faces["points_mbes"])[0])
     rows = plan["mbes_face"] == k
+    assert panel.after_radio.isChecked()  # fresh results open on the corrected soundings
+    np.testing.assert_array_equal(mbes_xy(k), plan["mbes_after_xyz"][rows, :2])
+    panel.before_radio.setChecked(True)
     np.testing.assert_array_equal(mbes_xy(k), plan["mbes_before_xyz"][rows, :2])
     laser_before = np.column_stack(view.laser_items[k][0].getData())
     panel.after_radio.setChecked(True)

@@ -37,6 +37,9 @@ DEFAULT_PARAMS = {
     # Seed iteration and joint adjustment.
     "tol_deg": 1e-4, "max_iter": 30, "max_rounds": 6, "lever_tol_m": 1e-4,
     "huber_m": 0.03, "final": "joint",
+    # Ping-time block (s) of the cluster-robust check that inflates the joint σ when the
+    # residuals are correlated between neighbouring soundings (joint.py).
+    "sigma_block_s": 1.0,
     # Warning limits of the joint solution.
     "max_sigma_deg": 0.02, "max_sigma_m": 0.005, "max_corr": 0.9,
 }

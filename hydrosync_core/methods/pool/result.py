@@ -68,6 +68,9 @@ class JointSolution:
     converged: bool
     undetermined: list
     residual_rms_m: dict
+    #: Variance factor (>= 1) applied to each parameter's formal variance by the ping-block
+    #: sandwich check (angles: about the body axes), see ``joint.py``.
+    variance_factor: dict = field(default_factory=dict)
 
 
 @dataclass(frozen=True)

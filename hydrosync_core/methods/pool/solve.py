@@ -151,7 +151,8 @@ def solve(seg, params=None, progress=None, cancel=None) -> PoolResult:
         # and pitch motion: fixed rather than reported as a weak, possibly wrong number.
         has_h = any(seg.roles[n].role == "horizontal" for n in obs)
         fit = adjust(seg.ctx, obs, r_m, lever, huber_m=p["huber_m"], cancel=cancel,
-                     fix=() if has_h else ("lever_z",))
+                     fix=() if has_h else ("lever_z",),
+                     block_s=p.get("sigma_block_s", 1.0))
     except (ValueError, np.linalg.LinAlgError) as exc:
         warnings.append(f"joint adjustment failed ({exc}); the seed solution is reported")
         fit = None
@@ -163,7 +164,8 @@ def solve(seg, params=None, progress=None, cancel=None) -> PoolResult:
             _angles(fit.r_m), _lever(fit.lever),
             dict(zip(("roll", "pitch", "yaw"), map(float, np.degrees(sig[:3])), strict=True)),
             _lever(sig[3:]), list(NAMES), corr.tolist(), fit.sigma0_m, fit.n_obs,
-            fit.iterations, fit.converged, list(fit.fixed), fit.residual_rms)
+            fit.iterations, fit.converged, list(fit.fixed), fit.residual_rms,
+            dict(zip(NAMES, map(float, fit.variance_factor), strict=True)))
         if p["final"] == "joint" and fit.converged:
             r_final, l_final, method = fit.r_m, fit.lever, "joint"
     report(progress, 0.9, "face table")

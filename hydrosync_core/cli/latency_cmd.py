@@ -72,7 +72,18 @@ def _run_csv(args: argparse.Namespace) -> int:
     if not result.converged:
         raise InputError(args.lines, f"{result.message}; " + "; ".join(result.warnings[-2:]))
     write_json_atomic(args.json, result.to_dict())
+    if args.sync_csv is not None:
+        from hydrosync_core.methods.latency import synchronise
+
+        _write_sync(args.sync_csv, synchronise(gnss, attitude, args.lever_arm, result.latency_s))
     return 0
+
+
+def _write_sync(path: Path, columns: dict) -> None:
+    from hydrosync_core.exporters import write_csv_table
+
+    rows = write_csv_table(path, columns)
+    print(f"synchronised data set: {rows} epochs written to {path}")
 
 
 def _run_project(args: argparse.Namespace) -> int:
@@ -96,6 +107,8 @@ def _run_project(args: argparse.Namespace) -> int:
     _print_table(result)
     if args.json is not None and result.converged:
         write_json_atomic(args.json, result.to_dict())
+    if args.sync_csv is not None and project.exists("results/latency/synchronised"):
+        _write_sync(args.sync_csv, project.get_table("results/latency/synchronised"))
     project.save()
     print(f"results stored in {args.project} under /results/latency")
     if not result.converged:
@@ -133,4 +146,7 @@ def register(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--weighting", choices=("r", "inverse_variance"), default="r",
                    help="weights of the line mean (default r)")
     p.add_argument("--json", type=Path, help="result.json to write")
+    p.add_argument("--sync-csv", type=Path, metavar="CSV",
+                   help="also write the synchronised data set: GNSS epochs at corrected time "
+                   "(tag - latency) with height, roll, pitch, heading, heave, total_heave")
     p.set_defaults(func=cmd_latency)

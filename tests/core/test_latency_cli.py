@@ -101,3 +101,25 @@ def test_cli_project_without_data(tmp_path, capsys):
     Project.new("empty").save(path)
     assert main(["latency", str(path)]) == 2
     assert "raw/gnss" in capsys.readouterr().err
+
+
+def test_sync_csv_export(tmp_path):
+    """--sync-csv writes GNSS epochs at corrected times with the interpolated attitude."""
+    import numpy as np
+
+    day = simulate_day(DayConfig(n_lines=3, gnss_hz=2.0), seed=5)
+    write_day_csv(day, tmp_path)
+    out = tmp_path / "sync.csv"
+    code = main(["latency", "--gnss", str(tmp_path / "gnss.csv"), "--attitude",
+                 str(tmp_path / "attitude.csv"), "--lines", str(tmp_path / "lines.csv"),
+                 "--lever-arm", "-1.5", "2", "-6", "--json", str(tmp_path / "r.json"),
+                 "--sync-csv", str(out)])
+    assert code == 0
+    table = np.loadtxt(out, delimiter=",", skiprows=1)
+    header = out.read_text().splitlines()[0].split(",")
+    assert header == ["time", "height", "roll", "pitch", "heading", "heave", "total_heave"]
+    gnss = np.loadtxt(tmp_path / "gnss.csv", delimiter=",", skiprows=1)
+    latency = json.loads((tmp_path / "r.json").read_text())["latency_s"]
+    # Corrected time = tag - latency, heights unchanged.
+    np.testing.assert_allclose(table[:, 0] + latency, gnss[: len(table), 0], atol=2e-6)
+    np.testing.assert_allclose(table[:, 1], gnss[: len(table), 1], atol=1e-6)

@@ -19,6 +19,7 @@ from pathlib import Path
 from PySide6.QtCore import QSettings, Qt, QTimer, Slot
 from PySide6.QtGui import QAction, QCloseEvent, QKeySequence
 from PySide6.QtWidgets import (
+    QDialog,
     QDockWidget,
     QMainWindow,
     QMessageBox,
@@ -37,6 +38,7 @@ from hydrosync_gui.project_browser import ProjectBrowser
 from hydrosync_gui.recent_files import RecentFiles
 from hydrosync_gui.resources import icon
 from hydrosync_gui.task_status import TaskStatus
+from hydrosync_gui.vessel_dialog import VesselDialog
 from hydrosync_gui.workers import Worker, start
 
 log = logging.getLogger("hydrosync_gui.main_window")
@@ -137,6 +139,10 @@ class MainWindow(QMainWindow, FileActions):
                                        "Write the PDF report of the project")
         m.addSeparator()
         self._action(m, "&Quit", self.close, key.Quit, "Quit HydroSync")
+        edit = self.menuBar().addMenu("&Edit")
+        self.act_vessel = self._action(edit, "&Vessel offsets…", self.edit_vessel,
+                                       tip="Sensor positions and mounting angles of the vessel")
+        edit.aboutToShow.connect(self._update_edit_actions)
         view = self.menuBar().addMenu("&View")
         view.addAction(self.browser_dock.toggleViewAction())
         view.addAction(self.log_dock.toggleViewAction())
@@ -168,6 +174,7 @@ class MainWindow(QMainWindow, FileActions):
         if old is not None and old is not project:
             old.close()
         self.update_title()
+        self._update_edit_actions()
 
     def update_title(self) -> None:
         name = self.project.name if self.project is not None else ""
@@ -179,6 +186,26 @@ class MainWindow(QMainWindow, FileActions):
         self.browser.refresh()
         self.update_title()
         self.setWindowModified(True)
+
+    # ----------------------------------------------------------------- edit
+    def _update_edit_actions(self) -> None:
+        self.act_vessel.setEnabled(self.project is not None and not self.busy)
+
+    @Slot()
+    def edit_vessel(self) -> VesselDialog | None:
+        """Edit → Vessel offsets…: the modal sheet editor; on OK refresh browser and panels."""
+        if self.project is None or not self.ensure_idle():
+            return None
+        dialog = VesselDialog(self.project, self.last_dir(), self)
+        try:
+            if dialog.exec() == QDialog.DialogCode.Accepted and dialog.changed:
+                # The path a panel's sig_project_modified takes, then every panel redraws.
+                self._on_project_modified(None)
+                self.host.refresh()
+                self.statusBar().showMessage("Vessel offsets updated", 5000)
+        finally:
+            dialog.deleteLater()
+        return dialog
 
     # ----------------------------------------------------------------- tabs
     def current_panel(self) -> PluginPanel | None:
@@ -228,6 +255,7 @@ class MainWindow(QMainWindow, FileActions):
     def _lock(self, locked: bool) -> None:
         for widget in (self.tabs, self.browser):
             widget.setEnabled(not locked)
+        self._update_edit_actions()
 
     @Slot(object, str)
     def _on_panel_status(self, panel: PluginPanel, message: str) -> None:
@@ -248,6 +276,7 @@ class MainWindow(QMainWindow, FileActions):
             self.task_status.begin(panel, name, panel.cancel_work)
         elif not panel.busy:  # a replaced task's late "done" must not hide its successor
             self.task_status.end(panel)
+        self._update_edit_actions()
 
     def wait_idle(self, timeout: float = 30.0) -> bool:
         """Block until every panel and shell task has ended (shutdown and tests)."""

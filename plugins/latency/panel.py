@@ -23,6 +23,7 @@ from PySide6.QtWidgets import (
 from hydrosync_core.errors import InputError
 from hydrosync_core.methods.latency.api import line_series
 from hydrosync_core.methods.latency.project_run import RESULT, project_lever_arm, recombine, run
+from hydrosync_core.project.vessel import lever_arm as vessel_lever_arm
 from hydrosync_gui.plugin_panel import PluginPanel
 from hydrosync_gui.widgets.param_form import ParamField, ParamForm
 from plugins.latency.views import CorrelationPlot, LineTable, SeriesPlot
@@ -89,6 +90,7 @@ class LatencyPanel(PluginPanel):
         QVBoxLayout(self).addWidget(split)
         self._table: dict | None = None
         self._bound_project = None
+        self._sheet_arm: tuple | None = None  # vessel sheet gnss − motion when last seen
 
     # ------------------------------------------------------------- parameters
     def params(self) -> dict:
@@ -110,6 +112,22 @@ class LatencyPanel(PluginPanel):
             arm = np.zeros(3)
         values |= {"lever_x": arm[0], "lever_y": arm[1], "lever_z": arm[2]}
         self.form.set_values(values)
+        self._sheet_arm = self._vessel_arm()
+
+    def _vessel_arm(self) -> tuple | None:
+        """The vessel sheet's gnss − motion lever arm (body FRD, m), None if not there."""
+        try:
+            return tuple(float(v) for v in vessel_lever_arm(self.project, "gnss", "motion"))
+        except InputError:
+            return None
+
+    def _follow_vessel_sheet(self) -> None:
+        """Edit → Vessel offsets changed the sheet: show its lever arm for the next run."""
+        arm = self._vessel_arm()
+        if arm != self._sheet_arm:
+            self._sheet_arm = arm
+            if arm is not None:
+                self.form.set_values({"lever_x": arm[0], "lever_y": arm[1], "lever_z": arm[2]})
 
     # ---------------------------------------------------------------- drawing
     def refresh(self) -> None:
@@ -117,6 +135,8 @@ class LatencyPanel(PluginPanel):
         if project is not None and project is not self._bound_project:
             self._bound_project = project
             self._load_params()
+        elif project is not None:
+            self._follow_vessel_sheet()
         missing = self.spec.missing_inputs(project) if project is not None else ["a project"]
         self.run_button.setEnabled(not missing and not self.busy)
         if missing:

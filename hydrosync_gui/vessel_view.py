@@ -1,0 +1,70 @@
+"""Schematic of the vessel offset sheet: plan view and side view of the sensor positions.
+
+Body frame FRD (x forward, y starboard, z down, metres). The plan view puts x forward up
+the screen and y starboard to the right, as on a drawing of the deck seen from above;
+the side view is seen from starboard with the bow to the right and z down drawn down.
+The reference point (origin) is a cross in both views.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pyqtgraph as pg
+from PySide6.QtWidgets import QHBoxLayout, QWidget
+
+_PEN = pg.mkPen("#1f5fa8")
+_BRUSH = pg.mkBrush("#1f5fa8")
+
+
+class _View(pg.PlotWidget):
+    """One projection: points with their sensor names and the reference-point cross."""
+
+    def __init__(self, title: str, x_label: str, y_label: str, invert_y: bool) -> None:
+        super().__init__(background="w")
+        self.setTitle(title, color="#333", size="9pt")
+        self.setLabel("bottom", x_label)
+        self.setLabel("left", y_label)
+        self.showGrid(x=True, y=True, alpha=0.25)
+        self.setAspectLocked(True)  # true shape: a metre is a metre both ways
+        self.getPlotItem().invertY(invert_y)
+        self.setMenuEnabled(False)
+        self.setMinimumSize(220, 200)
+
+    def show_points(self, names: list[str], h: np.ndarray, v: np.ndarray) -> None:
+        """Draw sensors at horizontal *h* and vertical *v* (plot units, m)."""
+        self.clear()
+        self.addItem(pg.ScatterPlotItem([0.0], [0.0], symbol="+", size=16,
+                                        pen=pg.mkPen("#a33", width=2), brush=None))
+        if len(names):
+            self.addItem(pg.ScatterPlotItem(h, v, size=9, pen=_PEN, brush=_BRUSH))
+        for name, x, y in zip(names, h, v, strict=True):
+            label = pg.TextItem(name, color="#222", anchor=(0, 1))
+            label.setPos(float(x), float(y))
+            self.addItem(label)
+        # Half a metre of margin at least, so one sensor at the origin is still readable.
+        span_h = np.r_[h, 0.0]
+        span_v = np.r_[v, 0.0]
+        pad = max(0.5, 0.15 * max(np.ptp(span_h), np.ptp(span_v)))
+        # Names are written right of their point: more room on that side.
+        self.setXRange(span_h.min() - pad, span_h.max() + 3 * pad, padding=0)
+        self.setYRange(span_v.min() - pad, span_v.max() + pad, padding=0)
+
+
+class VesselSchematic(QWidget):
+    """Plan view (x forward up, y starboard right) and side view (x bow right, z down)."""
+
+    def __init__(self, parent: QWidget | None = None) -> None:
+        super().__init__(parent)
+        self.plan = _View("Plan (from above)", "y starboard [m]", "x forward [m]", False)
+        self.side = _View("Side (from starboard)", "x forward [m]", "z down [m]", True)
+        lay = QHBoxLayout(self)
+        lay.setContentsMargins(0, 0, 0, 0)
+        lay.addWidget(self.plan)
+        lay.addWidget(self.side)
+
+    def show_sensors(self, sensors: dict[str, np.ndarray]) -> None:
+        """Draw *sensors*: name -> offset [x, y, z] (body FRD, m)."""
+        names = list(sensors)
+        xyz = np.array([sensors[n] for n in names], dtype=float).reshape(-1, 3)
+        self.plan.show_points(names, xyz[:, 1], xyz[:, 0])
+        self.side.show_points(names, xyz[:, 0], xyz[:, 2])

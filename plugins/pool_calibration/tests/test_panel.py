@@ -306,7 +306,7 @@ def test_gl_view_toggle(panel, demo):
     view = panel.cloud_view
     assert isinstance(view, GLCloudView)
     np.testing.assert_allclose(view.mbes_item.pos,
-                               project.get(f"{RESULT}/plan/mbes_before_xyz"), atol=1e-4)
-    panel.after_radio.setChecked(True)
-    np.testing.assert_allclose(view.mbes_item.pos,
                                project.get(f"{RESULT}/plan/mbes_after_xyz"), atol=1e-4)
+    panel.before_radio.setChecked(True)
+    np.testing.assert_allclose(view.mbes_item.pos,
+                               project.get(f"{RESULT}/plan/mbes_before_xyz"), atol=1e-4)

@@ -11,7 +11,9 @@ Multibeam: beams in the sensor y-z plane, angle ``a`` from the sensor z axis,
 surface (seen from below: a few multipath returns) and the pool floor, with range and
 angle noise, plus self-returns and strays. Laser: the trusted, georeferenced scanner,
 sampled uniformly on the above-water parts of the faces facing the vessel (occlusion
-ignored), with noise, water-surface returns, vessel self-returns and strays.
+ignored), with noise, water-surface returns, vessel self-returns and strays. INS: exact
+by default; ``ins_attitude_noise_deg`` > 0 adds first-order Gauss-Markov errors
+(correlation time ``ins_noise_tau_s``) to the logged roll, pitch and heading only.
 """
 
 from __future__ import annotations
@@ -45,6 +47,8 @@ class PoolPassConfig:
     ins_rate_hz: float = 50.0
     ins_height_m: float = 0.5
     ins_dropout_s: float = 0.0
+    ins_attitude_noise_deg: float = 0.0
+    ins_noise_tau_s: float = 1.0
     ping_rate_hz: float = 15.0
     beams: int = 256
     swath_deg: float = 130.0
@@ -64,6 +68,20 @@ def _attitude_deg(t: np.ndarray, phase: float) -> np.ndarray:
     pitch = 0.7 * np.sin(2 * np.pi * t / 4.5 + 2 * phase) + 0.2 * np.sin(2 * np.pi * t / 1.7)
     heading = 1.0 * np.sin(2 * np.pi * t / 20.0 + phase)
     return np.column_stack([roll, pitch, heading])
+
+
+def _gauss_markov(n: int, cfg: PoolPassConfig, rng: np.random.Generator) -> np.ndarray:
+    """(n, 3) first-order Gauss-Markov attitude errors (deg), σ and τ from *cfg*.
+
+    ``e_k+1 = φ e_k + √(1-φ²) σ w_k`` with ``φ = exp(-Δt/τ)`` at the INS rate (across the
+    gaps between passes too: a single error process).
+    """
+    from scipy.signal import lfilter
+
+    phi = np.exp(-1.0 / (cfg.ins_rate_hz * cfg.ins_noise_tau_s))
+    w = rng.normal(0.0, cfg.ins_attitude_noise_deg * np.sqrt(1 - phi**2), (n, 3))
+    w[0] = rng.normal(0.0, cfg.ins_attitude_noise_deg, 3)   # stationary start
+    return lfilter([1.0], [1.0, -phi], w, axis=0)
 
 
 def _trajectory(t: np.ndarray, t0: float, rng_x: float, cfg: PoolPassConfig,
@@ -224,6 +242,10 @@ def simulate_pool_pass(config: PoolPassConfig | None = None, seed: int = 0) -> d
     ping_t, ping_p, ping_a = (np.concatenate(v) for v in (ping_t, ping_p, ping_a))
     mbes = _mbes(faces, water, ping_t, ping_p, ping_a, cfg, rng)
     lidar = _laser(faces, water, ins_p, cfg, rng)
+    if cfg.ins_attitude_noise_deg > 0:
+        # Logged attitude only (the soundings were cast with the true one): errors shared
+        # by all soundings of a ping and by neighbouring pings, as a real INS has.
+        ins_a = ins_a + _gauss_markov(len(ins_t), cfg, rng)
     ins = {"time": ins_t, "e": ins_p[:, 0], "n": ins_p[:, 1], "u": ins_p[:, 2],
            "roll": ins_a[:, 0], "pitch": ins_a[:, 1], "heading": ins_a[:, 2]}
     keys = ("roll", "pitch", "yaw")

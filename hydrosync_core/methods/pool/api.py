@@ -39,7 +39,11 @@ DEFAULT_PARAMS = {
     "huber_m": 0.03, "final": "joint",
     # Ping-time block (s) of the cluster-robust check that inflates the joint σ when the
     # residuals are correlated between neighbouring soundings (joint.py).
-    "sigma_block_s": 1.0,
+    "sigma_block_s": 2.0,
+    # INS attitude accuracy (1-σ, deg; Gauss-Markov correlation time, s), propagated into
+    # the joint σ (joint.py, ins_cov.py); 0 = treat the INS as exact.
+    "ins_sigma_roll_deg": 0.0, "ins_sigma_pitch_deg": 0.0, "ins_sigma_heading_deg": 0.0,
+    "ins_tau_s": 1.0,
     # Warning limits of the joint solution.
     "max_sigma_deg": 0.02, "max_sigma_m": 0.005, "max_corr": 0.9,
 }

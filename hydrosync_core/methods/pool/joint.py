@@ -23,21 +23,36 @@ Honest σ under correlated errors. ``σ0² (JᵀWJ)⁻¹`` assumes independent s
 errors are shared by the soundings of one ping and by neighbouring pings (INS attitude
 and position noise, sound speed, refraction), and then it is optimistic. So the formal
 covariance is checked against the block (cluster-robust) sandwich estimator
-``N⁻¹ (B/(B-1) Σ_b g_b g_bᵀ) N⁻¹`` with ``N = JᵀWJ`` and ``g_b = Σ_{i∈b} w_i r_i J_i`` the
-score summed over a block ``b`` of consecutive pings (``block_s`` seconds of ping time;
-one ping when 0). For independent soundings both agree; for errors correlated within a
-block the sandwich grows with the block's effective sample size. Each free parameter's
-variance is multiplied by its factor ``F_k = max(1, [sandwich]_kk / [σ0² N⁻¹]_kk)``
-(``JointFit.variance_factor``; rows and columns scaled by √F_k so correlations keep the
-formal structure), never reduced. The reference-plane term is added after.
+``N⁻¹ (B/(B-1) Σ_b g_b g_bᵀ) N⁻¹`` with ``N = JᵀWJ`` and ``g_b = Σ_{i∈b} w_i r̃_i J_i`` the
+score summed over a block ``b`` of consecutive pings (``block_s`` seconds of ping time,
+default 2 s; one ping when 0). r̃ are the residuals less, per face, their weighted fit by
+a plane error (two tilts and an offset): that pattern is the reference plane's own error,
+already propagated by the reference-plane term, and would otherwise be counted twice
+(it alone gave factors of 3-5 on yaw and lever x on error-free INS data). For independent
+soundings sandwich and formal agree; for errors correlated within a block the sandwich
+grows with the block's effective sample size. Each free parameter's variance is
+multiplied by ``F_k = max(1, [sandwich]_kk / [σ̃0² N⁻¹]_kk)`` (``JointFit.variance_factor``,
+δ axes; rows and columns scaled by √F_k so correlations keep the formal structure), never
+reduced. The reference-plane term is added after.
 
-Monte-Carlo check (``benchmarks/bench_pool_accuracy.py``): with this the normalised
-errors (estimate - truth) / σ have an RMS of about 1 per parameter. A former bias of up
-to ±0.017° in roll (≈5σ, random from run to run) came from the segmentation, not from
-this model: the final face points were the inliers of a ±3 cm band around open3d's
-(multi-threaded, so not repeatable) RANSAC plane; a slightly tilted RANSAC plane cut the
-noise asymmetrically at one end of the wall. The final selection is now a symmetric
-±k·σ band around the face's own least-squares plane (``segment.band_refit``).
+Monte-Carlo (``benchmarks/bench_pool_accuracy.py``, 16-24 simulated passes, exact INS):
+the normalised errors (estimate - truth) / σ have an RMS of 0.65-1.1 per parameter (lever
+z is conservative: its σ0 is pooled over faces while the below-water top it rests on is
+less noisy). Limits: the check cannot see errors that the parameters absorb (e.g. the
+mean INS roll error over the pass is indistinguishable from boresight roll) nor
+correlation longer than a block; with simulated INS attitude errors (0.01°, Gauss-Markov
+τ = 1 s) the RMS of error/σ improves from up to 3.5 (formal) to 1.0-1.9 only, because
+yaw and lever x rest on the few seconds in which the oblique faces are in view (few
+informative blocks). Hence the INS attitude accuracy is an input (``ins_sigma_rad``,
+``ins_tau_s``; pool params ``ins_sigma_roll_deg`` ... ``ins_tau_s``), propagated a priori
+by :mod:`.ins_cov` and added to the covariance (zero by default: exact INS).
+
+A former bias of up to ±0.017° in roll (≈5σ, different on every run: the demo's −44.187°
+± 0.003° against −44.200°) came from the segmentation, not from this model: the final
+face points were the inliers of a ±3 cm band around open3d's (multi-threaded, hence not
+repeatable) RANSAC plane, and a slightly tilted RANSAC plane cut the noise asymmetrically
+at one end of the wall. The final selection is now a symmetric ±k·σ band around the
+face's own least-squares plane (``segment.band_refit``, ``refine_band_sigma`` = 4).
 """
 
 from __future__ import annotations
@@ -47,7 +62,9 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.spatial.transform import Rotation
 
+from hydrosync_core.methods.pool.block_sigma import block_factors
 from hydrosync_core.methods.pool.georef import GeorefContext, boresight_angles
+from hydrosync_core.methods.pool.ins_cov import ins_covariance
 from hydrosync_core.methods.pool.planes import PlaneFit
 from hydrosync_core.progress import check_cancel
 
@@ -109,34 +126,6 @@ def _reference_cov(ctx, obs, r_m, lever, free, weights, n_inv) -> np.ndarray:
     return out
 
 
-def block_factors(ctx: GeorefContext, obs: dict[str, tuple[np.ndarray, PlaneFit]],
-                  jac_f: np.ndarray, res: np.ndarray, weights: np.ndarray,
-                  n_inv: np.ndarray, sigma0_sq: float, block_s: float) -> np.ndarray:
-    """Variance factors F_k >= 1 (free parameters) of the ping-block sandwich estimator.
-
-    ``cov_c = N⁻¹ (B/(B-1) Σ_b g_b g_bᵀ) N⁻¹``, ``g_b = Σ_{i∈b} w_i r_i J_i`` summed over
-    blocks of *block_s* seconds of ping time (single pings when 0 or without ping times);
-    ``F_k = max(1, cov_c[k, k] / (σ0² N⁻¹)[k, k])``.
-    """
-    ping = np.concatenate([ctx.ping[idx] for idx, _ in obs.values()])
-    if ctx.ping_time is not None and block_s > 0:
-        t = ctx.ping_time[ping]
-        block = np.floor((t - t.min()) / block_s).astype(np.int64)
-    else:
-        block = ping
-    _, inv = np.unique(block, return_inverse=True)
-    n_blocks = int(inv.max()) + 1
-    if n_blocks < 2:
-        return np.ones(jac_f.shape[1])
-    # Score of each observation, summed per block (clusters of correlated soundings).
-    g = np.zeros((n_blocks, jac_f.shape[1]))
-    np.add.at(g, inv, jac_f * (weights * res)[:, None])
-    meat = n_blocks / (n_blocks - 1) * (g.T @ g)
-    cov_c = n_inv @ meat @ n_inv
-    formal = sigma0_sq * np.diag(n_inv)
-    return np.maximum(1.0, np.diag(cov_c) / np.maximum(formal, 1e-300))
-
-
 def euler_jacobian(r_m: np.ndarray, h: float = 1e-7) -> np.ndarray:
     """d(roll, pitch, yaw)/dδ at δ = 0 for ``R = Rot(δ)·r_m`` (3, 3), numeric."""
     base = np.array(boresight_angles(r_m))
@@ -152,11 +141,15 @@ def euler_jacobian(r_m: np.ndarray, h: float = 1e-7) -> np.ndarray:
 def adjust(ctx: GeorefContext, obs: dict[str, tuple[np.ndarray, PlaneFit]], r_m0: np.ndarray,
            lever0: np.ndarray, *, huber_m: float = 0.03, max_iter: int = 30,
            tol: float = 1e-9, cond_max: float = 1e10, fix: tuple[str, ...] = (),
-           cancel=None, block_s: float = 1.0) -> JointFit:
+           cancel=None, block_s: float = 2.0,
+           ins_sigma_rad: tuple[float, float, float] = (0.0, 0.0, 0.0),
+           ins_tau_s: float = 1.0) -> JointFit:
     """Gauss-Newton / IRLS solution from the start values (r_m0, lever0).
 
     *fix* names parameters (of NAMES) held at their start values. *block_s* (s) is the
     ping-time block of the cluster-robust variance factor (see the module docstring).
+    *ins_sigma_rad* (roll, pitch, heading 1-σ, rad) and *ins_tau_s* (s) describe the INS
+    attitude accuracy propagated by :func:`~.ins_cov.ins_covariance` (zero: not added).
     """
     r_m, lever = r_m0.copy(), np.asarray(lever0, float).copy()
     n_obs = sum(len(i) for i, _ in obs.values())
@@ -195,11 +188,13 @@ def adjust(ctx: GeorefContext, obs: dict[str, tuple[np.ndarray, PlaneFit]], r_m0
     dof = max(1, len(res) - int(free.sum()))
     sigma0_sq = float(np.sum(weights * res**2) / dof)
     n_inv = np.linalg.inv(normal)
-    factor = block_factors(ctx, obs, jf, res, weights, n_inv, sigma0_sq, block_s)
+    factor = block_factors(ctx, obs, jf, res, weights, n_inv, block_s, r_m, lever)
     root = np.sqrt(factor)
     # Formal covariance σ0² N⁻¹, inflated by the block-sandwich factors, + reference planes.
     cov_f = sigma0_sq * n_inv * np.outer(root, root) + \
-        _reference_cov(ctx, obs, r_m, lever, free, weights, n_inv)
+        _reference_cov(ctx, obs, r_m, lever, free, weights, n_inv) + \
+        ins_covariance(ctx, obs, r_m, lever, jf, weights, n_inv, np.asarray(ins_sigma_rad),
+                       ins_tau_s)
     cov_d = np.zeros((6, 6))
     cov_d[np.ix_(free, free)] = cov_f
     # Propagate δ -> Euler angles (roll, pitch, yaw).

@@ -7,7 +7,10 @@ removes water-surface returns); the pool floor, self-returns and strays fall out
 crops. Then open3d RANSAC (``segment_plane``) keeps the plane's inliers and DBSCAN keeps
 the largest cluster, removing remaining strays that happen to lie near the plane. Large
 clouds are first cropped to the target's bounding box; per-face point sets are capped
-(random subset) so that RANSAC/DBSCAN cost stays bounded.
+(random subset) so that RANSAC/DBSCAN cost stays bounded. For the final (refined)
+multibeam faces the RANSAC band is replaced by a symmetric ±k·σ band about the face's own
+TLS plane (:func:`band_refit`): RANSAC is only the robust starting point, so the kept
+points neither depend on the (non-repeatable) RANSAC draw nor lean towards its plane.
 """
 
 from __future__ import annotations

@@ -152,7 +152,10 @@ def solve(seg, params=None, progress=None, cancel=None) -> PoolResult:
         has_h = any(seg.roles[n].role == "horizontal" for n in obs)
         fit = adjust(seg.ctx, obs, r_m, lever, huber_m=p["huber_m"], cancel=cancel,
                      fix=() if has_h else ("lever_z",),
-                     block_s=p.get("sigma_block_s", 1.0))
+                     block_s=p.get("sigma_block_s", 2.0),
+                     ins_sigma_rad=tuple(np.deg2rad([p.get(f"ins_sigma_{a}_deg", 0.0) for a in
+                                                     ("roll", "pitch", "heading")])),
+                     ins_tau_s=p.get("ins_tau_s", 1.0))
     except (ValueError, np.linalg.LinAlgError) as exc:
         warnings.append(f"joint adjustment failed ({exc}); the seed solution is reported")
         fit = None

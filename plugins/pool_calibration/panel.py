@@ -1,8 +1,11 @@
-"""The Pool Calibration panel: parameters, Segment / Run all, clouds, faces, convergence.
+"""The Pool Calibration panel: parameters, Segment / Iterate / Run all, clouds, faces,
+convergence.
 
 A thin view over :mod:`hydrosync_core.methods.pool`: "Segment" runs
 :func:`~hydrosync_core.methods.pool.api.segment` in a worker and shows the faces found
-with the coarse setup (kept in memory, nothing written); "Run all" runs
+with the coarse setup (kept in memory, nothing written); "Iterate" runs the angle
+iteration, lever-arm steps and joint adjustment on that segmentation
+(:func:`~hydrosync_core.methods.pool.project_run.iterate_and_store`); "Run all" runs
 :func:`~hydrosync_core.methods.pool.project_run.run` in a worker, which replaces
 ``/results/pool_calibration``; everything shown afterwards is read back from there.
 """
@@ -77,6 +80,10 @@ class PoolCalibrationPanel(PluginPanel):
         self.segment_button.setToolTip("find the faces in both clouds with the coarse setup "
                                        "(nothing is stored)")
         self.segment_button.clicked.connect(self._on_segment)
+        self.iterate_button = QPushButton("Iterate")
+        self.iterate_button.setToolTip("iterate and adjust on the faces found by Segment, "
+                                       "then store the results")
+        self.iterate_button.clicked.connect(self._on_iterate)
         self.run_button = QPushButton("Run all")
         self.run_button.setToolTip("segment, iterate, adjust and store the results")
         self.run_button.clicked.connect(self._on_run)
@@ -100,6 +107,7 @@ class PoolCalibrationPanel(PluginPanel):
         QVBoxLayout(box).addWidget(self.form)
         buttons = QHBoxLayout()
         buttons.addWidget(self.segment_button)
+        buttons.addWidget(self.iterate_button)
         buttons.addWidget(self.run_button)
         values_box = QGroupBox("Boresight and lever arm (body FRD)")
         QVBoxLayout(values_box).addWidget(self.values)
@@ -178,6 +186,7 @@ class PoolCalibrationPanel(PluginPanel):
 
     def _enable(self, on: bool) -> None:
         self.segment_button.setEnabled(on)
+        self.iterate_button.setEnabled(on and self.segmentation is not None)
         self.run_button.setEnabled(on)
 
     def _clear(self, text: str) -> None:
@@ -281,16 +290,31 @@ class PoolCalibrationPanel(PluginPanel):
         if self.project is None:
             return
         project, params = self.project, self.params()
+        self._start_storing_task(
+            "Pool calibration", lambda progress, cancel: project_run.run(
+                project, params, progress, cancel))
+
+    def _on_iterate(self) -> None:
+        if self.project is None or self.segmentation is None:
+            return
+        project, params, seg = self.project, self.params(), self.segmentation
+        self._start_storing_task(
+            "Pool calibration (iterate)", lambda progress, cancel: project_run.iterate_and_store(
+                project, seg, params, progress, cancel))
+
+    def _start_storing_task(self, label: str, compute) -> None:
+        """Run *compute(progress, cancel)*, which stores its results only when complete."""
+        project = self.project
         stored = {"result": None}
 
         def task(progress, cancel):
-            # project_run.run stores nothing until the computation is complete, so a
-            # cancel before that leaves the previous results untouched.
-            stored["result"] = project_run.run(project, params, progress, cancel)
+            # Nothing is stored until the computation is complete, so a cancel before
+            # that leaves the previous results untouched.
+            stored["result"] = compute(progress, cancel)
             return stored["result"]
 
         self._enable(False)
-        self.start_work(task, self._on_run_finished, label="Pool calibration")
+        self.start_work(task, self._on_run_finished, label=label)
         self.worker.signals.sig_done.connect(
             lambda: self._on_run_done(project, stored["result"]))
 

@@ -76,11 +76,30 @@ def run(project, params: dict | None = None, progress=None, cancel=None):
     setup = project.get_json("raw/pool/setup")
     target = project.get_json("raw/pool/target")
     seg = segment(lidar, mbes, ins, setup, target, p, sub_progress(progress, 0, 0.6), cancel)
-    result = iterate(seg, p, sub_progress(progress, 0.6, 0.95), cancel)
+    return iterate_and_store(project, seg, p, sub_progress(progress, 0.6, 1.0), cancel)
+
+
+def iterate_and_store(project, seg, params: dict | None = None, progress=None, cancel=None):
+    """Iterate on an existing segmentation (e.g. kept by the GUI) and store the results.
+
+    Nothing is written to *project* unless the iteration completes (a cancel leaves the
+    previous results untouched).
+    """
+    p = dict(DEFAULT_PARAMS)
+    p.update(params or {})
+    result = iterate(seg, p, sub_progress(progress, 0.0, 0.95), cancel)
+    store(project, seg, result, p)
+    return result
+
+
+def store(project, seg, result, p: dict) -> None:
+    """REPLACE ``/results/pool_calibration`` with *result* (layout in the module doc)."""
     project.delete(RESULT)
     project.put_json(f"{RESULT}/result", result.to_dict())
     project.put_json(RESULT, p)
-    j = result.joint
+    # The joint σ describe the joint solution only: with final = seed they stay NaN here
+    # (the joint solution and its σ remain in the result JSON for comparison).
+    j = result.joint if result.method == "joint" else None
     sig = ({**{f"sigma_{k}_deg": v for k, v in j.sigma_boresight_deg.items()},
             **{f"sigma_lever_{k}_m": v for k, v in j.sigma_lever_arm_m.items()}}
            if j else {f"sigma_{k}": float("nan") for k in
@@ -111,4 +130,3 @@ def run(project, params: dict | None = None, progress=None, cancel=None):
         c: np.array([row[c] for row in result.iteration_table],
                     dtype=np.int64 if c in ("iteration", "round") else float) for c in cols})
     _plan(project, seg, result, int(p.get("plan_points", 20000)), np.random.default_rng(0))
-    return result

@@ -257,16 +257,30 @@ def test_segment_then_run_in_worker(panel, demo, qtbot, tmp_path):
     assert panel.cloud_box.stack.currentWidget() is panel.cloud_view
     assert any(s.startswith("Segmentation: wall") for s in statuses)
     assert not panel.after_radio.isEnabled()  # no corrected soundings yet
-    assert panel.run_button.isEnabled()
+    assert panel.run_button.isEnabled() and panel.iterate_button.isEnabled()
 
-    # Run all: a worker writes the results, the panel redraws from them.
+    # Iterate on the kept segmentation: stores the same solution a direct
+    # iterate_and_store on that segmentation gives (joint final values).
     modified = []
     panel.sig_project_modified.connect(lambda: modified.append(1))
+    panel.iterate_button.click()
+    qtbot.waitUntil(lambda: bool(modified), timeout=120_000)
+    iterated = dict(project.attrs(RESULT))
+    assert iterated["method"] == "joint"
+    scratch = Project.new("scratch")
+    expect = project_run.iterate_and_store(scratch, panel.segmentation, panel.params())
+    assert iterated["roll_deg"] == pytest.approx(expect.boresight_deg["roll"], abs=1e-9)
+    assert iterated["lever_y_m"] == pytest.approx(expect.lever_arm_m["y"], abs=1e-12)
+    assert np.isfinite(iterated["sigma_roll_deg"])
+
+    # Run all: a worker writes the results, the panel redraws from them.
+    modified.clear()
     panel.form.set_values({"final": "seed"})
     panel.run_button.click()
     qtbot.waitUntil(lambda: bool(modified), timeout=120_000)
     attrs = project.attrs(RESULT)
     assert attrs["method"] == "seed" and project.get_json(RESULT)["final"] == "seed"
+    assert np.isnan(attrs["sigma_roll_deg"])  # joint σ do not describe the seed solution
     result = project.get_json(f"{RESULT}/result")
     for row, (_label, key, group, _unit) in enumerate(VALUE_ROWS):
         # Final = the seed solution, shown in both columns.

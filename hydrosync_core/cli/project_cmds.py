@@ -144,7 +144,7 @@ def register(sub: argparse._SubParsersAction) -> None:
     p.add_argument(
         "--heave-positive", choices=("up", "down"), default=None,
         help="direction of positive heave in the --attitude CSV (formats.md: up) or the "
-        "--attitude_log file (required for PSXN,23 and PASHR; Seapath PSXN,23 is "
+        "--attitude_log file (required for PSXN,23; TSS1 and PASHR are up; Seapath PSXN,23 is "
         "documented positive down); stored heave is always positive up",
     )
     p.set_defaults(func=cmd_import)

@@ -38,9 +38,13 @@ _TSS1 = re.compile(
 )
 _PASHR_TIME = re.compile(r"\d{6}(\.\d*)?\Z")
 
-HEAVE_CONVENTION = {"TSS1": "up", "PSXN,23": None, "PASHR": None}
-"""Heave sign fixed by the format's specification (None: must be given by the user)."""
-DOCUMENTED_HEAVE = {"PSXN,23": "down (Seapath manual)", "PASHR": "vendor-specific"}
+HEAVE_CONVENTION = {"TSS1": "up", "PSXN,23": None, "PASHR": "up"}
+"""Heave sign fixed by the format's specification (None: must be given by the user).
+
+TSS1 and the attitude form of $PASHR (Applanix/OxTS) define heave positive up; Seapath's
+$PSXN,23 is documented positive down but is not a published standard, so the user
+states it."""
+DOCUMENTED_HEAVE = {"PSXN,23": "down (Seapath manual)", "PASHR": "up", "TSS1": "up"}
 
 
 @dataclass

@@ -161,3 +161,12 @@ def unwrap_days(tod: np.ndarray) -> np.ndarray:
         wraps = np.concatenate([[0.0], np.cumsum(np.diff(t) < -HALF_DAY)])
         step[finite] = wraps
     return step * DAY + tod
+
+
+def drop(skipped: dict[str, int], reason: str, mask: np.ndarray, keep: np.ndarray) -> None:
+    """Clear *mask* from the boolean *keep* (in place), counting newly dropped records
+    under *reason* in *skipped*."""
+    n = int(np.count_nonzero(mask & keep))
+    if n:
+        skipped[reason] = skipped.get(reason, 0) + n
+    keep &= ~mask

@@ -158,13 +158,6 @@ class GnssRecords:
     warnings: list[str] = field(default_factory=list)
 
 
-def _drop(skipped: dict[str, int], reason: str, mask: np.ndarray, keep: np.ndarray) -> None:
-    n = int(np.count_nonzero(mask & keep))
-    if n:
-        skipped[reason] = skipped.get(reason, 0) + n
-    keep &= ~mask
-
-
 def parse_gga(
     log: LogLines, index: np.ndarray, *, empty_geoid: str = "zero", min_quality: int = 1
 ) -> GnssRecords:
@@ -176,11 +169,11 @@ def parse_gga(
     skipped: dict[str, int] = {}
     warnings: list[str] = []
     keep = np.ones(len(rows), dtype=bool)
-    _drop(skipped, "no fix", q_empty | q_bad | (q < min_quality), keep)
-    _drop(skipped, "empty altitude", alt_empty, keep)
-    _drop(skipped, "unparseable field", alt_bad | sep_bad, keep)
+    nf.drop(skipped, "no fix", q_empty | q_bad | (q < min_quality), keep)
+    nf.drop(skipped, "empty altitude", alt_empty, keep)
+    nf.drop(skipped, "unparseable field", alt_bad | sep_bad, keep)
     if empty_geoid == "skip":
-        _drop(skipped, "empty geoid separation", sep_empty, keep)
+        nf.drop(skipped, "empty geoid separation", sep_empty, keep)
     else:
         n = int(np.count_nonzero(sep_empty & keep))
         if n:
@@ -212,9 +205,9 @@ def parse_ggk(log: LogLines, index: np.ndarray, *, min_quality: int = 1) -> Gnss
     q[in_table] = GGK_TO_GGA[raw_q[in_table].astype(int)]
     skipped: dict[str, int] = {}
     keep = np.ones(len(rows), dtype=bool)
-    _drop(skipped, "no fix", q_empty | q_bad | ~in_table | ~(q >= min_quality), keep)
-    _drop(skipped, "empty altitude", eht_empty, keep)
-    _drop(skipped, "unparseable field", eht_bad, keep)
+    nf.drop(skipped, "no fix", q_empty | q_bad | ~in_table | ~(q >= min_quality), keep)
+    nf.drop(skipped, "empty altitude", eht_empty, keep)
+    nf.drop(skipped, "unparseable field", eht_bad, keep)
     lat = nf.latlon(nf.column(rows, 4), nf.column(rows, 5), "S")
     lon = nf.latlon(nf.column(rows, 6), nf.column(rows, 7), "W")
     return GnssRecords(

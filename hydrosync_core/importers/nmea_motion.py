@@ -68,13 +68,6 @@ class MotionRecords:
     warnings: list[str] = field(default_factory=list)
 
 
-def _drop(skipped: dict[str, int], reason: str, mask: np.ndarray, keep: np.ndarray) -> None:
-    n = int(np.count_nonzero(mask & keep))
-    if n:
-        skipped[reason] = skipped.get(reason, 0) + n
-    keep &= ~mask
-
-
 def split_pashr(log: LogLines, index: np.ndarray) -> tuple[np.ndarray, int]:
     """Keep the attitude form of ``$PASHR`` (numeric time, ``T`` in field 3).
 
@@ -100,9 +93,9 @@ def parse_pashr(log: LogLines, index: np.ndarray) -> MotionRecords:
            for name, k in (("sigma_roll", 7), ("sigma_pitch", 8), ("sigma_heading", 9))}
     keep = np.ones(len(rows), dtype=bool)
     skipped: dict[str, int] = {}
-    _drop(skipped, "empty attitude field", h_empty | r_empty | p_empty, keep)
-    _drop(skipped, "empty heave", v_empty, keep)
-    _drop(skipped, "unparseable field", h_bad | r_bad | p_bad | v_bad, keep)
+    nf.drop(skipped, "empty attitude field", h_empty | r_empty | p_empty, keep)
+    nf.drop(skipped, "empty heave", v_empty, keep)
+    nf.drop(skipped, "unparseable field", h_bad | r_bad | p_bad | v_bad, keep)
     tod = nf.time_of_day(nf.column(rows, 1))
     return MotionRecords(
         "PASHR", index[keep], tod[keep], roll[keep], pitch[keep], heading[keep],
@@ -125,9 +118,9 @@ def parse_psxn23(
     heave, v_empty, v_bad = nf.to_float(nf.column(rows, 5))
     keep = np.ones(len(rows), dtype=bool)
     skipped: dict[str, int] = {}
-    _drop(skipped, "empty attitude field", r_empty | p_empty | h_empty, keep)
-    _drop(skipped, "empty heave", v_empty, keep)
-    _drop(skipped, "unparseable field", r_bad | p_bad | h_bad | v_bad, keep)
+    nf.drop(skipped, "empty attitude field", r_empty | p_empty | h_empty, keep)
+    nf.drop(skipped, "empty heave", v_empty, keep)
+    nf.drop(skipped, "unparseable field", r_bad | p_bad | h_bad | v_bad, keep)
     if quality_index is not None and quality_index.size:
         qrows = nf.rows_of(log.body, quality_index)
         rp_quality, _, _ = nf.to_float(nf.column(qrows, 5))
@@ -135,7 +128,7 @@ def parse_psxn23(
         has = k >= 0
         invalid = np.zeros(len(rows), dtype=bool)
         invalid[has] = rp_quality[k[has]] == 2
-        _drop(skipped, "roll/pitch quality invalid (PSXN,20)", invalid, keep)
+        nf.drop(skipped, "roll/pitch quality invalid (PSXN,20)", invalid, keep)
     return MotionRecords(
         "PSXN,23", index[keep], np.full(int(keep.sum()), np.nan), roll[keep], pitch[keep],
         heading[keep], heave[keep], {}, skipped,

@@ -31,6 +31,22 @@ def _summary(result) -> str:
     return text + "".join(f"\nwarning: {w}" for w in result.warnings)
 
 
+def _params(args: argparse.Namespace) -> dict:
+    """Method parameters given on the command line (the rest keep their defaults)."""
+    params: dict = {"final": args.final}
+    if args.ins_sigma is not None:
+        if not all(v >= 0 and v == v for v in args.ins_sigma):
+            raise InputError("--ins-sigma", "INS accuracies must be >= 0 degrees")
+        roll, pitch, heading = args.ins_sigma
+        params.update(ins_sigma_roll_deg=roll, ins_sigma_pitch_deg=pitch,
+                      ins_sigma_heading_deg=heading)
+    if args.ins_tau is not None:
+        if not args.ins_tau > 0:
+            raise InputError("--ins-tau", "the INS error correlation time must be > 0 s")
+        params["ins_tau_s"] = args.ins_tau
+    return params
+
+
 def cmd_pool(args: argparse.Namespace) -> int:
     from hydrosync_core.cli.terminal import TerminalProgress
 
@@ -44,7 +60,7 @@ def cmd_pool(args: argparse.Namespace) -> int:
                      "raw/pool/target"):
             if not project.exists(need):
                 raise InputError(args.project, f"pool calibration needs /{need}")
-        result = run(project, None, progress, None)
+        result = run(project, _params(args), progress, None)
         progress.done()
         project.save()
         if args.json:
@@ -65,7 +81,7 @@ def cmd_pool(args: argparse.Namespace) -> int:
     ins = read_ins_csv(args.ins)
     setup = read_setup_json(args.setup)
     target = read_target_json(args.target)
-    result = calibrate(lidar, mbes, ins, setup, target, None, progress, None)
+    result = calibrate(lidar, mbes, ins, setup, target, _params(args), progress, None)
     progress.done()
     write_json_atomic(args.json, result.to_dict())
     print(_summary(result))
@@ -85,4 +101,12 @@ def register(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--setup", help="setup.json (coarse boresight and lever arm)")
     p.add_argument("--target", help="target.json (target design)")
     p.add_argument("--json", help="result.json to write (atomically)")
+    p.add_argument("--final", choices=("joint", "seed"), default="joint",
+                   help="final values from the joint adjustment (default, with σ) or the "
+                   "seed (patent) iteration")
+    p.add_argument("--ins-sigma", nargs=3, type=float, metavar=("ROLL", "PITCH", "HEADING"),
+                   help="INS attitude accuracy (1σ, deg) from its specification, propagated "
+                   "into the σ of the result (default 0: INS taken as exact)")
+    p.add_argument("--ins-tau", type=float, metavar="S",
+                   help="correlation time of the INS attitude errors, s (default 1)")
     p.set_defaults(func=cmd_pool)

@@ -56,6 +56,11 @@ FIELDS = [
                tooltip="angle iteration + lever-arm step repeated at most this often"),
     ParamField("final", "Final values", "joint", choices=("joint", "seed"),
                tooltip="joint least squares (with σ) or the seed (patent) solution"),
+    *(ParamField(f"ins_sigma_{axis}_deg", f"INS {axis} accuracy (1σ)", 0.0, unit="°",
+                 minimum=0.0, maximum=5.0, decimals=4, step=0.001,
+                 tooltip=f"INS {axis} accuracy from its specification; propagated into the "
+                 "σ of the joint solution (0: INS taken as exact, σ then optimistic)")
+      for axis in ("roll", "pitch", "heading")),
 ]
 PLAN = ("laser_xyz", "laser_face", "mbes_before_xyz", "mbes_after_xyz", "mbes_face")
 WARN_STYLE = ("QLabel { background: #fff3cd; border: 1px solid #d39e00; border-radius: 3px;"

@@ -98,3 +98,18 @@ def test_plugin_spec():
     assert SPEC.id == "pool_calibration" and SPEC.order == 20
     assert SPEC.load_run() is run
     assert SPEC.missing_inputs(Project.new()) == list(SPEC.requires)
+
+
+def test_cli_ins_accuracy_widens_sigma_and_is_checked(files, tmp_path, capsys):
+    paths, _ = files
+    plain, with_ins = tmp_path / "plain.json", tmp_path / "ins.json"
+    assert main(_args(paths, plain)) == 0
+    assert main(_args(paths, with_ins) + ["--ins-sigma", "0.02", "0.02", "0.05"]) == 0
+    s0 = json.loads(plain.read_text())["joint"]["sigma_boresight_deg"]
+    s1 = json.loads(with_ins.read_text())["joint"]["sigma_boresight_deg"]
+    # An INS that is itself uncertain cannot give a tighter boresight.
+    assert all(s1[k] > s0[k] for k in ("roll", "pitch", "yaw"))
+    assert s1["yaw"] > 1.5 * s0["yaw"]
+    bad = tmp_path / "bad.json"
+    assert main(_args(paths, bad) + ["--ins-sigma", "-1", "0", "0"]) == 2
+    assert "--ins-sigma" in capsys.readouterr().err and not bad.exists()

@@ -80,7 +80,7 @@ def section(project, ctx: ReportContext) -> list[Flowable]:
             "the lever arm is in the body frame (x forward, y starboard, z down)."),
     ]
     out += _parameter_table(ctx, attrs, res)
-    out += _run_info(ctx, attrs, res)
+    out += _run_info(ctx, attrs, res, project.get_json(RESULT, {}) or {})
     for text in json.loads(attrs.get("warnings") or "[]"):
         out.append(ctx.warning(text))
     out += _face_table(project, ctx, res)
@@ -117,7 +117,24 @@ def _parameter_table(ctx, attrs, res) -> list[Flowable]:
         "values to enter in the acquisition software.")
 
 
-def _run_info(ctx, attrs, res) -> list[Flowable]:
+def _sigma_model(joint: dict, params: dict) -> str:
+    """How the joint σ were obtained, so the reader knows what they cover."""
+    factors = joint.get("variance_factor") or {}
+    text = "point-to-plane fit incl. laser-plane errors"
+    if factors:
+        largest = max(factors, key=lambda k: float(factors[k] or 1.0))
+        text += (f"; ping-block variance factors 1.00–{float(factors[largest] or 1.0):.2f}"
+                 f" (largest: {largest})")
+    ins = [float(params.get(f"ins_sigma_{a}_deg", 0.0)) for a in ("roll", "pitch", "heading")]
+    if any(ins):
+        text += (f"; INS accuracy roll/pitch/heading {ins[0]:g}/{ins[1]:g}/{ins[2]:g}° "
+                 "(1σ) propagated")
+    else:
+        text += "; INS attitude taken as exact (no INS accuracy given): σ are a lower bound"
+    return text
+
+
+def _run_info(ctx, attrs, res, params: dict) -> list[Flowable]:
     joint = res.get("joint") or {}
     seed = res.get("seed") or {}
     pairs = [
@@ -132,7 +149,8 @@ def _run_info(ctx, attrs, res) -> list[Flowable]:
                    f"{joint.get('iterations', '?')} iterations, "
                    + ("converged" if joint.get("converged") else "not converged")
                    + f", {joint.get('n_observations', '?')} soundings, \u03c3\u2080 = "
-                   + fmt(1000 * float(joint.get("sigma0_m", np.nan)), 1, "mm"))]
+                   + fmt(1000 * float(joint.get("sigma0_m", np.nan)), 1, "mm")),
+                  ("Uncertainty model", _sigma_model(joint, params))]
     pairs += [("Multibeam pings dropped (INS gaps)", str(res.get("dropped_pings", 0))),
               ("Computed", f"{utc_text(attrs.get('run_utc'))} with HydroSync "
                            f"{attrs.get('software_version', '?')}")]

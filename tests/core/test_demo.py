@@ -86,11 +86,16 @@ def test_demo_end_to_end(tmp_path):
         truth = load_object(get_spec("pool_calibration").demo)(
             Project.new("truth"), seed=DEMO_SEED, progress=None)
         for key in ("roll", "pitch", "yaw"):
-            assert abs(attrs[f"{key}_deg"] - truth["boresight_deg"][key]) < 0.05, key
+            # The published pool calibration reaches < 0.015°; so does the demo pass, and
+            # the error stays within 4 reported σ.
+            error = abs(attrs[f"{key}_deg"] - truth["boresight_deg"][key])
+            assert error < min(0.015, 4 * attrs[f"sigma_{key}_deg"] + 1e-3), key
         for key in "xyz":
-            assert abs(attrs[f"lever_{key}_m"] - truth["lever_arm_m"][key]) < 0.01, key
+            error = abs(attrs[f"lever_{key}_m"] - truth["lever_arm_m"][key])
+            assert error < min(0.002, 4 * attrs[f"sigma_lever_{key}_m"] + 2e-4), key
         for _label, value in pool.parameter_rows(attrs):
             assert value in text
+        assert "Uncertainty model" in text and "variance factors" in text
         faces = project.get_table("results/pool_calibration/faces")
         for i, name in enumerate(faces["face"]):
             assert re.search(rf"{name} {faces['role'][i]} {faces['water'][i]} "

@@ -11,14 +11,15 @@ from hydrosync_core.errors import InputError
 
 _OPTION_OF_FIELD = {"range_s": "--range", "step_s": "--step", "min_r": "--min-r",
                     "detrend_degree": "--detrend-degree", "skip_s": "--skip",
-                    "weighting": "--weighting", "lever_arm": "--lever-arm",
+                    "weighting": "--weighting", "outlier_k": "--outlier-k",
+                    "lever_arm": "--lever-arm",
                     "lever_arm_m": "--lever-arm"}
 
 
 def _params(args: argparse.Namespace) -> dict:
     params: dict = {"range_s": list(args.range), "step_s": args.step, "min_r": args.min_r,
                     "detrend_degree": args.detrend_degree, "skip_s": args.skip,
-                    "weighting": args.weighting}
+                    "weighting": args.weighting, "outlier_k": args.outlier_k}
     if args.lever_arm is not None:
         params["lever_arm_m"] = list(args.lever_arm)
     return params
@@ -145,6 +146,9 @@ def register(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--skip", type=float, default=0.0, help="seconds skipped at line start (0)")
     p.add_argument("--weighting", choices=("r", "inverse_variance"), default="r",
                    help="weights of the line mean (default r)")
+    p.add_argument("--outlier-k", type=float, default=4.0, metavar="K",
+                   help="do not use lines whose delay departs from the median by more than K "
+                   "robust σ (default 4; 0 disables)")
     p.add_argument("--json", type=Path, help="result.json to write")
     p.add_argument("--sync-csv", type=Path, metavar="CSV",
                    help="also write the synchronised data set: GNSS epochs at corrected time "

@@ -18,6 +18,7 @@ SPEC = PluginSpec(
         "detrend_degree": 1,
         "skip_s": 0.0,
         "weighting": "r",
+        "outlier_k": 4.0,
     },
     demo="hydrosync_core.methods.latency.demo:fill_demo",
     report_section="hydrosync_core.report.latency_section:section",

@@ -42,6 +42,9 @@ FIELDS = [
     ParamField("weighting", "Weights", "r", choices=("r", "inverse_variance"),
                tooltip="r: each line weighted by its R max (seed); inverse_variance: by "
                "1/uncertainty²"),
+    ParamField("outlier_k", "Outlier limit", 4.0, unit="σ", minimum=0, maximum=100,
+               decimals=1, tooltip="lines whose Δt departs from the median by more than this "
+               "many robust σ are not used (0: off)"),
     ParamField("lever_x", "Lever arm x (fwd)", 0.0, unit="m", minimum=-100, maximum=100),
     ParamField("lever_y", "Lever arm y (stbd)", 0.0, unit="m", minimum=-100, maximum=100),
     ParamField("lever_z", "Lever arm z (down)", 0.0, unit="m", minimum=-100, maximum=100),
@@ -98,6 +101,7 @@ class LatencyPanel(PluginPanel):
         return {"range_s": [v["range_min"], v["range_max"]], "step_s": v["step_s"],
                 "min_r": v["min_r"], "detrend_degree": v["detrend_degree"],
                 "skip_s": v["skip_s"], "weighting": v["weighting"],
+                "outlier_k": v["outlier_k"],
                 "lever_arm_m": [v["lever_x"], v["lever_y"], v["lever_z"]]}
 
     def _load_params(self) -> None:
@@ -105,7 +109,8 @@ class LatencyPanel(PluginPanel):
         stored = self.project.get_json(RESULT) if self.project.exists(RESULT) else None
         p = dict(self.spec.default_params) | dict(stored or {})
         values = {"range_min": p["range_s"][0], "range_max": p["range_s"][1]}
-        values |= {k: p[k] for k in ("step_s", "min_r", "detrend_degree", "skip_s", "weighting")}
+        values |= {k: p[k] for k in ("step_s", "min_r", "detrend_degree", "skip_s", "weighting",
+                                     "outlier_k") if k in p}
         try:
             arm = project_lever_arm(self.project, stored)
         except InputError:

@@ -163,3 +163,24 @@ def test_heading_interpolates_across_north():
     gnss = {"time": np.array([0.25, 0.75, 1.5]), "height": np.zeros(3)}
     sync = synchronise(gnss, att, (0, 0, 0), 0.0)
     np.testing.assert_allclose(sync["heading"], [355.0, 5.0, 20.0])
+
+
+def test_a_line_with_a_timing_glitch_is_rejected_as_outlier():
+    """One line's GNSS tags are 0.4 s later than the rest (a logger glitch on that line)."""
+    cfg = replace(QUIET, latency_s=0.29, gnss_hz=2.0, n_lines=8)
+    day = simulate_day(cfg, seed=3)
+    gnss = {k: np.array(v, dtype=float) for k, v in day["gnss"].items()}
+    bad = 5
+    start, end = day["lines"]["start"][bad], day["lines"]["end"][bad]
+    inside = (gnss["time"] >= start) & (gnss["time"] <= end - 0.5)
+    gnss["time"][inside] += 0.4
+    res = estimate_latency(gnss, day["attitude"], day["lines"], cfg.lever_arm_m)
+    line = res.lines[bad]
+    assert line.latency_s == pytest.approx(0.69, abs=0.02) and line.r_max > 0.85
+    assert not line.used and any("outlier" in w for w in line.warnings)
+    assert res.n_used == cfg.n_lines - 1
+    assert res.latency_s == pytest.approx(0.29, abs=0.005)
+    # Without the test the glitch drags the mean by about 0.4 s / 8 lines.
+    plain = estimate_latency(gnss, day["attitude"], day["lines"], cfg.lever_arm_m,
+                             {"outlier_k": 0})
+    assert plain.lines[bad].used and plain.latency_s > 0.32

@@ -14,7 +14,7 @@ from collections.abc import Mapping
 import numpy as np
 
 from hydrosync_core.errors import InputError
-from hydrosync_core.methods.latency.combine import combine, select_lines
+from hydrosync_core.methods.latency.combine import combine, find_outliers, select_lines
 from hydrosync_core.methods.latency.correlation import heave_at
 from hydrosync_core.methods.latency.detrend import detrend
 from hydrosync_core.methods.latency.diagnose import diagnose
@@ -110,6 +110,15 @@ def estimate_latency(
     usable = np.array([ln.usable and not pk.at_edge
                        for ln, pk in zip(prepared, peaks, strict=True)])
     used = select_lines(r_max, p.min_r, usable)
+    outliers = find_outliers(lat, unc, used, p.outlier_k)
+    if outliers.any():
+        median = float(np.median(lat[used]))
+        for i in np.flatnonzero(outliers):
+            prepared[i].warnings.append(
+                f"line {names[i]}: Δt {lat[i]:+.3f} s departs from the median {median:+.3f} s "
+                f"of the selected lines by more than {p.outlier_k:g} robust σ: not used "
+                "(outlier; tick it to use it anyway)")
+        used &= ~outliers
     comb = combine(lat, r_max, unc, used, p.weighting)
     curves = np.array([pk.curve for pk in peaks])
     epochs = np.array([ln.tags.size for ln in prepared], dtype=float)

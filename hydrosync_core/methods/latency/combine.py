@@ -40,6 +40,31 @@ def select_lines(r_max: np.ndarray, min_r: float, usable: np.ndarray | None = No
     return mask
 
 
+def find_outliers(
+    latencies: np.ndarray, uncertainties: np.ndarray, used: np.ndarray, k: float,
+    min_lines: int = 4,
+) -> np.ndarray:
+    """Boolean mask of used lines whose Δt is an outlier among the used lines.
+
+    Beyond the seed: a line is an outlier when ``|Δt_i − median| > k·s_i`` with
+    ``s_i = sqrt(MAD_σ² + u_i²)``, MAD_σ = 1.4826·median|Δt − median| of the used lines
+    and u_i the line's own standard uncertainty (so a line is not rejected for a spread
+    its own noise explains). Needs *min_lines* used lines; ``k = 0`` disables the test.
+    """
+    used = np.asarray(used, dtype=bool)
+    out = np.zeros(used.shape, dtype=bool)
+    if k <= 0 or used.sum() < min_lines:
+        return out
+    x = np.asarray(latencies, dtype=float)
+    u = np.nan_to_num(np.asarray(uncertainties, dtype=float), nan=0.0)
+    med = float(np.median(x[used]))
+    mad = 1.4826 * float(np.median(np.abs(x[used] - med)))
+    scale = np.sqrt(mad**2 + u**2)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        out[used] = np.abs(x[used] - med) > k * scale[used]
+    return out
+
+
 def weighted_mean(values: np.ndarray, weights: np.ndarray) -> float:
     """Σ w·x / Σ w."""
     values = np.asarray(values, dtype=float)

@@ -50,6 +50,10 @@ class LatencyParams:
         Lines with fewer GNSS epochs are not used.
     gap_factor : float
         A GNSS/attitude interval longer than this many median intervals is a gap.
+    outlier_k : float
+        A line whose Δt departs from the median of the selected lines by more than
+        *outlier_k* robust standard deviations (MAD of the lines combined with the line's
+        own uncertainty) is not used; 0 disables the test. Needs 4 or more lines.
     """
 
     range_s: tuple[float, float] = (-1.0, 1.0)
@@ -60,6 +64,7 @@ class LatencyParams:
     weighting: str = "r"
     min_epochs: int = 30
     gap_factor: float = 3.0
+    outlier_k: float = 4.0
 
     def __post_init__(self) -> None:
         try:
@@ -74,7 +79,7 @@ class LatencyParams:
         try:
             step, min_r, skip = float(self.step_s), float(self.min_r), float(self.skip_s)
             degree, min_epochs = int(self.detrend_degree), int(self.min_epochs)
-            gap = float(self.gap_factor)
+            gap, outlier_k = float(self.gap_factor), float(self.outlier_k)
         except (TypeError, ValueError) as exc:
             raise InputError(None, f"parameter is not a number ({exc})") from None
         require(math.isfinite(lo) and math.isfinite(hi) and hi > lo, "range_s",
@@ -89,6 +94,8 @@ class LatencyParams:
                 f"weighting must be one of {', '.join(WEIGHTINGS)}, got '{self.weighting}'")
         require(min_epochs >= 5, "min_epochs", "min_epochs must be >= 5")
         require(gap > 1, "gap_factor", "gap_factor must be > 1")
+        require(math.isfinite(outlier_k) and outlier_k >= 0, "outlier_k",
+                f"outlier_k must be >= 0 (0 disables the test), got {outlier_k}")
 
     @classmethod
     def from_dict(cls, values: Mapping | None) -> LatencyParams:

@@ -27,7 +27,8 @@ def read_json(path: str | os.PathLike) -> dict:
     return document
 
 
-def _number(path: Path, value, field: str) -> float:
+def finite_number(path: Path, value, field: str) -> float:
+    """*value* as float if it is a finite JSON number, else an InputError naming *field*."""
     if isinstance(value, bool) or not isinstance(value, int | float) or not math.isfinite(value):
         raise InputError(str(path), f"expected a finite number, got {value!r}", field=field)
     return float(value)
@@ -46,7 +47,7 @@ def read_setup_json(path: str | os.PathLike) -> dict:
         for key in keys:
             if key not in values:
                 raise InputError(str(path), "missing value", field=f"{block}.{key}")
-            out[block][key] = _number(path, values[key], f"{block}.{key}")
+            out[block][key] = finite_number(path, values[key], f"{block}.{key}")
     return out
 
 
@@ -71,7 +72,7 @@ def read_target_json(path: str | os.PathLike) -> dict:
                 raise InputError(
                     str(path), "a corner is [e, n, u]", field=f"{where}.corners[{j}]"
                 )
-            points.append([_number(path, v, f"{where}.corners[{j}]") for v in corner])
+            points.append([finite_number(path, v, f"{where}.corners[{j}]") for v in corner])
         clean.append({"name": str(face.get("name", f"face{i}")), "corners": points})
-    water = _number(path, document.get("water_level_m", 0.0), "water_level_m")
+    water = finite_number(path, document.get("water_level_m", 0.0), "water_level_m")
     return {"frame": document.get("frame", "ENU"), "water_level_m": water, "faces": clean}

@@ -11,19 +11,12 @@ Format (body frame FRD: x forward, y starboard, z down; metres; degrees)::
 
 from __future__ import annotations
 
-import math
 import os
 from pathlib import Path
 
 from hydrosync_core.errors import InputError
-from hydrosync_core.importers.pool_json import read_json
+from hydrosync_core.importers.pool_json import finite_number, read_json
 from hydrosync_core.project.model import default_vessel
-
-
-def _finite(path: Path, value, field: str) -> float:
-    if isinstance(value, bool) or not isinstance(value, int | float) or not math.isfinite(value):
-        raise InputError(str(path), f"expected a finite number, got {value!r}", field=field)
-    return float(value)
 
 
 def read_vessel_json(path: str | os.PathLike) -> dict:
@@ -40,7 +33,7 @@ def read_vessel_json(path: str | os.PathLike) -> dict:
         offset = sensor.get("offset_m") if isinstance(sensor, dict) else None
         if not isinstance(offset, list) or len(offset) != 3:
             raise InputError(str(path), "offset_m must be [x, y, z]", field=f"{where}.offset_m")
-        entry: dict = {"offset_m": [_finite(path, v, f"{where}.offset_m") for v in offset]}
+        entry: dict = {"offset_m": [finite_number(path, v, f"{where}.offset_m") for v in offset]}
         angles = sensor.get("angles_deg")
         if angles is not None:
             if not isinstance(angles, dict) or set(angles) - {"roll", "pitch", "yaw"}:
@@ -48,7 +41,7 @@ def read_vessel_json(path: str | os.PathLike) -> dict:
                     str(path), "angles_deg takes roll, pitch, yaw", field=f"{where}.angles_deg"
                 )
             entry["angles_deg"] = {
-                k: _finite(path, v, f"{where}.angles_deg.{k}") for k, v in angles.items()
+                k: finite_number(path, v, f"{where}.angles_deg.{k}") for k, v in angles.items()
             }
         entry.update({k: v for k, v in sensor.items() if k not in ("offset_m", "angles_deg")})
         sheet["sensors"][str(name)] = entry

@@ -56,6 +56,19 @@ GNSS_KINDS = ("GGA", "PTNL,GGK", "GST", "ZDA", "RMC")
 MOTION_KINDS = ("PASHR", "PSXN,23", "PSXN,20", "TSS1", "HDT", "ZDA", "RMC", "PTNL,GGK")
 
 
+def _open_log(
+    path: Path, wanted: tuple[str, ...], progress, cancel
+) -> tuple[LogLines, dict, dict[str, int], list[str]]:
+    """Read and split *path*; return the lines, sentence kinds, skip counts and warnings."""
+    log = _read_log(path, progress, cancel)
+    kinds = ng.sentence_kinds(log)
+    skipped = _skipped_lines(log, kinds, wanted)
+    warnings: list[str] = []
+    if log.no_checksums:
+        warnings.append("no checksums in file: sentences accepted unchecked")
+    return log, kinds, skipped, warnings
+
+
 def _skipped_lines(log: LogLines, kinds: dict, wanted: tuple[str, ...]) -> dict[str, int]:
     """Lines set aside while splitting, plus valid sentences of types not read here."""
     out = {k: v for k, v in log.counts.items()
@@ -150,12 +163,7 @@ def import_gnss_log(
     if empty_geoid not in ("zero", "skip"):
         raise ValueError(f"empty_geoid must be 'zero' or 'skip', not {empty_geoid!r}")
     path = Path(path)
-    log = _read_log(path, progress, cancel)
-    kinds = ng.sentence_kinds(log)
-    skipped = _skipped_lines(log, kinds, GNSS_KINDS)
-    warnings: list[str] = []
-    if log.no_checksums:
-        warnings.append("no checksums in file: sentences accepted unchecked")
+    log, kinds, skipped, warnings = _open_log(path, GNSS_KINDS, progress, cancel)
     chosen: ng.GnssRecords | None = None
     for key in ("PTNL,GGK", "GGA"):
         if key not in kinds:
@@ -250,12 +258,7 @@ def import_attitude_log(
     if heave_positive not in (None, "up", "down"):
         raise ValueError(f"heave_positive must be 'up', 'down' or None, not {heave_positive!r}")
     path = Path(path)
-    log = _read_log(path, progress, cancel)
-    kinds = ng.sentence_kinds(log)
-    skipped = _skipped_lines(log, kinds, MOTION_KINDS)
-    warnings: list[str] = []
-    if log.no_checksums:
-        warnings.append("no checksums in file: sentences accepted unchecked")
+    log, kinds, skipped, warnings = _open_log(path, MOTION_KINDS, progress, cancel)
     candidates = _motion_records(log, kinds, source, skipped)
     usable = [r for r in candidates if r.index.size]
     if not usable:

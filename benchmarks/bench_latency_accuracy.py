@@ -15,7 +15,7 @@ import time
 import numpy as np
 
 from hydrosync_core.methods.latency import estimate_latency
-from hydrosync_core.simulate.latency_day import DayConfig, simulate_day
+from hydrosync_core.methods.latency.simulate import DayConfig, simulate_day
 
 
 def run_case(gnss_hz: float, latency: float, days: int, weighting: str) -> dict:

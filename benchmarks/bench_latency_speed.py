@@ -15,7 +15,7 @@ import time
 import tracemalloc
 
 from hydrosync_core.methods.latency import estimate_latency, synchronise
-from hydrosync_core.simulate.latency_day import DayConfig, simulate_day
+from hydrosync_core.methods.latency.simulate import DayConfig, simulate_day
 
 
 def main() -> None:

@@ -26,9 +26,9 @@ import time
 import numpy as np
 from scipy.spatial.transform import Rotation
 
-from hydrosync_core.methods.pool import georef
-from hydrosync_core.methods.pool.api import calibrate
-from hydrosync_core.simulate.pool_pass import PoolPassConfig, simulate_pool_pass
+from hydrosync_core.methods.pool_calibration import georef
+from hydrosync_core.methods.pool_calibration.api import calibrate
+from hydrosync_core.methods.pool_calibration.simulate import PoolPassConfig, simulate_pool_pass
 
 PARAMS = ("roll", "pitch", "yaw", "lever_x", "lever_y", "lever_z")
 UNITS = ("deg", "deg", "deg", "mm", "mm", "mm")

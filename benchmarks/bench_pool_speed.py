@@ -15,8 +15,8 @@ import resource
 import time
 import tracemalloc
 
-from hydrosync_core.methods.pool.api import iterate, segment
-from hydrosync_core.simulate.pool_pass import PoolPassConfig, simulate_pool_pass
+from hydrosync_core.methods.pool_calibration.api import iterate, segment
+from hydrosync_core.methods.pool_calibration.simulate import PoolPassConfig, simulate_pool_pass
 
 
 def main() -> None:

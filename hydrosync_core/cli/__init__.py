@@ -18,8 +18,8 @@ from hydrosync_core.errors import Cancelled, InputError
 
 SUBCOMMAND_MODULES = (
     "hydrosync_core.cli.project_cmds",
-    "hydrosync_core.cli.latency_cmd",
-    "hydrosync_core.cli.pool_cmd",
+    "hydrosync_core.methods.latency.cli",
+    "hydrosync_core.methods.pool_calibration.cli",
     "hydrosync_core.cli.report_cmd",
     "hydrosync_core.cli.demo_cmd",
 )

@@ -21,6 +21,6 @@ SPEC = PluginSpec(
         "outlier_k": 4.0,
     },
     demo="hydrosync_core.methods.latency.demo:fill_demo",
-    report_section="hydrosync_core.report.latency_section:section",
+    report_section="hydrosync_core.methods.latency.report_section:section",
     order=10,
 )

@@ -1,12 +1,12 @@
 """The Pool Calibration panel: parameters, Segment / Iterate / Run all, clouds, faces,
 convergence.
 
-A thin view over :mod:`hydrosync_core.methods.pool`: "Segment" runs
-:func:`~hydrosync_core.methods.pool.api.segment` in a worker and shows the faces found
+A thin view over :mod:`hydrosync_core.methods.pool_calibration`: "Segment" runs
+:func:`~hydrosync_core.methods.pool_calibration.api.segment` in a worker and shows the faces found
 with the coarse setup (kept in memory, nothing written); "Iterate" runs the angle
 iteration, lever-arm steps and joint adjustment on that segmentation
-(:func:`~hydrosync_core.methods.pool.project_run.iterate_and_store`); "Run all" runs
-:func:`~hydrosync_core.methods.pool.project_run.run` in a worker, which replaces
+(:func:`~hydrosync_core.methods.pool_calibration.project_run.iterate_and_store`); "Run all" runs
+:func:`~hydrosync_core.methods.pool_calibration.project_run.run` in a worker, which replaces
 ``/results/pool_calibration``; everything shown afterwards is read back from there.
 """
 
@@ -28,8 +28,8 @@ from PySide6.QtWidgets import (
     QWidget,
 )
 
-from hydrosync_core.methods.pool import api, project_run
-from hydrosync_core.methods.pool.project_run import RESULT
+from hydrosync_core.methods.pool_calibration import api, project_run
+from hydrosync_core.methods.pool_calibration.project_run import RESULT
 from hydrosync_gui.plugin_panel import PluginPanel
 from hydrosync_gui.widgets.param_form import ParamField, ParamForm
 from plugins.pool_calibration.cloud_box import CloudBox

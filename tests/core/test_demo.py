@@ -22,10 +22,10 @@ from hydrosync_core.demo import (
     build_demo,
     key_results,
 )
+from hydrosync_core.methods.latency import report_section as lat
+from hydrosync_core.methods.pool_calibration import report_section as pool
 from hydrosync_core.plugins import Discovered, PluginSpec, get_spec, load_object, plugin_specs
 from hydrosync_core.project import Project
-from hydrosync_core.report import latency_section as lat
-from hydrosync_core.report import pool_section as pool
 
 # ``esc(text)`` called as ``esc(project, seed=…, progress=…)`` raises a TypeError: a
 # stand-in for a plugin whose simulator or run function is broken.

@@ -9,8 +9,8 @@ import pytest
 
 from hydrosync_core.cli import main
 from hydrosync_core.methods.latency.demo import fill_demo
+from hydrosync_core.methods.latency.simulate import DayConfig, simulate_day, write_day_csv
 from hydrosync_core.project import Project
-from hydrosync_core.simulate.latency_day import DayConfig, simulate_day, write_day_csv
 
 CFG = DayConfig(latency_s=-0.15, n_lines=4, line_s=90.0, turn_s=20.0, run_in_s=5.0,
                 gnss_hz=5.0, attitude_hz=20.0, gnss_white_m=0.02, multipath_m=0.02,

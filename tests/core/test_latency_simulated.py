@@ -10,7 +10,7 @@ import pytest
 from hydrosync_core.errors import Cancelled, InputError
 from hydrosync_core.methods.latency import estimate_latency, line_series, synchronise
 from hydrosync_core.methods.latency.heave import total_heave
-from hydrosync_core.simulate.latency_day import DayConfig, simulate_day
+from hydrosync_core.methods.latency.simulate import DayConfig, simulate_day
 
 # A quieter day than the benchmark's (R ≈ 0.97), short, 10 Hz GNSS, 25 Hz attitude.
 QUIET = DayConfig(n_lines=6, line_s=100.0, turn_s=20.0, run_in_s=10.0, gnss_hz=10.0,

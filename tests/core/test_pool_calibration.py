@@ -8,10 +8,10 @@ import numpy as np
 import pytest
 
 from hydrosync_core.errors import InputError
-from hydrosync_core.methods.pool import georef
-from hydrosync_core.methods.pool.api import calibrate, iterate, segment
-from hydrosync_core.methods.pool.planes import fit_plane
-from hydrosync_core.simulate.pool_pass import PoolPassConfig, simulate_pool_pass
+from hydrosync_core.methods.pool_calibration import georef
+from hydrosync_core.methods.pool_calibration.api import calibrate, iterate, segment
+from hydrosync_core.methods.pool_calibration.planes import fit_plane
+from hydrosync_core.methods.pool_calibration.simulate import PoolPassConfig, simulate_pool_pass
 
 # Small, fast data sets: 3 passes, 128 beams, 8 Hz pings.
 FAST = dict(beams=128, ping_rate_hz=8.0, laser_density_per_m2=800.0)

@@ -8,10 +8,14 @@ import numpy as np
 import pytest
 
 from hydrosync_core.cli import main
-from hydrosync_core.methods.pool.demo import fill_demo
-from hydrosync_core.methods.pool.project_run import RESULT, run
+from hydrosync_core.methods.pool_calibration.demo import fill_demo
+from hydrosync_core.methods.pool_calibration.project_run import RESULT, run
+from hydrosync_core.methods.pool_calibration.simulate import (
+    PoolPassConfig,
+    simulate_pool_pass,
+    write_pool_files,
+)
 from hydrosync_core.project import Project
-from hydrosync_core.simulate.pool_pass import PoolPassConfig, simulate_pool_pass, write_pool_files
 
 SMALL = PoolPassConfig(beams=128, ping_rate_hz=8.0, laser_density_per_m2=800.0)
 

@@ -6,13 +6,13 @@ import numpy as np
 import pytest
 
 from hydrosync_core.errors import InputError
-from hydrosync_core.methods.pool import georef
-from hydrosync_core.methods.pool.api import calibrate
-from hydrosync_core.methods.pool.design import cast_rays, design_faces, inside_polygon
-from hydrosync_core.methods.pool.roles import infer_roles
-from hydrosync_core.methods.pool.seed_iteration import signed_angle
-from hydrosync_core.simulate.pool_pass import PoolPassConfig, simulate_pool_pass
-from hydrosync_core.simulate.pool_target import build_target
+from hydrosync_core.methods.pool_calibration import georef
+from hydrosync_core.methods.pool_calibration.api import calibrate
+from hydrosync_core.methods.pool_calibration.design import cast_rays, design_faces, inside_polygon
+from hydrosync_core.methods.pool_calibration.roles import infer_roles
+from hydrosync_core.methods.pool_calibration.seed_iteration import signed_angle
+from hydrosync_core.methods.pool_calibration.simulate import PoolPassConfig, simulate_pool_pass
+from hydrosync_core.methods.pool_calibration.simulate_target import build_target
 
 
 def test_target_design_and_roles():

@@ -11,13 +11,13 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from hydrosync_core.methods.pool import georef
-from hydrosync_core.methods.pool import segment as segmod
-from hydrosync_core.methods.pool.api import calibrate
-from hydrosync_core.methods.pool.ins_cov import attitude_derivatives, ins_covariance
-from hydrosync_core.methods.pool.planes import PlaneFit, fit_plane
-from hydrosync_core.methods.pool.segment import band_refit
-from hydrosync_core.simulate.pool_pass import PoolPassConfig, simulate_pool_pass
+from hydrosync_core.methods.pool_calibration import georef
+from hydrosync_core.methods.pool_calibration import segment as segmod
+from hydrosync_core.methods.pool_calibration.api import calibrate
+from hydrosync_core.methods.pool_calibration.ins_cov import attitude_derivatives, ins_covariance
+from hydrosync_core.methods.pool_calibration.planes import PlaneFit, fit_plane
+from hydrosync_core.methods.pool_calibration.segment import band_refit
+from hydrosync_core.methods.pool_calibration.simulate import PoolPassConfig, simulate_pool_pass
 
 FAST = dict(beams=128, ping_rate_hz=8.0, laser_density_per_m2=800.0)
 _ORIGINAL = segmod._ransac_dbscan

@@ -16,11 +16,11 @@ from pypdf import PdfReader
 
 from hydrosync_core.cli import main
 from hydrosync_core.errors import Cancelled
+from hydrosync_core.methods.latency import report_section as lat
+from hydrosync_core.methods.pool_calibration import report_section as pool
 from hydrosync_core.plugins import PluginSpec, get_spec, load_object, plugin_specs
 from hydrosync_core.project import Project
 from hydrosync_core.report import build_report
-from hydrosync_core.report import latency_section as lat
-from hydrosync_core.report import pool_section as pool
 from hydrosync_core.report.charts import nice_ticks, tick_label
 from hydrosync_core.report.context import fmt, fmt_pm, utc_text
 

@@ -2,10 +2,10 @@
 
 from __future__ import annotations
 
+from hydrosync_core.methods.latency.simulate import DayConfig, simulate_day
 from hydrosync_core.progress import report
 from hydrosync_core.project import Project
 from hydrosync_core.project.vessel import set_sensor
-from hydrosync_core.simulate.latency_day import DayConfig, simulate_day
 
 DEMO_CONFIG = DayConfig(latency_s=0.29, n_lines=13, gnss_hz=1.0, attitude_hz=50.0)
 """Like the seed's day: 13 two-minute lines, 1 Hz RTK heights, 0.29 s delay."""

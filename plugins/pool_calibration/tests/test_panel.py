@@ -15,8 +15,8 @@ import numpy as np
 import pytest
 from PySide6.QtCore import Qt
 
-from hydrosync_core.methods.pool import project_run
-from hydrosync_core.methods.pool.demo import fill_demo
+from hydrosync_core.methods.pool_calibration import project_run
+from hydrosync_core.methods.pool_calibration.demo import fill_demo
 from hydrosync_core.project import Project
 from plugins.pool_calibration.cloud_views import ProjectionView, gl_available
 from plugins.pool_calibration.panel import PoolCalibrationPanel

@@ -1,6 +1,6 @@
 """Report section of the pool calibration (seed 003 and the joint adjustment).
 
-Reads ``/results/pool_calibration`` as :mod:`hydrosync_core.methods.pool.project_run`
+Reads ``/results/pool_calibration`` as :mod:`hydrosync_core.methods.pool_calibration.project_run`
 stores it: group attributes with the final values and their 1-σ, the JSON of
 ``PoolResult.to_dict()`` on ``result``, tables ``faces`` and ``iterations``, and the
 decimated clouds under ``plan``; plus ``raw/pool/target`` for the design outlines.
@@ -17,8 +17,8 @@ import numpy as np
 from reportlab.lib.styles import ParagraphStyle
 from reportlab.platypus import Flowable, Paragraph
 
+from hydrosync_core.methods.pool_calibration.report_figures import plan_figures
 from hydrosync_core.report.context import ReportContext, esc, fmt, fmt_pm, utc_text
-from hydrosync_core.report.pool_figures import plan_figures
 from hydrosync_core.report.styles import BAD_TEXT, SERIES
 
 RESULT = "results/pool_calibration"

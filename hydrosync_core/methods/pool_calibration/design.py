@@ -36,7 +36,7 @@ class DesignFace:
         return float(self.corners[:, 2].max())
 
 
-def _face(name: str, corners: np.ndarray, source: str, index: int) -> DesignFace:
+def make_face(name: str, corners: np.ndarray, source: str, index: int) -> DesignFace:
     # Newell's method: normal of a planar polygon, robust to collinear corner triples.
     nxt = np.roll(corners, -1, axis=0)
     newell = np.cross(corners, nxt).sum(axis=0)
@@ -69,7 +69,7 @@ def design_faces(target: dict, source: str = "target.json") -> list[DesignFace]:
         if name in names:
             raise InputError(source, f"face name '{name}' used twice", field=f"faces[{i}]")
         names.add(name)
-        faces.append(_face(name, np.asarray(face["corners"], dtype=float), source, i))
+        faces.append(make_face(name, np.asarray(face["corners"], dtype=float), source, i))
     return faces
 
 

@@ -1,6 +1,6 @@
 """The solving half of the pool calibration: seed angles, seed lever arm, joint LSQ.
 
-Called through :func:`hydrosync_core.methods.pool.api.iterate`. Inputs and outputs as
+Called through :func:`hydrosync_core.methods.pool_calibration.api.iterate`. Inputs and outputs as
 documented there; the result is a :class:`~.result.PoolResult`.
 """
 
@@ -8,14 +8,19 @@ from __future__ import annotations
 
 import numpy as np
 
-from hydrosync_core.methods.pool import georef
-from hydrosync_core.methods.pool.joint import NAMES, adjust, correlation
-from hydrosync_core.methods.pool.lever_arm import lever_offsets
-from hydrosync_core.methods.pool.planes import PlaneFit, angle_deg, fit_plane
-from hydrosync_core.methods.pool.result import FaceRow, JointSolution, PoolResult, SeedSolution
-from hydrosync_core.methods.pool.roles import PARAMETER_ROLES
-from hydrosync_core.methods.pool.seed_iteration import iterate_angles
-from hydrosync_core.methods.pool.segment import segment_cloud
+from hydrosync_core.methods.pool_calibration import georef
+from hydrosync_core.methods.pool_calibration.joint import NAMES, adjust, correlation
+from hydrosync_core.methods.pool_calibration.lever_arm import lever_offsets
+from hydrosync_core.methods.pool_calibration.planes import PlaneFit, angle_deg, fit_plane
+from hydrosync_core.methods.pool_calibration.result import (
+    FaceRow,
+    JointSolution,
+    PoolResult,
+    SeedSolution,
+)
+from hydrosync_core.methods.pool_calibration.roles import PARAMETER_ROLES
+from hydrosync_core.methods.pool_calibration.seed_iteration import iterate_angles
+from hydrosync_core.methods.pool_calibration.segment import segment_cloud
 from hydrosync_core.progress import check_cancel, report, sub_progress
 
 

@@ -62,10 +62,10 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.spatial.transform import Rotation
 
-from hydrosync_core.methods.pool.block_sigma import block_factors
-from hydrosync_core.methods.pool.georef import GeorefContext, boresight_angles
-from hydrosync_core.methods.pool.ins_cov import ins_covariance
-from hydrosync_core.methods.pool.planes import PlaneFit
+from hydrosync_core.methods.pool_calibration.block_sigma import block_factors
+from hydrosync_core.methods.pool_calibration.georef import GeorefContext, boresight_angles
+from hydrosync_core.methods.pool_calibration.ins_cov import ins_covariance
+from hydrosync_core.methods.pool_calibration.planes import PlaneFit
 from hydrosync_core.progress import check_cancel
 
 NAMES = ("roll", "pitch", "yaw", "lever_x", "lever_y", "lever_z")

@@ -10,8 +10,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from hydrosync_core.methods.pool.georef import GeorefContext
-from hydrosync_core.methods.pool.planes import PlaneFit
+from hydrosync_core.methods.pool_calibration.georef import GeorefContext
+from hydrosync_core.methods.pool_calibration.planes import PlaneFit
 
 
 def _plane_pattern_removed(ctx: GeorefContext, obs: dict[str, tuple[np.ndarray, PlaneFit]],

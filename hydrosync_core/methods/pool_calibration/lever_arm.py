@@ -22,10 +22,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from hydrosync_core.methods.pool.design import DesignFace
-from hydrosync_core.methods.pool.georef import GeorefContext, georeference
-from hydrosync_core.methods.pool.planes import PlaneFit, fit_plane
-from hydrosync_core.methods.pool.roles import FaceRole
+from hydrosync_core.methods.pool_calibration.design import DesignFace
+from hydrosync_core.methods.pool_calibration.georef import GeorefContext, georeference
+from hydrosync_core.methods.pool_calibration.planes import PlaneFit, fit_plane
+from hydrosync_core.methods.pool_calibration.roles import FaceRole
 
 
 @dataclass(frozen=True)

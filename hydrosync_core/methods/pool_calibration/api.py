@@ -15,11 +15,11 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from hydrosync_core.errors import InputError
-from hydrosync_core.methods.pool import georef
-from hydrosync_core.methods.pool.design import DesignFace, design_faces
-from hydrosync_core.methods.pool.planes import PlaneFit, fit_plane
-from hydrosync_core.methods.pool.roles import FaceRole, infer_roles
-from hydrosync_core.methods.pool.segment import (
+from hydrosync_core.methods.pool_calibration import georef
+from hydrosync_core.methods.pool_calibration.design import DesignFace, design_faces
+from hydrosync_core.methods.pool_calibration.planes import PlaneFit, fit_plane
+from hydrosync_core.methods.pool_calibration.roles import FaceRole, infer_roles
+from hydrosync_core.methods.pool_calibration.segment import (
     FaceSegment,
     bbox_mask,
     segment_cloud,
@@ -149,6 +149,6 @@ def calibrate(lidar_enu, mbes: dict, ins: dict, setup: dict, target: dict,
 
 def iterate(seg: Segmentation, params: dict | None = None, progress=None, cancel=None):
     """Seed iteration, seed lever arm and joint adjustment on a :class:`Segmentation`."""
-    from hydrosync_core.methods.pool.solve import solve
+    from hydrosync_core.methods.pool_calibration.solve import solve
 
     return solve(seg, params, progress, cancel)

@@ -26,9 +26,14 @@ import numpy as np
 from scipy.spatial.transform import Rotation
 
 from hydrosync_core.atomic import write_json_atomic, write_text_atomic
-from hydrosync_core.methods.pool.design import DesignFace, _face, cast_rays, design_faces
-from hydrosync_core.methods.pool.georef import C_NED_TO_ENU, boresight_matrix
-from hydrosync_core.simulate.pool_target import build_target
+from hydrosync_core.methods.pool_calibration.design import (
+    DesignFace,
+    cast_rays,
+    design_faces,
+    make_face,
+)
+from hydrosync_core.methods.pool_calibration.georef import C_NED_TO_ENU, boresight_matrix
+from hydrosync_core.methods.pool_calibration.simulate_target import build_target
 
 
 @dataclass(frozen=True)
@@ -167,7 +172,7 @@ def _environment(faces: list[DesignFace], water: float, floor: float) -> list[De
     """Design faces plus the water surface and the pool floor as large rectangles."""
     def rect(name, z, up):
         c = np.array([[-30, -40, z], [10, -40, z], [10, 40, z], [-30, 40, z]], float)
-        return _face(name, c if up else c[::-1], "<sim>", 0)
+        return make_face(name, c if up else c[::-1], "<sim>", 0)
     return faces + [rect("__water__", water, True), rect("__floor__", floor, True)]
 
 

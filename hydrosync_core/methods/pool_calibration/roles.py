@@ -23,7 +23,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from hydrosync_core.errors import InputError
-from hydrosync_core.methods.pool.design import DesignFace
+from hydrosync_core.methods.pool_calibration.design import DesignFace
 
 PARAMETER_ROLES = {
     "roll": ("wall",),

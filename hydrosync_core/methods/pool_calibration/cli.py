@@ -52,7 +52,7 @@ def cmd_pool(args: argparse.Namespace) -> int:
 
     progress = TerminalProgress("pool-calibrate")
     if args.project:
-        from hydrosync_core.methods.pool.project_run import run
+        from hydrosync_core.methods.pool_calibration.project_run import run
         from hydrosync_core.project import Project
 
         project = Project.open(args.project)
@@ -73,7 +73,7 @@ def cmd_pool(args: argparse.Namespace) -> int:
         raise InputError(None, f"missing {', '.join(missing)} (or give a project file)")
     from hydrosync_core.importers.pool_json import read_setup_json, read_target_json
     from hydrosync_core.importers.survey_csv import read_ins_csv, read_mbes_csv
-    from hydrosync_core.methods.pool.api import calibrate
+    from hydrosync_core.methods.pool_calibration.api import calibrate
 
     # Read and check everything before computing, so bad input fails fast.
     lidar = _read_lidar(args.lidar)

@@ -24,8 +24,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from hydrosync_core.methods.pool.georef import C_NED_TO_ENU, GeorefContext
-from hydrosync_core.methods.pool.planes import PlaneFit
+from hydrosync_core.methods.pool_calibration.georef import C_NED_TO_ENU, GeorefContext
+from hydrosync_core.methods.pool_calibration.planes import PlaneFit
 
 
 def attitude_derivatives(ctx: GeorefContext, obs: dict[str, tuple[np.ndarray, PlaneFit]],

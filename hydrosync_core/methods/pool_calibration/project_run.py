@@ -33,8 +33,8 @@ from datetime import UTC, datetime
 import numpy as np
 
 from hydrosync_core import __version__
-from hydrosync_core.methods.pool import georef
-from hydrosync_core.methods.pool.api import DEFAULT_PARAMS, iterate, segment
+from hydrosync_core.methods.pool_calibration import georef
+from hydrosync_core.methods.pool_calibration.api import DEFAULT_PARAMS, iterate, segment
 from hydrosync_core.progress import sub_progress
 
 RESULT = "results/pool_calibration"

@@ -4,9 +4,9 @@ from __future__ import annotations
 
 import numpy as np
 
+from hydrosync_core.methods.pool_calibration.simulate import PoolPassConfig, simulate_pool_pass
 from hydrosync_core.progress import report
 from hydrosync_core.project.vessel import set_sensor
-from hydrosync_core.simulate.pool_pass import PoolPassConfig, simulate_pool_pass
 
 
 def fill_demo(project, seed: int = 0, progress=None,

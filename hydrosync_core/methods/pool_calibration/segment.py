@@ -19,7 +19,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from hydrosync_core.methods.pool.design import DesignFace, inside_polygon
+from hydrosync_core.methods.pool_calibration.design import DesignFace, inside_polygon
 from hydrosync_core.progress import check_cancel, report
 
 
@@ -84,7 +84,7 @@ def band_refit(pts: np.ndarray, start: np.ndarray, k_sigma: float, limit: float,
     its fixed point does not depend on the RANSAC draw and truncates a negligible tail.
     The band never exceeds *limit* m (the crop tolerance).
     """
-    from hydrosync_core.methods.pool.planes import fit_plane
+    from hydrosync_core.methods.pool_calibration.planes import fit_plane
 
     sel = np.asarray(start)
     if len(sel) < 10:

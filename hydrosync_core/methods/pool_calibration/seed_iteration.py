@@ -29,9 +29,13 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from hydrosync_core.methods.pool.georef import GeorefContext, boresight_angles, georeference
-from hydrosync_core.methods.pool.planes import PlaneFit, angle_deg, fit_plane
-from hydrosync_core.methods.pool.roles import FaceRole
+from hydrosync_core.methods.pool_calibration.georef import (
+    GeorefContext,
+    boresight_angles,
+    georeference,
+)
+from hydrosync_core.methods.pool_calibration.planes import PlaneFit, angle_deg, fit_plane
+from hydrosync_core.methods.pool_calibration.roles import FaceRole
 from hydrosync_core.progress import check_cancel, report
 
 

@@ -15,8 +15,9 @@ import resource
 import time
 import tracemalloc
 
-from hydrosync_core.methods.pool_calibration.api import iterate, segment
+from hydrosync_core.methods.pool_calibration.api import segment
 from hydrosync_core.methods.pool_calibration.simulate import PoolPassConfig, simulate_pool_pass
+from hydrosync_core.methods.pool_calibration.solve import solve
 
 
 def main() -> None:
@@ -42,7 +43,7 @@ def main() -> None:
     seg = segment(sim["lidar"], sim["mbes"], sim["ins"], sim["setup"], sim["target"])
     t_seg = time.perf_counter() - t0
     t0 = time.perf_counter()
-    res = iterate(seg)
+    res = solve(seg)
     t_it = time.perf_counter() - t0
     peak = tracemalloc.get_traced_memory()[1] - base
     tracemalloc.stop()

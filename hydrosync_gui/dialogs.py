@@ -22,18 +22,20 @@ from PySide6.QtWidgets import (
     QWidget,
 )
 
-from hydrosync_core.importers.kinds import ImportKind
+from hydrosync_core.plugins.spec import DataKind
 from hydrosync_gui.plugin_host import PluginHost
 
-HEAVE_SIGN_KINDS = ("attitude_log",)
-"""Import kinds whose reader takes ``heave_positive`` ("up" / "down")."""
+
+def _takes_heave(kind) -> bool:
+    """Whether the kind's reader takes ``heave_positive`` ("up" / "down")."""
+    return "heave_positive" in getattr(kind, "options", ())
 
 
 class ImportDialog(QDialog):
     """Choose what kind of file to import (from ``KINDS``) and the file itself."""
 
     def __init__(
-        self, kinds: Mapping[str, ImportKind], start_dir: str = "", parent: QWidget | None = None
+        self, kinds: Mapping[str, DataKind], start_dir: str = "", parent: QWidget | None = None
     ) -> None:
         super().__init__(parent)
         self.setWindowTitle("Import data")
@@ -82,13 +84,13 @@ class ImportDialog(QDialog):
         """The chosen ``(kind, path, options)``; options go to the kind's reader."""
         kind = str(self.kind_box.currentData())
         options = {}
-        if kind in HEAVE_SIGN_KINDS and self.heave_box.currentData() is not None:
+        if _takes_heave(self._kinds.get(kind)) and self.heave_box.currentData() is not None:
             options["heave_positive"] = self.heave_box.currentData()
         return kind, self.path_edit.text().strip(), options
 
     @classmethod
     def ask(
-        cls, parent: QWidget | None, kinds: Mapping[str, ImportKind], start_dir: str = ""
+        cls, parent: QWidget | None, kinds: Mapping[str, DataKind], start_dir: str = ""
     ) -> tuple[str, str, dict] | None:
         """Show the dialog modally; the choice, or None if cancelled."""
         dialog = cls(kinds, start_dir, parent)
@@ -101,7 +103,7 @@ class ImportDialog(QDialog):
     def _on_kind(self) -> None:
         kind = self._kinds.get(str(self.kind_box.currentData()))
         self.target.setText(f"/{kind.target}" if kind else "")
-        heave = str(self.kind_box.currentData()) in HEAVE_SIGN_KINDS
+        heave = _takes_heave(self._kinds.get(str(self.kind_box.currentData())))
         self.heave_box.setVisible(heave)
         self.heave_label.setVisible(heave)
         ok = self.buttons.button(QDialogButtonBox.StandardButton.Ok)

@@ -16,9 +16,9 @@ from pathlib import Path
 
 from PySide6.QtWidgets import QFileDialog, QMessageBox
 
-from hydrosync_core.errors import InputError
 from hydrosync_core.importers.kinds import KINDS, import_file
 from hydrosync_core.project import Project
+from hydrosync_core.project.subtree import copy_subtree
 from hydrosync_gui.dialogs import ImportDialog
 
 log = logging.getLogger("hydrosync_gui.file")
@@ -26,37 +26,11 @@ log = logging.getLogger("hydrosync_gui.file")
 PROJECT_FILTER = "HydroSync projects (*.h5 *.hdf5);;All files (*)"
 
 
-def copy_subtree(src: Project, dst: Project, path: str) -> None:
-    """Replace *path* in *dst* by *src*'s node there (group attributes, datasets, all below)."""
-    path = path.strip("/")
-    try:
-        data = src.get(path)
-    except InputError:  # a group: copy its attributes and everything below it
-        dst.delete(path)
-        dst.ensure_group(path)
-        dst.set_attrs(path, **src.attrs(path))
-        for info in src.walk(path):
-            if info.kind == "group":
-                dst.ensure_group(info.path)
-                dst.set_attrs(info.path, **info.attrs)
-            else:
-                dst.put(info.path, src.get(info.path), attrs=info.attrs)
-    else:
-        dst.put(path, data, attrs=src.attrs(path))
-
-
 def _import_into_scratch(kind: str, path: str, options: dict):
     """Read *path* into a scratch project (worker thread): the real one stays untouched."""
     scratch = Project.new(name="import")
-    if options.get("heave_positive") and kind == "attitude_log":
-        # as ``hydrosync import --heave-positive`` does
-        from hydrosync_core.importers.log_import import store_attitude_log
-
-        message = store_attitude_log(scratch, KINDS[kind].target, Path(path),
-                                     heave_positive=options["heave_positive"])
-    else:
-        message = import_file(scratch, kind, path)
-    return scratch, message
+    accepted = {k: v for k, v in options.items() if k in KINDS[kind].options}
+    return scratch, import_file(scratch, kind, path, **accepted)
 
 
 class FileActions:

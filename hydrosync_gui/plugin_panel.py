@@ -4,6 +4,10 @@ A panel is a thin view over a core method. It gets the project through
 :meth:`set_project`, starts its work through :meth:`start_work` (which cancels any
 previous task of the same panel) and tells the shell about progress and results through
 its signals; the main window shows progress in the status bar and offers Cancel.
+
+Completion: *on_finished(result)* runs on the GUI thread when the task returns; whatever
+the outcome (finished, failed, cancelled) :meth:`work_done` runs afterwards — override it
+to re-enable buttons instead of reaching into the worker's signals.
 """
 
 from __future__ import annotations
@@ -65,11 +69,18 @@ class PluginPanel(QWidget):
             lambda msg: self.sig_status.emit(f"{label} failed: {msg}")
         )
         worker.signals.sig_cancelled.connect(lambda: self.sig_status.emit(f"{label} cancelled"))
-        worker.signals.sig_done.connect(lambda: self.sig_busy.emit(False))
+        worker.signals.sig_done.connect(self._on_worker_done)
         self.worker = worker
         self.sig_busy.emit(True)
         self.sig_status.emit(f"{label} started")
         return start(worker)
+
+    def _on_worker_done(self) -> None:
+        self.sig_busy.emit(False)
+        self.work_done()
+
+    def work_done(self) -> None:
+        """Called on the GUI thread after every task, whatever its outcome."""
 
     def cancel_work(self) -> None:
         if self.worker is not None:

@@ -1,8 +1,9 @@
 """The ``hydrosync`` command line.
 
-Exit codes (``formats.md``): 0 success; 2 bad input, with one line on stderr naming the
-file and what is wrong; 1 anything else. Each sub-command lives in its own module
-exposing ``register(subparsers)``.
+Exit codes (``docs/formats.md``): 0 success; 2 bad input, with one line on stderr naming
+the file and what is wrong; 1 anything else. Each sub-command lives in a module exposing
+``register(subparsers)``: the project commands here, each analysis's command in its core
+package, found through its plugin spec (``PluginSpec.cli``).
 """
 
 from __future__ import annotations
@@ -18,11 +19,25 @@ from hydrosync_core.errors import Cancelled, InputError
 
 SUBCOMMAND_MODULES = (
     "hydrosync_core.cli.project_cmds",
-    "hydrosync_core.methods.latency.cli",
-    "hydrosync_core.methods.pool_calibration.cli",
     "hydrosync_core.cli.report_cmd",
     "hydrosync_core.cli.demo_cmd",
 )
+
+
+def _register_analyses(sub: argparse._SubParsersAction) -> None:
+    """Add the command of every analysis that declares one (``PluginSpec.cli``)."""
+    from hydrosync_core.plugins import discover
+    from hydrosync_core.plugins.spec import load_object
+
+    for found in discover():
+        if found.spec is None or not found.spec.cli:
+            continue
+        try:
+            load_object(found.spec.cli)(sub)
+        except Exception as exc:  # a third-party command must not break the others
+            logging.getLogger(__name__).error(
+                "command of plugin %s could not be added: %s: %s", found.spec.id,
+                type(exc).__name__, exc)
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -42,6 +57,7 @@ def build_parser() -> argparse.ArgumentParser:
                 continue
             raise
         module.register(sub)
+    _register_analyses(sub)
     return parser
 
 

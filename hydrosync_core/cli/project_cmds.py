@@ -6,8 +6,8 @@ import argparse
 from pathlib import Path
 
 from hydrosync_core.errors import InputError
-from hydrosync_core.importers.kinds import KINDS, import_file
-from hydrosync_core.importers.survey_csv import read_attitude_csv
+from hydrosync_core.importers.kinds import import_file, kinds
+from hydrosync_core.plugins.spec import DataKind
 from hydrosync_core.project import Project
 
 
@@ -28,29 +28,22 @@ def cmd_new(args: argparse.Namespace) -> int:
 def cmd_import(args: argparse.Namespace) -> int:
     path = Path(args.project)
     project = _open_project(path) if path.exists() else Project.new(name=path.stem)
-    chosen = [(kind, getattr(args, kind)) for kind in KINDS if getattr(args, kind, None)]
+    table = kinds()
+    chosen = [(kind, getattr(args, kind)) for kind in table if getattr(args, kind, None)]
     if not chosen:
         raise InputError(None, "nothing to import: give at least one --KIND FILE")
     # Read everything first so one bad file leaves the project untouched.
-    messages = [_import_one(project, kind, file, args) for kind, file in chosen]
+    messages = [_import_one(project, table[kind], file, args) for kind, file in chosen]
     project.save(path)
     for message in messages:
         print(message)
     return 0
 
 
-def _import_one(project: Project, kind: str, file: str, args: argparse.Namespace) -> str:
-    """Import one file; attitude files honour ``--heave-positive``."""
-    heave = getattr(args, "heave_positive", None)
-    if kind == "attitude_log" and heave:
-        from hydrosync_core.importers.log_import import store_attitude_log
-
-        return store_attitude_log(project, KINDS[kind].target, Path(file), heave_positive=heave)
-    if kind == "attitude" and heave:
-        columns = read_attitude_csv(file, heave_positive=heave)
-        project.put_table(KINDS[kind].target, columns, source=str(file), heave_sign_in_file=heave)
-        return f"{len(columns['time'])} rows from {Path(file).name} into /{KINDS[kind].target}"
-    return import_file(project, kind, file)
+def _import_one(project: Project, kind: DataKind, file: str, args: argparse.Namespace) -> str:
+    """Import one file with the options of the command line that its kind accepts."""
+    options = {name: getattr(args, name, None) for name in kind.options}
+    return import_file(project, kind.name, file, **options)
 
 
 def _human(nbytes: int) -> str:
@@ -108,21 +101,30 @@ def cmd_vessel(args: argparse.Namespace) -> int:
 
 def cmd_run(args: argparse.Namespace) -> int:
     from hydrosync_core.cli.terminal import TerminalProgress
+    from hydrosync_core.params import parse_assignment
     from hydrosync_core.plugins import plugin_specs
 
     specs = {s.id: s for s in plugin_specs()}
     if args.plugin not in specs:
-        raise InputError(None, f"unknown plugin '{args.plugin}' (known: {', '.join(specs)})")
+        raise InputError(None, f"unknown analysis '{args.plugin}' (known: {', '.join(specs)})")
     spec = specs[args.plugin]
+    schema = spec.load_params()
+    given = dict(parse_assignment(schema, text) for text in args.param or [])
+    try:
+        params = schema.from_dict(given, strict=True)
+    except InputError as exc:
+        raise InputError("--param", exc.message, field=exc.field) from None
     project = _open_project(args.project)
     missing = spec.missing_inputs(project)
     if missing:
         raise InputError(args.project, f"{spec.name} needs {', '.join('/' + m for m in missing)}")
     progress = TerminalProgress(spec.name)
-    spec.load_run()(project, dict(spec.default_params), progress, None)
+    spec.load_run()(project, params, progress, None)
     progress.done()
     project.save()
-    print(f"{spec.name}: results stored in {args.project} under /results/{spec.id}")
+    changed = ", ".join(f"{k}={v}" for k, v in given.items()) or "defaults"
+    print(f"{spec.name}: parameters {changed}; results stored in {args.project} under "
+          f"/results/{spec.id}")
     return 0
 
 
@@ -139,8 +141,9 @@ def register(sub: argparse._SubParsersAction) -> None:
         "the project is saved, so a bad file leaves the project unchanged.",
     )
     p.add_argument("project", help="project file (.h5)")
-    for name, kind in KINDS.items():
-        p.add_argument(f"--{name}", metavar="FILE", help=kind.description)
+    for name, kind in kinds().items():
+        flags = [f"--{name}"] + ([f"--{name.replace('_', '-')}"] if "_" in name else [])
+        p.add_argument(*flags, dest=name, metavar="FILE", help=kind.description)
     p.add_argument(
         "--heave-positive", choices=("up", "down"), default=None,
         help="direction of positive heave in the --attitude CSV (formats.md: up) or the "
@@ -165,7 +168,16 @@ def register(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--name", help="vessel name")
     p.set_defaults(func=cmd_vessel)
 
-    p = sub.add_parser("run", help="run one plugin headless on a project and save the results")
-    p.add_argument("plugin", help="plugin id (e.g. latency, pool_calibration)")
+    p = sub.add_parser(
+        "run", help="run one analysis headless on a project and save the results",
+        description="Run one analysis on a project with its parameters (defaults from the "
+        "analysis's parameter schema; change any with --param NAME=VALUE, repeatable; "
+        "tuples as comma-separated numbers, e.g. --param range_s=-0.5,0.5) and store the "
+        "results in the project.")
+    p.add_argument("plugin", metavar="ANALYSIS", help="analysis id (e.g. latency, "
+                   "pool_calibration)")
     p.add_argument("project", help="project file (.h5)")
+    p.add_argument("--param", action="append", metavar="NAME=VALUE",
+                   help="set one parameter (repeatable); see the analysis command's --help "
+                   "for names, units and defaults")
     p.set_defaults(func=cmd_run)

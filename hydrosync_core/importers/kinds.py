@@ -1,113 +1,105 @@
 """What ``hydrosync import`` and File → Import… can bring into a project.
 
-Each kind maps a file to a project location through a reader. Modules add kinds with
-:func:`register_kind` (the NMEA/real-log readers register theirs on import).
+The kinds come from the plugin specs (``PluginSpec.data_kinds``) plus the project's own
+(the vessel sheet); adding an analysis adds its kinds without touching this file. Each
+:class:`~hydrosync_core.plugins.spec.DataKind` maps a file to a project location
+through a reader named by dotted path, imported only when a file is read.
 """
 
 from __future__ import annotations
 
+import logging
 import os
-from collections.abc import Callable
-from dataclasses import dataclass
 from pathlib import Path
+from typing import Any
 
-from hydrosync_core.importers import pool_json, survey_csv, vessel_json
+from hydrosync_core.plugins.spec import DataKind, load_object
 from hydrosync_core.project import Project, schema
 
+log = logging.getLogger(__name__)
 
-@dataclass(frozen=True)
-class ImportKind:
-    """A kind of input file and how it lands in the project."""
+#: Kept for code written against the earlier name.
+ImportKind = DataKind
 
-    name: str
-    description: str
-    target: str
-    store: Callable[[Project, str, Path], str]
-
-
-KINDS: dict[str, ImportKind] = {}
+CORE_KINDS = (
+    DataKind("vessel", "vessel offset sheet vessel.json (sensor offsets, body FRD)",
+             schema.VESSEL, "hydrosync_core.importers.vessel_json:read_vessel_json", "json"),
+)
 
 
-def register_kind(kind: ImportKind) -> None:
-    KINDS[kind.name] = kind
+def collect_kinds(specs=None) -> dict[str, DataKind]:
+    """Every data kind: the core's and those of *specs* (default: the registry).
+
+    Two plugins may declare the same kind only with the same target; a clash is logged
+    and the first declaration kept.
+    """
+    if specs is None:
+        from hydrosync_core.plugins import plugin_specs
+
+        specs = plugin_specs()
+    kinds: dict[str, DataKind] = {k.name: k for k in CORE_KINDS}
+    for spec in specs:
+        for kind in spec.data_kinds:
+            known = kinds.get(kind.name)
+            if known is not None and known.target != kind.target:
+                log.error("plugin %s declares data kind '%s' -> /%s, already -> /%s: ignored",
+                          spec.id, kind.name, kind.target, known.target)
+                continue
+            kinds.setdefault(kind.name, kind)
+    return kinds
 
 
-def _table(reader: Callable) -> Callable[[Project, str, Path], str]:
-    def store(project: Project, target: str, path: Path) -> str:
-        columns = reader(path)
-        project.put_table(target, columns, source=str(path))
-        rows = len(next(iter(columns.values())))
-        return f"{rows} rows from {path.name} into /{target}"
-
-    return store
+_KINDS: dict[str, DataKind] | None = None
 
 
-def _points(project: Project, target: str, path: Path) -> str:
-    from hydrosync_core.importers.pointcloud import read_point_cloud
-
-    points = read_point_cloud(path)
-    project.put(target, points, attrs={"source": str(path), "frame": "target ENU", "units": "m"})
-    return f"{len(points)} points from {path.name} into /{target}"
-
-
-def _json(reader: Callable) -> Callable[[Project, str, Path], str]:
-    def store(project: Project, target: str, path: Path) -> str:
-        project.put_json(target, reader(path))
-        project.set_attrs(target, source=str(path))
-        return f"{path.name} into /{target}"
-
-    return store
+def kinds() -> dict[str, DataKind]:
+    """The registry's kinds, collected once per process."""
+    global _KINDS
+    if _KINDS is None:
+        _KINDS = collect_kinds()
+    return _KINDS
 
 
-for _kind in (
-    ImportKind("gnss", "GNSS heights CSV (time, height[, lat, lon, quality])", schema.RAW_GNSS,
-               _table(survey_csv.read_gnss_csv)),
-    ImportKind("attitude", "attitude CSV (time, roll, pitch, heading, heave)", schema.RAW_ATTITUDE,
-               _table(survey_csv.read_attitude_csv)),
-    ImportKind("lines", "survey lines CSV (name, start, end)", schema.RAW_LINES,
-               _table(survey_csv.read_lines_csv)),
-    ImportKind("mbes", "multibeam soundings CSV (time, x, y, z; sensor frame)",
-               f"{schema.RAW_POOL}/mbes", _table(survey_csv.read_mbes_csv)),
-    ImportKind("ins", "INS trajectory CSV (time, e, n, u, roll, pitch, heading)",
-               f"{schema.RAW_POOL}/ins", _table(survey_csv.read_ins_csv)),
-    ImportKind("lidar", "laser points (CSV x,y,z / PLY / LAS / LAZ; target ENU)",
-               f"{schema.RAW_POOL}/lidar", _points),
-    ImportKind("setup", "pool setup.json (coarse boresight and lever arm)",
-               f"{schema.RAW_POOL}/setup", _json(pool_json.read_setup_json)),
-    ImportKind("target", "pool target.json (target design)", f"{schema.RAW_POOL}/target",
-               _json(pool_json.read_target_json)),
-    ImportKind("vessel", "vessel offset sheet vessel.json (sensor offsets, body FRD)",
-               schema.VESSEL, _json(vessel_json.read_vessel_json)),
-):
-    register_kind(_kind)
+def __getattr__(name: str) -> Any:
+    if name == "KINDS":
+        return kinds()
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 
-def import_file(project: Project, kind: str, path: str | os.PathLike) -> str:
-    """Read *path* as *kind* into *project*; return a one-line summary."""
-    if kind not in KINDS:
-        raise KeyError(f"unknown import kind '{kind}' (known: {', '.join(KINDS)})")
-    spec = KINDS[kind]
-    return spec.store(project, spec.target, Path(path))
+def _summary(path: Path, target: str, count: int | None, what: str) -> str:
+    return (f"{count} {what} from {path.name} into /{target}" if count is not None
+            else f"{path.name} into /{target}")
 
 
-# --- Real device logs (NMEA): stores live in log_import, imported lazily. -----------------
-def _gnss_log(project: Project, target: str, path: Path) -> str:
-    from hydrosync_core.importers.log_import import store_gnss_log
+def import_file(project: Project, kind: str, path: str | os.PathLike, **options: Any) -> str:
+    """Read *path* as *kind* into *project*; return a one-line summary.
 
-    return store_gnss_log(project, target, path)
-
-
-def _attitude_log(project: Project, target: str, path: Path) -> str:
-    from hydrosync_core.importers.log_import import store_attitude_log
-
-    return store_attitude_log(project, target, path)
-
-
-register_kind(ImportKind(
-    "gnss_log", "NMEA GNSS log (GGA / PTNL,GGK [+GST, ZDA]; logger time tags allowed)",
-    schema.RAW_GNSS, _gnss_log,
-))
-register_kind(ImportKind(
-    "attitude_log", "NMEA motion log (PASHR / PSXN,23 / TSS1; see --heave-positive)",
-    schema.RAW_ATTITUDE, _attitude_log,
-))
+    *options* are passed to the reader when the kind declares them (others are an error);
+    those given are recorded as attributes of the imported data.
+    """
+    table = kinds()
+    if kind not in table:
+        raise KeyError(f"unknown import kind '{kind}' (known: {', '.join(table)})")
+    spec = table[kind]
+    given = {k: v for k, v in options.items() if v is not None}
+    unknown = sorted(set(given) - set(spec.options))
+    if unknown:
+        raise ValueError(f"import kind '{kind}' takes no option {', '.join(unknown)}")
+    path = Path(path)
+    reader = load_object(spec.reader)
+    if spec.store == "custom":
+        return reader(project, spec.target, path, **given)
+    data = reader(path, **given)
+    recorded = {f"{k}_in_file": v for k, v in given.items()}
+    if spec.store == "table":
+        project.put_table(spec.target, data, source=str(path), **recorded)
+        return _summary(path, spec.target, len(next(iter(data.values()))), "rows")
+    if spec.store == "points":
+        project.put(spec.target, data, attrs={"source": str(path), "frame": "target ENU",
+                                              "units": "m", **recorded})
+        return _summary(path, spec.target, len(data), "points")
+    if spec.store == "json":
+        project.put_json(spec.target, data)
+        project.set_attrs(spec.target, source=str(path), **recorded)
+        return _summary(path, spec.target, None, "")
+    raise ValueError(f"import kind '{kind}' has an unknown store '{spec.store}'")

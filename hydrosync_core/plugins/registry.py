@@ -6,7 +6,7 @@ import logging
 from dataclasses import dataclass
 from importlib.metadata import entry_points
 
-from hydrosync_core.plugins.spec import ENTRY_POINT_GROUP, PluginSpec
+from hydrosync_core.plugins.spec import API_VERSION, ENTRY_POINT_GROUP, PluginSpec
 
 log = logging.getLogger(__name__)
 
@@ -21,14 +21,22 @@ class Discovered:
     error: str | None
 
 
+def check_spec(spec: object, where: str) -> PluginSpec:
+    """*spec* if it is a usable PluginSpec, else raise with a reason a user can act on."""
+    if not isinstance(spec, PluginSpec):
+        raise TypeError(f"{where} is a {type(spec).__name__}, not a PluginSpec")
+    if spec.api_version != API_VERSION:
+        raise ValueError(f"{where} was written for plugin API {spec.api_version}; this "
+                         f"HydroSync provides API {API_VERSION}")
+    return spec
+
+
 def discover(group: str = ENTRY_POINT_GROUP) -> list[Discovered]:
     """Load every plugin spec of *group*; broken ones come back with their error."""
     found: list[Discovered] = []
     for ep in entry_points(group=group):
         try:
-            spec = ep.load()
-            if not isinstance(spec, PluginSpec):
-                raise TypeError(f"{ep.value} is a {type(spec).__name__}, not a PluginSpec")
+            spec = check_spec(ep.load(), ep.value)
             found.append(Discovered(ep.name, ep.value, spec, None))
         except Exception as exc:  # a third-party plugin may fail in any way
             message = f"{type(exc).__name__}: {exc}"

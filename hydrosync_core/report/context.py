@@ -215,6 +215,22 @@ class ReportContext:
         return self.table(["Item", "Value"], rows, col_widths=[key_width, 1 - key_width],
                           numeric_from=2, caption=caption)
 
+    def params_table(self, params, caption: str) -> list[Flowable]:
+        """Every processing parameter of *params* (a ``Params`` instance) with its unit.
+
+        Labels, units and the meaning of "not set" come from the analysis's parameter
+        schema, so the report lists exactly what the method was run with.
+        """
+        from hydrosync_core.params import describe
+
+        rows = [[Paragraph(esc(label), self.styles["Cell"]),
+                 Paragraph(esc(value), self.styles["Cell"]),
+                 Paragraph(f"<font face='Courier' size='7'>{esc(name)}</font>",
+                           self.styles["Cell"])]
+                for label, value, name in describe(type(params), params.to_dict())]
+        return self.table(["Parameter", "Value", "Name (--param)"], rows,
+                          col_widths=[0.42, 0.3, 0.28], numeric_from=3, caption=caption)
+
     # ------------------------------------------------------------------ figures
     def chart(self, height: float = 210.0, fraction: float = 1.0, **kwargs) -> Chart:
         """A :class:`Chart` *fraction* of the frame wide (points); call ``figure()`` with it."""

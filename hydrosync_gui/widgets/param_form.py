@@ -1,146 +1,240 @@
-"""A form editing a flat dict of parameters, for the plugin panels.
+"""A form editing an analysis's parameters, built from its parameter schema.
 
 Example
 -------
->>> form = ParamForm([
-...     ParamField("max_lag", "Max lag", 1.0, unit="s", minimum=0.01, maximum=10, decimals=3),
-...     ParamField("window", "Window", 60, unit="s", minimum=1, maximum=3600),
-...     ParamField("detrend", "Detrend heights", True),
-...     ParamField("method", "Method", "xcorr", choices=("xcorr", "lsq")),
-... ])
->>> form.values()
-{'max_lag': 1.0, 'window': 60, 'detrend': True, 'method': 'xcorr'}
+>>> form = ParamForm(LatencyParams)          # one editor per field, defaults shown
+>>> form.params()                            # a validated LatencyParams
+>>> form.set_params(stored_params)           # e.g. the parameters of the stored result
 
-The editor follows the type of the default (float → spin box with *decimals*, int →
-integer spin box, bool → check box, str → line edit, or a combo box if *choices* given).
-Values are in the units shown to the user (degrees, seconds, metres); convert to radians
-inside the core, not here. :attr:`ParamForm.sig_changed` fires after any edit.
+Everything the user sees comes from the schema (:mod:`hydrosync_core.params`): labels,
+units (as spin-box suffixes), ranges, help (tooltips) and defaults. The editor follows the
+field's type: float → spin box with the declared decimals, int → integer spin box, bool →
+check box, str → combo box of its choices (line edit without), tuple → one spin box per
+element. An optional field (``… | None``) gets a check box in front: unticked means
+"not set", whose meaning (``none_label``, e.g. "vessel sheet") is shown beside it.
+Fields of a named ``group`` go into a group box, ``advanced`` ones into a collapsed
+"Advanced" section, so panels stay short on a laptop screen. Values are in the units
+shown to the user (degrees, seconds, metres); the core converts to radians.
+:attr:`ParamForm.sig_changed` fires after any edit.
 """
 
 from __future__ import annotations
 
-from collections.abc import Iterable, Mapping
-from dataclasses import dataclass
+from collections.abc import Mapping
 from typing import Any
 
-from PySide6.QtCore import Signal
+from PySide6.QtCore import Qt, Signal
 from PySide6.QtWidgets import (
     QCheckBox,
     QComboBox,
     QDoubleSpinBox,
     QFormLayout,
+    QGroupBox,
+    QHBoxLayout,
+    QLabel,
     QLineEdit,
     QSpinBox,
+    QToolButton,
+    QVBoxLayout,
     QWidget,
 )
 
-
-@dataclass(frozen=True)
-class ParamField:
-    """One parameter: key in the params dict, label, default and editor hints."""
-
-    name: str
-    label: str
-    default: Any
-    unit: str = ""
-    minimum: float | None = None
-    maximum: float | None = None
-    decimals: int = 3
-    step: float | None = None
-    choices: tuple[str, ...] = ()
-    tooltip: str = ""
+from hydrosync_core.params import FieldInfo, Params
 
 
-class ParamForm(QWidget):
-    """Editors for a list of :class:`ParamField`; :meth:`values` returns the dict."""
+def _tooltip(info: FieldInfo) -> str:
+    text = info.meta.help or info.meta.label
+    return f"{text}\n\nDefault: {info.describe_value(info.default)}  (--param {info.name})"
+
+
+class _Editor(QWidget):
+    """The editor of one field: get/set a typed value, None for an unset optional."""
 
     sig_changed = Signal()
 
-    def __init__(self, fields: Iterable[ParamField], parent: QWidget | None = None) -> None:
-        super().__init__(parent)
-        self.fields = {f.name: f for f in fields}
-        self.editors: dict[str, QWidget] = {}
-        layout = QFormLayout(self)
-        layout.setFieldGrowthPolicy(QFormLayout.FieldGrowthPolicy.AllNonFixedFieldsGrow)
-        for f in self.fields.values():
-            editor = self._make_editor(f)
-            editor.setToolTip(f.tooltip)
-            editor.setObjectName(f"param_{f.name}")
-            self.editors[f.name] = editor
-            label = "" if isinstance(editor, QCheckBox) else f"{f.label}:"
-            layout.addRow(label, editor)
+    def __init__(self, info: FieldInfo) -> None:
+        super().__init__()
+        self.info = info
+        layout = QHBoxLayout(self)
+        layout.setContentsMargins(0, 0, 0, 0)
+        self.enable: QCheckBox | None = None
+        if info.optional:
+            self.enable = QCheckBox()
+            self.enable.setToolTip(f"tick to set; unticked: {info.meta.none_label or 'not set'}")
+            self.enable.toggled.connect(self._on_enable)
+            layout.addWidget(self.enable)
+        self.parts = self._make_parts(info)
+        for part in self.parts:
+            layout.addWidget(part, 1)
+        self.unset_label: QLabel | None = None
+        if info.optional:
+            self.unset_label = QLabel(info.meta.none_label or "not set")
+            self.unset_label.setStyleSheet("color: palette(mid);")
+            layout.addWidget(self.unset_label)
+        self.setToolTip(_tooltip(info))
+        self.set_value(info.default)
 
-    @classmethod
-    def from_defaults(cls, defaults: Mapping[str, Any], parent: QWidget | None = None):
-        """A form for a plugin's ``default_params`` (labels from the keys)."""
-        fields = [ParamField(k, k.replace("_", " ").capitalize(), v) for k, v in defaults.items()]
-        return cls(fields, parent)
-
-    def _make_editor(self, f: ParamField) -> QWidget:
-        value = f.default
-        if f.choices:
-            box = QComboBox()
-            box.addItems(list(f.choices))
-            box.setCurrentText(str(value))
-            box.currentTextChanged.connect(self.sig_changed)
-            return box
-        if isinstance(value, bool):
-            check = QCheckBox(f.label)
-            check.setChecked(value)
-            check.toggled.connect(self.sig_changed)
-            return check
-        if isinstance(value, int):
+    def _spin(self, kind: str) -> QWidget:
+        m = self.info.meta
+        if kind == "int":
             spin = QSpinBox()
-            spin.setRange(int(f.minimum if f.minimum is not None else -2**31),
-                          int(f.maximum if f.maximum is not None else 2**31 - 1))
-            spin.setValue(value)
-            if f.step:
-                spin.setSingleStep(int(f.step))
-            if f.unit:
-                spin.setSuffix(f" {f.unit}")
+            spin.setRange(int(m.minimum if m.minimum is not None else -(2**31)),
+                          int(m.maximum if m.maximum is not None else 2**31 - 1))
+            if m.step:
+                spin.setSingleStep(int(m.step))
             spin.valueChanged.connect(self.sig_changed)
-            return spin
-        if isinstance(value, float):
-            dspin = QDoubleSpinBox()
-            dspin.setDecimals(f.decimals)
-            dspin.setRange(f.minimum if f.minimum is not None else -1e12,
-                           f.maximum if f.maximum is not None else 1e12)
-            dspin.setValue(value)
-            dspin.setSingleStep(f.step or 10 ** -max(f.decimals - 1, 0))
-            if f.unit:
-                dspin.setSuffix(f" {f.unit}")
-            dspin.valueChanged.connect(self.sig_changed)
-            return dspin
-        line = QLineEdit(str(value))
+        else:
+            spin = QDoubleSpinBox()
+            spin.setDecimals(m.decimals)
+            tick = 10.0 ** -m.decimals
+            low = m.minimum if m.minimum is not None else -1e12
+            high = m.maximum if m.maximum is not None else 1e12
+            spin.setRange(low + (tick if m.min_exclusive else 0.0),
+                          high - (tick if m.max_exclusive else 0.0))
+            spin.setSingleStep(m.step or 10.0 ** -max(m.decimals - 1, 0))
+            spin.valueChanged.connect(self.sig_changed)
+        if m.unit:
+            spin.setSuffix(f" {m.unit}")
+        return spin
+
+    def _make_parts(self, info: FieldInfo) -> list[QWidget]:
+        if info.kind == "tuple":
+            return [self._spin("float") for _ in range(info.length)]
+        if info.kind in ("float", "int"):
+            return [self._spin(info.kind)]
+        if info.kind == "bool":
+            check = QCheckBox(info.meta.label)
+            check.toggled.connect(self.sig_changed)
+            return [check]
+        if info.meta.choices:
+            box = QComboBox()
+            box.addItems(list(info.meta.choices))
+            box.currentTextChanged.connect(self.sig_changed)
+            return [box]
+        line = QLineEdit()
         line.textChanged.connect(self.sig_changed)
-        return line
+        return [line]
+
+    def _on_enable(self, on: bool) -> None:
+        for part in self.parts:
+            part.setEnabled(on)
+        if self.unset_label is not None:
+            self.unset_label.setVisible(not on)
+        self.sig_changed.emit()
+
+    def value(self) -> Any:
+        if self.enable is not None and not self.enable.isChecked():
+            return None
+        values = []
+        for part in self.parts:
+            if isinstance(part, QComboBox):
+                values.append(part.currentText())
+            elif isinstance(part, QCheckBox):
+                values.append(part.isChecked())
+            elif isinstance(part, QSpinBox | QDoubleSpinBox):
+                values.append(part.value())
+            else:
+                values.append(part.text())
+        return tuple(values) if self.info.kind == "tuple" else values[0]
+
+    def set_shown(self, value: Any) -> None:
+        """Show *value* in the editors without changing whether the field is set."""
+        if value is None:
+            return
+        values = list(value) if self.info.kind == "tuple" else [value]
+        for part, v in zip(self.parts, values, strict=False):
+            if isinstance(part, QComboBox):
+                part.setCurrentText(str(v))
+            elif isinstance(part, QCheckBox):
+                part.setChecked(bool(v))
+            elif isinstance(part, QSpinBox):
+                part.setValue(int(v))
+            elif isinstance(part, QDoubleSpinBox):
+                part.setValue(float(v))
+            else:
+                part.setText(str(v))
+
+    def set_value(self, value: Any) -> None:
+        self.set_shown(value)
+        if self.enable is not None:
+            self.enable.setChecked(value is not None)
+            self._on_enable(value is not None)
+
+
+class ParamForm(QWidget):
+    """Editors for every field of a :class:`~hydrosync_core.params.Params` schema."""
+
+    sig_changed = Signal()
+
+    def __init__(self, schema: type[Params], parent: QWidget | None = None) -> None:
+        super().__init__(parent)
+        self.schema = schema
+        self.editors: dict[str, _Editor] = {}
+        outer = QVBoxLayout(self)
+        outer.setContentsMargins(0, 0, 0, 0)
+        main = QFormLayout()
+        main.setFieldGrowthPolicy(QFormLayout.FieldGrowthPolicy.AllNonFixedFieldsGrow)
+        outer.addLayout(main)
+        groups: dict[str, QFormLayout] = {}
+        advanced = QWidget()
+        advanced_layout = QVBoxLayout(advanced)
+        advanced_layout.setContentsMargins(0, 0, 0, 0)
+        advanced_form = QFormLayout()
+        advanced_layout.addLayout(advanced_form)
+        for info in schema.schema():
+            editor = _Editor(info)
+            editor.setObjectName(f"param_{info.name}")
+            editor.sig_changed.connect(self.sig_changed)
+            self.editors[info.name] = editor
+            label = "" if info.kind == "bool" else f"{info.meta.label}:"
+            if info.meta.advanced:
+                advanced_form.addRow(label, editor)
+            elif info.meta.group:
+                if info.meta.group not in groups:
+                    box = QGroupBox(info.meta.group)
+                    groups[info.meta.group] = QFormLayout(box)
+                    outer.addWidget(box)
+                groups[info.meta.group].addRow(label, editor)
+            else:
+                main.addRow(label, editor)
+        self.advanced = advanced
+        self.advanced_button = QToolButton()
+        self.advanced_button.setObjectName("advanced_toggle")
+        self.advanced_button.setText("Advanced")
+        self.advanced_button.setCheckable(True)
+        self.advanced_button.setToolButtonStyle(Qt.ToolButtonStyle.ToolButtonTextBesideIcon)
+        self.advanced_button.setArrowType(Qt.ArrowType.RightArrow)
+        self.advanced_button.toggled.connect(self._on_advanced)
+        if advanced_form.rowCount():
+            outer.addWidget(self.advanced_button)
+            outer.addWidget(advanced)
+        else:
+            self.advanced_button.hide()
+        advanced.setVisible(False)
+
+    def _on_advanced(self, shown: bool) -> None:
+        self.advanced.setVisible(shown)
+        self.advanced_button.setArrowType(Qt.ArrowType.DownArrow if shown
+                                          else Qt.ArrowType.RightArrow)
 
     def values(self) -> dict[str, Any]:
-        """The current values, typed like the defaults."""
-        out: dict[str, Any] = {}
-        for name, editor in self.editors.items():
-            if isinstance(editor, QComboBox):
-                out[name] = editor.currentText()
-            elif isinstance(editor, QCheckBox):
-                out[name] = editor.isChecked()
-            elif isinstance(editor, QSpinBox | QDoubleSpinBox):
-                out[name] = editor.value()
-            else:
-                assert isinstance(editor, QLineEdit)
-                out[name] = editor.text()
-        return out
+        """The current values, typed like the schema's fields (None = not set)."""
+        return {name: editor.value() for name, editor in self.editors.items()}
 
-    def set_values(self, values: Mapping[str, Any]) -> None:
-        """Set the editors named in *values* (unknown keys are ignored)."""
+    def params(self) -> Params:
+        """The current values as a validated schema instance (raises ``InputError``)."""
+        return self.schema.from_dict(self.values())
+
+    def set_params(self, values: Params | Mapping[str, Any]) -> None:
+        """Show *values* (an instance or a dict; unknown keys are ignored)."""
+        if isinstance(values, Params):
+            values = values.to_dict()
         for name, value in values.items():
-            editor = self.editors.get(name)
-            if isinstance(editor, QComboBox):
-                editor.setCurrentText(str(value))
-            elif isinstance(editor, QCheckBox):
-                editor.setChecked(bool(value))
-            elif isinstance(editor, QSpinBox):
-                editor.setValue(int(value))
-            elif isinstance(editor, QDoubleSpinBox):
-                editor.setValue(float(value))
-            elif isinstance(editor, QLineEdit):
-                editor.setText(str(value))
+            if name in self.editors:
+                self.editors[name].set_value(value)
+
+    def show_unset(self, name: str, value: Any) -> None:
+        """For an optional field that is not set, show the value that will be used."""
+        editor = self.editors[name]
+        if editor.value() is None:
+            editor.set_shown(value)

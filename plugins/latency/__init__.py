@@ -1,26 +1,42 @@
-"""Latency plugin: delay between GNSS heights and attitude/heave (Qt-free declaration)."""
+"""Latency plugin: delay between GNSS heights and attitude/heave (Qt-free declaration).
 
-from hydrosync_core.plugins.spec import PluginSpec
+Importing this module loads only :mod:`hydrosync_core.plugins.spec`; the method, its
+parameter schema and the panel are named by dotted path and imported when used.
+"""
+
+from hydrosync_core.plugins.spec import DataKind, PluginSpec
+
+CORE = "hydrosync_core.methods.latency"
+READERS = "hydrosync_core.importers"
 
 SPEC = PluginSpec(
     id="latency",
     name="Latency",
-    run="hydrosync_core.methods.latency.project_run:run",
+    run=f"{CORE}.project_run:run",
     panel="plugins.latency.panel:LatencyPanel",
+    params=f"{CORE}.params:LatencyParams",
+    cli=f"{CORE}.cli:register",
+    data_kinds=(
+        DataKind("gnss", "GNSS heights CSV (time, height[, lat, lon, quality])", "raw/gnss",
+                 f"{READERS}.survey_csv:read_gnss_csv"),
+        DataKind("attitude", "attitude CSV (time, roll, pitch, heading, heave)",
+                 "raw/attitude", f"{READERS}.survey_csv:read_attitude_csv",
+                 options=("heave_positive",)),
+        DataKind("lines", "survey lines CSV (name, start, end)", "raw/lines",
+                 f"{READERS}.survey_csv:read_lines_csv"),
+        DataKind("gnss_log", "NMEA GNSS log (GGA / PTNL,GGK [+GST, ZDA]; logger time tags "
+                 "allowed)", "raw/gnss", f"{READERS}.log_import:store_gnss_log", "custom"),
+        DataKind("attitude_log", "NMEA motion log (PASHR / PSXN,23 / TSS1; see "
+                 "--heave-positive)", "raw/attitude",
+                 f"{READERS}.log_import:store_attitude_log", "custom",
+                 options=("heave_positive",)),
+    ),
     requires=("raw/gnss", "raw/attitude", "raw/lines"),
     icon="latency.svg",
     description="Delay of the GNSS time tags relative to the attitude/heave time tags, "
-    "by correlating detrended RTK heights with total heave (seed 000).",
-    default_params={
-        "range_s": [-1.0, 1.0],
-        "step_s": 0.005,
-        "min_r": 0.85,
-        "detrend_degree": 1,
-        "skip_s": 0.0,
-        "weighting": "r",
-        "outlier_k": 4.0,
-    },
-    demo="hydrosync_core.methods.latency.demo:fill_demo",
-    report_section="hydrosync_core.methods.latency.report_section:section",
+    "by correlating detrended RTK heights with total heave (Qi et al. 2010).",
+    demo=f"{CORE}.demo:fill_demo",
+    report_section=f"{CORE}.report_section:section",
     order=10,
+    version="1.1.0",
 )

@@ -22,33 +22,12 @@ from PySide6.QtWidgets import (
 
 from hydrosync_core.errors import InputError
 from hydrosync_core.methods.latency.api import line_series
-from hydrosync_core.methods.latency.project_run import RESULT, project_lever_arm, recombine, run
+from hydrosync_core.methods.latency.params import LatencyParams
+from hydrosync_core.methods.latency.project_run import RESULT, recombine, run, stored_params
 from hydrosync_core.project.vessel import lever_arm as vessel_lever_arm
 from hydrosync_gui.plugin_panel import PluginPanel
-from hydrosync_gui.widgets.param_form import ParamField, ParamForm
+from hydrosync_gui.widgets.param_form import ParamForm
 from plugins.latency.views import CorrelationPlot, LineTable, SeriesPlot
-
-FIELDS = [
-    ParamField("range_min", "Scan from", -1.0, unit="s", minimum=-10, maximum=10, decimals=3,
-               tooltip="smallest delay tried (negative: GNSS tags early)"),
-    ParamField("range_max", "Scan to", 1.0, unit="s", minimum=-10, maximum=10, decimals=3),
-    ParamField("step_s", "Step", 0.005, unit="s", minimum=0.0005, maximum=0.5, decimals=4),
-    ParamField("min_r", "R threshold", 0.85, minimum=-1, maximum=0.999, decimals=3,
-               tooltip="lines whose best correlation is above this are used"),
-    ParamField("detrend_degree", "Detrend degree", 1, minimum=0, maximum=5,
-               tooltip="polynomial removed from each line's heights (tide)"),
-    ParamField("skip_s", "Skip at line start", 0.0, unit="s", minimum=0, maximum=600,
-               decimals=1, tooltip="unsteady run-in after the line start (seed: 60 s)"),
-    ParamField("weighting", "Weights", "r", choices=("r", "inverse_variance"),
-               tooltip="r: each line weighted by its R max (seed); inverse_variance: by "
-               "1/uncertainty²"),
-    ParamField("outlier_k", "Outlier limit", 4.0, unit="σ", minimum=0, maximum=100,
-               decimals=1, tooltip="lines whose Δt departs from the median by more than this "
-               "many robust σ are not used (0: off)"),
-    ParamField("lever_x", "Lever arm x (fwd)", 0.0, unit="m", minimum=-100, maximum=100),
-    ParamField("lever_y", "Lever arm y (stbd)", 0.0, unit="m", minimum=-100, maximum=100),
-    ParamField("lever_z", "Lever arm z (down)", 0.0, unit="m", minimum=-100, maximum=100),
-]
 
 
 class LatencyPanel(PluginPanel):
@@ -60,7 +39,7 @@ class LatencyPanel(PluginPanel):
 
             spec = SPEC
         super().__init__(spec, parent)
-        self.form = ParamForm(FIELDS)
+        self.form = ParamForm(LatencyParams)
         self.run_button = QPushButton("Run")
         self.run_button.clicked.connect(self._on_run)
         self.summary = QLabel()
@@ -93,46 +72,29 @@ class LatencyPanel(PluginPanel):
         QVBoxLayout(self).addWidget(split)
         self._table: dict | None = None
         self._bound_project = None
-        self._sheet_arm: tuple | None = None  # vessel sheet gnss − motion when last seen
 
     # ------------------------------------------------------------- parameters
-    def params(self) -> dict:
-        v = self.form.values()
-        return {"range_s": [v["range_min"], v["range_max"]], "step_s": v["step_s"],
-                "min_r": v["min_r"], "detrend_degree": v["detrend_degree"],
-                "skip_s": v["skip_s"], "weighting": v["weighting"],
-                "outlier_k": v["outlier_k"],
-                "lever_arm_m": [v["lever_x"], v["lever_y"], v["lever_z"]]}
-
-    def _load_params(self) -> None:
-        """Fill the form from the last run's parameters, else defaults + vessel sheet."""
-        stored = self.project.get_json(RESULT) if self.project.exists(RESULT) else None
-        p = dict(self.spec.default_params) | dict(stored or {})
-        values = {"range_min": p["range_s"][0], "range_max": p["range_s"][1]}
-        values |= {k: p[k] for k in ("step_s", "min_r", "detrend_degree", "skip_s", "weighting",
-                                     "outlier_k") if k in p}
+    def params(self) -> LatencyParams | None:
+        """The form's parameters, validated; None (and the reason shown) if invalid."""
         try:
-            arm = project_lever_arm(self.project, stored)
-        except InputError:
-            arm = np.zeros(3)
-        values |= {"lever_x": arm[0], "lever_y": arm[1], "lever_z": arm[2]}
-        self.form.set_values(values)
-        self._sheet_arm = self._vessel_arm()
-
-    def _vessel_arm(self) -> tuple | None:
-        """The vessel sheet's gnss − motion lever arm (body FRD, m), None if not there."""
-        try:
-            return tuple(float(v) for v in vessel_lever_arm(self.project, "gnss", "motion"))
-        except InputError:
+            return self.form.params()
+        except InputError as exc:
+            self.summary.setText(f"<b>Parameter error</b>: {exc.one_line()}")
+            self.sig_status.emit(f"Latency: {exc.one_line()}")
             return None
 
-    def _follow_vessel_sheet(self) -> None:
-        """Edit → Vessel offsets changed the sheet: show its lever arm for the next run."""
-        arm = self._vessel_arm()
-        if arm != self._sheet_arm:
-            self._sheet_arm = arm
-            if arm is not None:
-                self.form.set_values({"lever_x": arm[0], "lever_y": arm[1], "lever_z": arm[2]})
+    def _load_params(self) -> None:
+        """The last run's parameters, else the schema's defaults."""
+        self.form.set_params(stored_params(self.project) or LatencyParams())
+        self._show_sheet_arm()
+
+    def _show_sheet_arm(self) -> None:
+        """With no lever arm set, show the vessel sheet's (what a run would use)."""
+        try:
+            arm = vessel_lever_arm(self.project, "gnss", "motion")
+        except InputError:
+            return
+        self.form.show_unset("lever_arm_m", tuple(float(v) for v in arm))
 
     # ---------------------------------------------------------------- drawing
     def refresh(self) -> None:
@@ -141,7 +103,7 @@ class LatencyPanel(PluginPanel):
             self._bound_project = project
             self._load_params()
         elif project is not None:
-            self._follow_vessel_sheet()
+            self._show_sheet_arm()
         missing = self.spec.missing_inputs(project) if project is not None else ["a project"]
         self.run_button.setEnabled(not missing and not self.busy)
         if missing:
@@ -192,7 +154,7 @@ class LatencyPanel(PluginPanel):
         grid = self.project.get(f"{RESULT}/dt_grid")
         curves = self.project.get(f"{RESULT}/r_curves")
         a = self.project.attrs(RESULT)
-        min_r = self.project.get_json(RESULT, {}).get("min_r", 0.85)
+        min_r = stored_params(self.project).min_r
         self.r_plot.show_curves(grid, curves, self._table, a["latency_s"], min_r, self._selected())
 
     # ------------------------------------------------------------------ slots
@@ -203,7 +165,7 @@ class LatencyPanel(PluginPanel):
         self._draw_curves()
         gnss, att = self.project.get_table("raw/gnss"), self.project.get_table("raw/attitude")
         a = self.project.attrs(RESULT)
-        params = self.project.get_json(RESULT, {})
+        params = stored_params(self.project)
         final = a["latency_s"] if np.isfinite(a["latency_s"]) else 0.0
         series = line_series(gnss, att, json.loads(a["lever_arm_m"]), self._table["start"][row],
                              self._table["end"][row], final, params)
@@ -225,15 +187,17 @@ class LatencyPanel(PluginPanel):
         self.sig_status.emit(f"latency recomputed: {self.project.attrs(RESULT)['message']}")
 
     def _on_run(self) -> None:
-        if self.project is None:
-            return
         project, params = self.project, self.params()
+        if project is None or params is None:
+            return
         self.run_button.setEnabled(False)
         self.start_work(lambda progress, cancel: run(project, params, progress, cancel),
                         self._on_finished, label="Latency")
-        self.worker.signals.sig_done.connect(lambda: self.run_button.setEnabled(True))
+
+    def work_done(self) -> None:
+        self.run_button.setEnabled(True)
 
     def _on_finished(self, result) -> None:
         self.refresh()
         self.sig_project_modified.emit()
-        self.sig_status.emit(f"Latency: {result.message}")
+        self.sig_status.emit(result.message)

@@ -5,7 +5,7 @@ A thin view over :mod:`hydrosync_core.methods.pool_calibration`: "Segment" runs
 :func:`~hydrosync_core.methods.pool_calibration.api.segment` in a worker and shows the faces found
 with the coarse setup (kept in memory, nothing written); "Iterate" runs the angle
 iteration, lever-arm steps and joint adjustment on that segmentation
-(:func:`~hydrosync_core.methods.pool_calibration.project_run.iterate_and_store`); "Run all" runs
+(:func:`~hydrosync_core.methods.pool_calibration.project_run.solve_and_store`); "Run all" runs
 :func:`~hydrosync_core.methods.pool_calibration.project_run.run` in a worker, which replaces
 ``/results/pool_calibration``; everything shown afterwards is read back from there.
 """
@@ -28,12 +28,14 @@ from PySide6.QtWidgets import (
     QWidget,
 )
 
+from hydrosync_core.errors import InputError
 from hydrosync_core.methods.pool_calibration import api, project_run
+from hydrosync_core.methods.pool_calibration.params import PoolParams
+from hydrosync_core.methods.pool_calibration.preview import segmentation_preview
 from hydrosync_core.methods.pool_calibration.project_run import RESULT
 from hydrosync_gui.plugin_panel import PluginPanel
-from hydrosync_gui.widgets.param_form import ParamField, ParamForm
+from hydrosync_gui.widgets.param_form import ParamForm
 from plugins.pool_calibration.cloud_box import CloudBox
-from plugins.pool_calibration.preview import segmentation_preview
 from plugins.pool_calibration.views import (
     ConvergencePlot,
     FaceTable,
@@ -42,26 +44,6 @@ from plugins.pool_calibration.views import (
     convergence_legend,
 )
 
-FIELDS = [
-    ParamField("crop_tol_m", "Crop tolerance", 0.3, unit="m", minimum=0.01, maximum=5.0,
-               decimals=3, tooltip="how far from the design faces points are kept; at least "
-               "the error of the coarse setup at the target"),
-    ParamField("min_points", "Min points per face", 30, minimum=3, maximum=1_000_000,
-               tooltip="faces with fewer points in either cloud are not used"),
-    ParamField("tol_deg", "Angle tolerance", 1e-4, unit="°", minimum=1e-7, maximum=1.0,
-               decimals=7, step=1e-5, tooltip="seed iteration stops when every angle "
-               "correction is below this"),
-    ParamField("max_iter", "Max iterations / round", 30, minimum=1, maximum=1000),
-    ParamField("max_rounds", "Max rounds", 6, minimum=1, maximum=100,
-               tooltip="angle iteration + lever-arm step repeated at most this often"),
-    ParamField("final", "Final values", "joint", choices=("joint", "seed"),
-               tooltip="joint least squares (with σ) or the seed (patent) solution"),
-    *(ParamField(f"ins_sigma_{axis}_deg", f"INS {axis} accuracy (1σ)", 0.0, unit="°",
-                 minimum=0.0, maximum=5.0, decimals=4, step=0.001,
-                 tooltip=f"INS {axis} accuracy from its specification; propagated into the "
-                 "σ of the joint solution (0: INS taken as exact, σ then optimistic)")
-      for axis in ("roll", "pitch", "heading")),
-]
 PLAN = ("laser_xyz", "laser_face", "mbes_before_xyz", "mbes_after_xyz", "mbes_face")
 WARN_STYLE = ("QLabel { background: #fff3cd; border: 1px solid #d39e00; border-radius: 3px;"
               " color: #6b3d00; padding: 6px; }")
@@ -79,8 +61,9 @@ class PoolCalibrationPanel(PluginPanel):
         self.segmentation: api.Segmentation | None = None
         self._preview: tuple[dict, dict] | None = None  # (faces, clouds) of a Segment
         self._bound_project = None
+        self._storing: tuple | None = None  # (project, {"result": …}) of a storing task
 
-        self.form = ParamForm(FIELDS)
+        self.form = ParamForm(PoolParams)
         self.segment_button = QPushButton("Segment")
         self.segment_button.setToolTip("find the faces in both clouds with the coarse setup "
                                        "(nothing is stored)")
@@ -157,14 +140,18 @@ class PoolCalibrationPanel(PluginPanel):
         QVBoxLayout(self).addWidget(split)
 
     # ------------------------------------------------------------- parameters
-    def params(self) -> dict:
-        """Parameters for the core: the plugin defaults overridden by the form."""
-        return dict(self.spec.default_params) | self.form.values()
+    def params(self) -> PoolParams | None:
+        """The form's parameters, validated; None (and the reason shown) if invalid."""
+        try:
+            return self.form.params()
+        except InputError as exc:
+            self.summary.setText(f"<b>Parameter error</b>: {exc.one_line()}")
+            self.sig_status.emit(f"Pool calibration: {exc.one_line()}")
+            return None
 
     def _load_params(self) -> None:
-        stored = self.project.get_json(RESULT, None) if self.project.exists(RESULT) else None
-        p = dict(self.spec.default_params) | dict(stored or {})
-        self.form.set_values({k: p[k] for k in self.form.fields if k in p})
+        """The last run's parameters, else the schema's defaults."""
+        self.form.set_params(project_run.stored_params(self.project) or PoolParams())
 
     # ---------------------------------------------------------------- drawing
     def refresh(self) -> None:
@@ -209,8 +196,8 @@ class PoolCalibrationPanel(PluginPanel):
 
     def _show_preview(self) -> None:
         faces, clouds = self._preview
-        n_used = int(np.sum((faces["points_laser"] >= self.params()["min_points"])
-                            & (faces["points_mbes"] >= self.params()["min_points"])))
+        n_used = int(np.sum((faces["points_laser"] >= self.form.values()["min_points"])
+                            & (faces["points_mbes"] >= self.form.values()["min_points"])))
         self.summary.setText(
             f"<b>Segmentation</b> with the coarse setup (not stored): {n_used} of "
             f"{len(faces['face'])} faces have enough points in both clouds. "
@@ -256,15 +243,15 @@ class PoolCalibrationPanel(PluginPanel):
                 or not project.exists(f"{RESULT}/iterations")):
             self.convergence.show_table(None, None, self.log_check.isChecked())
             return
-        tol = (project.get_json(RESULT, {}) or {}).get("tol_deg")
+        tol = project_run.stored_params(project).tol_deg
         self.convergence.show_table(project.get_table(f"{RESULT}/iterations"), tol,
                                     self.log_check.isChecked())
 
     # ------------------------------------------------------------------ slots
     def _on_segment(self) -> None:
-        if self.project is None:
-            return
         project, params = self.project, self.params()
+        if project is None or params is None:
+            return
 
         def task(progress, cancel):
             seg = api.segment(np.asarray(project.get("raw/pool/lidar"), float),
@@ -272,11 +259,11 @@ class PoolCalibrationPanel(PluginPanel):
                               project.get_table("raw/pool/ins"),
                               project.get_json("raw/pool/setup"),
                               project.get_json("raw/pool/target"), params, progress, cancel)
-            return project, seg, segmentation_preview(seg, int(params.get("plan_points", 20000)))
+            return project, seg, segmentation_preview(seg, params.plan_points)
 
         self._enable(False)
+        self._storing = None
         self.start_work(task, self._on_segmented, label="Segmentation")
-        self.worker.signals.sig_done.connect(self.refresh_buttons)
 
     def _on_segmented(self, out) -> None:
         project, seg, preview = out
@@ -292,19 +279,19 @@ class PoolCalibrationPanel(PluginPanel):
             + " (laser/multibeam points)")
 
     def _on_run(self) -> None:
-        if self.project is None:
-            return
         project, params = self.project, self.params()
+        if project is None or params is None:
+            return
         self._start_storing_task(
             "Pool calibration", lambda progress, cancel: project_run.run(
                 project, params, progress, cancel))
 
     def _on_iterate(self) -> None:
-        if self.project is None or self.segmentation is None:
-            return
         project, params, seg = self.project, self.params(), self.segmentation
+        if project is None or seg is None or params is None:
+            return
         self._start_storing_task(
-            "Pool calibration (iterate)", lambda progress, cancel: project_run.iterate_and_store(
+            "Pool calibration (iterate)", lambda progress, cancel: project_run.solve_and_store(
                 project, seg, params, progress, cancel))
 
     def _start_storing_task(self, label: str, compute) -> None:
@@ -319,20 +306,22 @@ class PoolCalibrationPanel(PluginPanel):
             return stored["result"]
 
         self._enable(False)
+        self._storing = (project, stored)
         self.start_work(task, self._on_run_finished, label=label)
-        self.worker.signals.sig_done.connect(
-            lambda: self._on_run_done(project, stored["result"]))
 
     def _on_run_finished(self, result) -> None:
         extra = f"; {len(result.warnings)} warning(s)" if result.warnings else ""
         self.sig_status.emit(f"Pool calibration: {result.message}{extra}")
 
-    def _on_run_done(self, project, result) -> None:
+    def work_done(self) -> None:
         # Also after a late cancel: once run() returned, the stored results are complete.
-        if result is not None and project is self.project:
-            self._preview = None
-            self.refresh()
-            self.sig_project_modified.emit()
+        storing, self._storing = self._storing, None
+        if storing is not None:
+            project, stored = storing
+            if stored["result"] is not None and project is self.project:
+                self._preview = None
+                self.refresh()
+                self.sig_project_modified.emit()
         self.refresh_buttons()
 
     def refresh_buttons(self) -> None:

@@ -73,4 +73,4 @@ def test_import_attitude_csv_positive_down(tmp_path, capsys):
     assert main(args) == 0
     with Project.open(project) as p:
         assert p.get_table("raw/attitude")["heave"].tolist() == [-0.25, 0.5]
-        assert p.attrs("raw/attitude")["heave_sign_in_file"] == "down"
+        assert p.attrs("raw/attitude")["heave_positive_in_file"] == "down"

@@ -33,7 +33,7 @@ def test_run_stores_documented_layout(demo_project):
     assert json.loads(attrs["lever_arm_m"]) == truth["lever_arm_m"]  # from the vessel sheet
     assert isinstance(json.loads(attrs["warnings"]), list)
     params = project.get_json("results/latency")
-    assert params["step_s"] == 0.01 and params["lever_arm_m"] == truth["lever_arm_m"]
+    assert params["step_s"] == 0.01 and params["lever_arm_m"] is None  # vessel sheet used
     table = project.get_table("results/latency/lines")
     assert list(table)[:10] == ["name", "start", "end", "epochs", "r_max", "latency_s",
                                 "uncertainty_s", "sigma0_before_m", "sigma0_after_m", "used"]

@@ -9,9 +9,10 @@ import pytest
 
 from hydrosync_core.errors import InputError
 from hydrosync_core.methods.pool_calibration import georef
-from hydrosync_core.methods.pool_calibration.api import calibrate, iterate, segment
+from hydrosync_core.methods.pool_calibration.api import calibrate, segment
 from hydrosync_core.methods.pool_calibration.planes import fit_plane
 from hydrosync_core.methods.pool_calibration.simulate import PoolPassConfig, simulate_pool_pass
+from hydrosync_core.methods.pool_calibration.solve import solve
 
 # Small, fast data sets: 3 passes, 128 beams, 8 Hz pings.
 FAST = dict(beams=128, ping_rate_hz=8.0, laser_density_per_m2=800.0)
@@ -124,7 +125,7 @@ def test_segment_then_iterate_matches_calibrate():
     assert seg.roles["N1_oblique"].role == "oblique"
     assert seg.roles["N1_top"].role == "horizontal" and seg.roles["S1_top"].water == "below"
     assert len(seg.mbes_faces["wall"]) > 500 and len(seg.laser_points["wall"]) > 1000
-    res = iterate(seg)
+    res = solve(seg)
     faces = {r.face: r for r in res.faces}
     assert "roll" in faces["wall"].used_for and faces["N1_bottom"].points_mbes == 0
     assert res.iteration_table[0]["iteration"] == 1

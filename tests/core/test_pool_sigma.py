@@ -15,6 +15,7 @@ from hydrosync_core.methods.pool_calibration import georef
 from hydrosync_core.methods.pool_calibration import segment as segmod
 from hydrosync_core.methods.pool_calibration.api import calibrate
 from hydrosync_core.methods.pool_calibration.ins_cov import attitude_derivatives, ins_covariance
+from hydrosync_core.methods.pool_calibration.params import PoolParams
 from hydrosync_core.methods.pool_calibration.planes import PlaneFit, fit_plane
 from hydrosync_core.methods.pool_calibration.segment import band_refit
 from hydrosync_core.methods.pool_calibration.simulate import PoolPassConfig, simulate_pool_pass
@@ -158,8 +159,7 @@ def test_ins_accuracy_enters_the_joint_sigma():
     sim = simulate_pool_pass(PoolPassConfig(ins_attitude_noise_deg=0.01, **FAST), seed=4)
     args = (sim["lidar"], sim["mbes"], sim["ins"], sim["setup"], sim["target"])
     plain = calibrate(*args).joint
-    ins = {f"ins_sigma_{a}_deg": 0.01 for a in ("roll", "pitch", "heading")}
-    with_ins = calibrate(*args, {**ins, "ins_tau_s": 1.0}).joint
+    with_ins = calibrate(*args, PoolParams(ins_sigma_deg=(0.01, 0.01, 0.01), ins_tau_s=1.0)).joint
     assert with_ins.boresight_deg == plain.boresight_deg     # σ only, same solution
     assert with_ins.sigma_boresight_deg["yaw"] > 1.3 * plain.sigma_boresight_deg["yaw"]
     for k in ("roll", "pitch", "yaw"):

@@ -186,14 +186,18 @@ def _latency_discover():
     return [Discovered("latency", "plugins.latency:SPEC", SPEC, None)]
 
 
+def _shown_arm(panel) -> list[float]:
+    return [spin.value() for spin in panel.form.editors["lever_arm_m"].parts]
+
+
 def test_menu_entry_opens_dialog_and_latency_follows(qtbot, make_window, monkeypatch):
     project = Project.new("demo")
     truth = fill_demo(project, seed=0)
     window = make_window(project, discover=_latency_discover)
     panel = window.current_panel()
-    values = panel.form.values()
-    assert [values["lever_x"], values["lever_y"], values["lever_z"]] == \
-        pytest.approx(truth["lever_arm_m"])
+    # No lever arm set: the panel shows the vessel sheet's, which a run would use.
+    assert panel.form.values()["lever_arm_m"] is None
+    assert _shown_arm(panel) == pytest.approx(truth["lever_arm_m"])
     assert window.act_vessel.isEnabled()
     assert window.act_vessel.text() == "&Vessel offsets…"
     assert "&Edit" in [a.text() for a in window.menuBar().actions()]
@@ -207,10 +211,11 @@ def test_menu_entry_opens_dialog_and_latency_follows(qtbot, make_window, monkeyp
         dialog.accept()
         return dialog.result()
 
-    # A hand-typed lever arm survives a redraw while the sheet is unchanged.
-    panel.form.set_values({"lever_x": 9.0})
+    # A hand-typed lever arm survives a redraw; unset again, the sheet's is shown.
+    panel.form.set_params({"lever_arm_m": [9.0, 0.0, 0.0]})
     window.host.refresh()
-    assert panel.form.values()["lever_x"] == 9.0
+    assert panel.form.values()["lever_arm_m"] == (9.0, 0.0, 0.0)
+    panel.form.set_params({"lever_arm_m": None})
     monkeypatch.setattr(VesselDialog, "exec", fake_exec)
     project.dirty = False
     window.setWindowModified(False)
@@ -218,9 +223,8 @@ def test_menu_entry_opens_dialog_and_latency_follows(qtbot, make_window, monkeyp
     assert len(opened) == 1
     assert project.dirty and window.isWindowModified()
     np.testing.assert_allclose(lever_arm(project, "gnss", "motion"), [0.5, -1.25, -7.0])
-    values = panel.form.values()
-    assert [values["lever_x"], values["lever_y"], values["lever_z"]] == \
-        pytest.approx([0.5, -1.25, -7.0])
+    assert panel.form.values()["lever_arm_m"] is None
+    assert _shown_arm(panel) == pytest.approx([0.5, -1.25, -7.0])
 
 
 def test_menu_entry_disabled_while_task_runs(qtbot, make_window):

@@ -4,44 +4,60 @@ from __future__ import annotations
 
 import logging
 import threading
+from dataclasses import dataclass
 
 import numpy as np
 import pytest
 from PySide6.QtCore import Qt
 
+from hydrosync_core.params import Params, param
 from hydrosync_gui.log_console import LogConsole
 from hydrosync_gui.task_status import TaskStatus
-from hydrosync_gui.widgets import ColumnsTable, ParamField, ParamForm
+from hydrosync_gui.widgets import ColumnsTable, ParamForm
+
+
+@dataclass(frozen=True)
+class DemoParams(Params):
+    max_lag: float = param(1.0, label="Max lag", unit="s", minimum=0.01, maximum=10.0)
+    window: int = param(60, label="Window", unit="s", minimum=1, maximum=3600)
+    detrend: bool = param(True, label="Detrend heights")
+    method: str = param("xcorr", label="Method", choices=("xcorr", "lsq"))
+    label: str = param("L01", label="Label")
+    arm: tuple[float, float, float] | None = param(None, label="Lever arm", unit="m",
+                                                   none_label="vessel sheet")
+    bins: int = param(8, label="Bins", minimum=1, advanced=True, group="Detail")
 
 
 def test_param_form_types_units_and_round_trip(qtbot):
-    form = ParamForm([
-        ParamField("max_lag", "Max lag", 1.0, unit="s", minimum=0.01, maximum=10, decimals=3),
-        ParamField("window", "Window", 60, unit="s", minimum=1, maximum=3600),
-        ParamField("detrend", "Detrend heights", True),
-        ParamField("method", "Method", "xcorr", choices=("xcorr", "lsq")),
-        ParamField("label", "Label", "L01"),
-    ])
+    form = ParamForm(DemoParams)
     qtbot.addWidget(form)
     assert form.values() == {"max_lag": 1.0, "window": 60, "detrend": True, "method": "xcorr",
-                             "label": "L01"}
-    assert form.editors["max_lag"].suffix() == " s"
+                             "label": "L01", "arm": None, "bins": 8}
+    assert form.params() == DemoParams()
+    assert form.editors["max_lag"].parts[0].suffix() == " s"
+    assert form.editors["max_lag"].toolTip().endswith("(--param max_lag)")
     changes = []
     form.sig_changed.connect(lambda: changes.append(1))
-    form.set_values({"max_lag": 20.0, "window": 5, "detrend": False, "method": "lsq",
-                     "unknown": 1})
+    form.set_params({"max_lag": 20.0, "window": 5, "detrend": False, "method": "lsq",
+                     "arm": [1.0, -2.0, 3.5], "unknown": 1})
     values = form.values()
     assert values["max_lag"] == 10.0  # clipped to the declared maximum
-    assert values == {"max_lag": 10.0, "window": 5, "detrend": False, "method": "lsq",
-                      "label": "L01"}
-    assert type(values["window"]) is int and len(changes) == 4
+    assert values["arm"] == (1.0, -2.0, 3.5)
+    assert type(values["window"]) is int and len(changes) >= 5
+    form.set_params({"arm": None})
+    assert form.values()["arm"] is None
+    form.show_unset("arm", (9.0, 9.0, 9.0))  # shown, still not set
+    assert form.values()["arm"] is None
+    assert form.editors["arm"].parts[0].value() == 9.0
 
 
-def test_param_form_from_defaults(qtbot):
-    form = ParamForm.from_defaults({"r_threshold": 0.85, "detrend_degree": 1})
+def test_param_form_advanced_fields_are_collapsed(qtbot):
+    form = ParamForm(DemoParams)
     qtbot.addWidget(form)
-    assert form.values() == {"r_threshold": 0.85, "detrend_degree": 1}
-    assert form.editors["r_threshold"].objectName() == "param_r_threshold"
+    form.show()
+    assert not form.editors["bins"].isVisible() and form.editors["max_lag"].isVisible()
+    form.advanced_button.setChecked(True)
+    assert form.editors["bins"].isVisible()
 
 
 def test_columns_table_shows_columns_with_units_and_formats(qtbot):

@@ -1,9 +1,26 @@
-"""Latency between GNSS heights and attitude by correlative approximation (seed 000)."""
+"""Latency between GNSS heights and attitude/heave by correlative approximation.
 
-from hydrosync_core.methods.latency.api import estimate_latency, line_series, synchronise
-from hydrosync_core.methods.latency.result import LatencyParams, LatencyResult, LineResult
+Qi et al. (2010), *Synchronization model between positioning and attitude data based on
+correlative approximation*. The package holds everything headless about the analysis:
+``params`` (the parameter schema), ``api`` (the method), ``project_run`` (project I/O),
+``simulate`` (the simulator), ``demo``, ``report_section`` and ``cli``.
 
-__all__ = [
-    "LatencyParams", "LatencyResult", "LineResult", "estimate_latency", "line_series",
-    "synchronise",
-]
+The public names below are loaded on first use, so importing the package (or its
+``params`` module, as the plugin spec does) stays cheap.
+"""
+
+from __future__ import annotations
+
+import importlib
+
+_PUBLIC = {
+    "LatencyParams": "params", "LatencyResult": "result", "LineResult": "result",
+    "estimate_latency": "api", "line_series": "api", "synchronise": "api",
+}
+__all__ = sorted(_PUBLIC)
+
+
+def __getattr__(name: str):
+    if name in _PUBLIC:
+        return getattr(importlib.import_module(f"{__name__}.{_PUBLIC[name]}"), name)
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

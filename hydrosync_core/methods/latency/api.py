@@ -19,9 +19,10 @@ from hydrosync_core.methods.latency.correlation import heave_at
 from hydrosync_core.methods.latency.detrend import detrend
 from hydrosync_core.methods.latency.diagnose import diagnose
 from hydrosync_core.methods.latency.heave import total_heave, total_heave_deg
-from hydrosync_core.methods.latency.lines import prepare_line, scan_line
+from hydrosync_core.methods.latency.lines import line_epochs, prepare_line, scan_line
+from hydrosync_core.methods.latency.params import LatencyParams
 from hydrosync_core.methods.latency.quality import sigma0
-from hydrosync_core.methods.latency.result import LatencyParams, LatencyResult, LineResult
+from hydrosync_core.methods.latency.result import LatencyResult, LineResult
 from hydrosync_core.progress import check_cancel, report
 
 
@@ -208,8 +209,7 @@ def line_series(
     p = params if isinstance(params, LatencyParams) else LatencyParams.from_dict(params)
     t_g, hgt, att, arm = _check_inputs(gnss, attitude, lever_arm)
     dt = float(np.nan_to_num(latency_s))
-    sel = (t_g >= start + p.skip_s) & (t_g <= end)
-    sel &= (t_g - max(dt, 0) >= att["time"][0]) & (t_g - min(dt, 0) <= att["time"][-1])
+    sel = line_epochs(t_g, start, end, p.skip_s, att["time"], min(dt, 0.0), max(dt, 0.0))
     tags = t_g[sel]
     if tags.size < 3:
         empty = np.empty(0)

@@ -8,21 +8,13 @@ from pathlib import Path
 
 from hydrosync_core.atomic import write_json_atomic
 from hydrosync_core.errors import InputError
-
-_OPTION_OF_FIELD = {"range_s": "--range", "step_s": "--step", "min_r": "--min-r",
-                    "detrend_degree": "--detrend-degree", "skip_s": "--skip",
-                    "weighting": "--weighting", "outlier_k": "--outlier-k",
-                    "lever_arm": "--lever-arm",
-                    "lever_arm_m": "--lever-arm"}
+from hydrosync_core.methods.latency.params import LatencyParams
+from hydrosync_core.params import add_cli_arguments, cli_values
 
 
-def _params(args: argparse.Namespace) -> dict:
-    params: dict = {"range_s": list(args.range), "step_s": args.step, "min_r": args.min_r,
-                    "detrend_degree": args.detrend_degree, "skip_s": args.skip,
-                    "weighting": args.weighting, "outlier_k": args.outlier_k}
-    if args.lever_arm is not None:
-        params["lever_arm_m"] = list(args.lever_arm)
-    return params
+def _params(args: argparse.Namespace) -> LatencyParams:
+    """The parameters given on the command line, the rest at their schema defaults."""
+    return LatencyParams.from_dict(cli_values(args, LatencyParams))
 
 
 def _print_table(result) -> None:
@@ -41,8 +33,8 @@ def _print_table(result) -> None:
 def _rename(exc: InputError, files: dict) -> InputError:
     """Name the real file/option instead of the core's generic labels."""
     file = files.get(exc.file, exc.file)
-    if file is None and exc.field in _OPTION_OF_FIELD:
-        file = _OPTION_OF_FIELD[exc.field]
+    if file is None:
+        file = LatencyParams.flag_of(exc.field)
     return InputError(file, exc.message, line=exc.line, field=exc.field)
 
 
@@ -52,21 +44,20 @@ def _run_csv(args: argparse.Namespace) -> int:
         read_gnss_csv,
         read_lines_csv,
     )
-    from hydrosync_core.methods.latency import estimate_latency
-    from hydrosync_core.methods.latency.result import LatencyParams
+    from hydrosync_core.methods.latency.api import estimate_latency
 
     missing = [o for o, v in (("--gnss", args.gnss), ("--attitude", args.attitude),
-                              ("--lines", args.lines), ("--lever-arm", args.lever_arm),
+                              ("--lines", args.lines), ("--lever-arm", args.param_lever_arm_m),
                               ("--json", args.json)) if v is None]
     if missing:
         raise InputError(None, f"missing option(s) {', '.join(missing)} (or give a project file)")
     files = {"gnss": args.gnss, "attitude": args.attitude, "lines": args.lines}
     try:
-        params = LatencyParams.from_dict(_params(args))
+        params = _params(args)
         gnss = read_gnss_csv(args.gnss)
         attitude = read_attitude_csv(args.attitude, args.heave_positive)
         lines = read_lines_csv(args.lines)
-        result = estimate_latency(gnss, attitude, lines, args.lever_arm, params)
+        result = estimate_latency(gnss, attitude, lines, params.lever_arm_m, params)
     except InputError as exc:
         raise _rename(exc, files) from None
     _print_table(result)
@@ -74,9 +65,10 @@ def _run_csv(args: argparse.Namespace) -> int:
         raise InputError(args.lines, f"{result.message}; " + "; ".join(result.warnings[-2:]))
     write_json_atomic(args.json, result.to_dict())
     if args.sync_csv is not None:
-        from hydrosync_core.methods.latency import synchronise
+        from hydrosync_core.methods.latency.api import synchronise
 
-        _write_sync(args.sync_csv, synchronise(gnss, attitude, args.lever_arm, result.latency_s))
+        _write_sync(args.sync_csv, synchronise(gnss, attitude, params.lever_arm_m,
+                                               result.latency_s))
     return 0
 
 
@@ -135,22 +127,9 @@ def register(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--heave-positive", choices=("up", "down"), default="up",
                    help="heave sign convention of attitude.csv (formats.md: up; default up)")
     p.add_argument("--lines", type=Path, help="lines.csv (name, start, end)")
-    p.add_argument("--lever-arm", nargs=3, type=float, metavar=("X", "Y", "Z"),
-                   help="antenna relative to the motion sensor, body frame FRD, m")
-    p.add_argument("--range", nargs=2, type=float, metavar=("MIN", "MAX"), default=(-1.0, 1.0),
-                   help="scan range of the delay, s (default -1 1)")
-    p.add_argument("--step", type=float, default=0.005, help="scan step, s (default 0.005)")
-    p.add_argument("--min-r", type=float, default=0.85,
-                   help="use lines with R max above this (default 0.85)")
-    p.add_argument("--detrend-degree", type=int, default=1, help="tide polynomial degree (1)")
-    p.add_argument("--skip", type=float, default=0.0, help="seconds skipped at line start (0)")
-    p.add_argument("--weighting", choices=("r", "inverse_variance"), default="r",
-                   help="weights of the line mean (default r)")
-    p.add_argument("--outlier-k", type=float, default=4.0, metavar="K",
-                   help="do not use lines whose delay departs from the median by more than K "
-                   "robust σ (default 4; 0 disables)")
     p.add_argument("--json", type=Path, help="result.json to write")
     p.add_argument("--sync-csv", type=Path, metavar="CSV",
                    help="also write the synchronised data set: GNSS epochs at corrected time "
                    "(tag - latency) with height, roll, pitch, heading, heave, total_heave")
+    add_cli_arguments(p, LatencyParams)
     p.set_defaults(func=cmd_latency)

@@ -13,7 +13,7 @@ from dataclasses import asdict, dataclass
 import numpy as np
 from scipy import stats
 
-WEIGHTINGS = ("r", "inverse_variance")
+from hydrosync_core.methods.latency.params import WEIGHTINGS  # noqa: E402
 
 
 @dataclass(frozen=True)

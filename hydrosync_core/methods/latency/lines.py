@@ -12,7 +12,7 @@ from hydrosync_core.methods.latency.correlation import (
     refine_peak,
 )
 from hydrosync_core.methods.latency.detrend import detrend
-from hydrosync_core.methods.latency.result import LatencyParams
+from hydrosync_core.methods.latency.params import LatencyParams
 
 MARGIN_S = 0.15
 """Attitude needed beyond the scan range (refinement and curvature fit around the peak)."""
@@ -52,15 +52,26 @@ def attitude_window(t_att: np.ndarray, tags: np.ndarray, lo: float, hi: float) -
     return slice(i0, i1)
 
 
+def line_epochs(t_g: np.ndarray, start: float, end: float, skip_s: float, t_att: np.ndarray,
+                dt_low: float, dt_high: float) -> np.ndarray:
+    """Mask of the GNSS tags (s) of one line whose shifted times lie in the attitude record.
+
+    A tag *T* belongs to the line when ``start + skip_s <= T <= end``, and is kept only if
+    ``T − Δt`` stays inside ``t_att`` for every Δt in ``[dt_low, dt_high]`` (no
+    extrapolation of the attitude).
+    """
+    sel = (t_g >= start + skip_s) & (t_g <= end)
+    sel &= (t_g - dt_high >= t_att[0]) & (t_g - dt_low <= t_att[-1])
+    return sel
+
+
 def prepare_line(
     name: str, start: float, end: float, t_g: np.ndarray, height: np.ndarray,
     t_att: np.ndarray, params: LatencyParams, gnss_interval: float, att_interval: float,
 ) -> LineData:
     """Select the line's epochs (after *skip_s*, inside the attitude coverage) and detrend."""
     lo, hi = params.range_s
-    sel = (t_g >= start + params.skip_s) & (t_g <= end)
-    # Every candidate T − Δt must fall inside the attitude record (no extrapolation).
-    sel &= (t_g - hi - MARGIN_S >= t_att[0]) & (t_g - lo + MARGIN_S <= t_att[-1])
+    sel = line_epochs(t_g, start, end, params.skip_s, t_att, lo - MARGIN_S, hi + MARGIN_S)
     tags, hgt = t_g[sel], height[sel]
     line = LineData(name, start, end, tags, hgt)
     if tags.size < params.min_epochs:

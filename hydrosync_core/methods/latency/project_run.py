@@ -2,12 +2,13 @@
 
 Inputs read from the project: tables ``raw/gnss`` (time, height), ``raw/attitude``
 (time, roll, pitch, heading, heave; degrees, heave m up), ``raw/lines`` (name, start,
-end), and the lever arm: ``params['lever_arm_m']`` ``[x, y, z]`` if given, else the
-vessel sheet's sensor ``gnss`` offset minus sensor ``motion`` offset (body FRD, m).
+end), and the lever arm: the ``lever_arm_m`` parameter if given, else the vessel
+sheet's sensor ``gnss`` offset minus sensor ``motion`` offset (body FRD, m).
 
 Stored layout (stable; the PDF report section reads it) — ``/results/latency``:
 
-* group attributes: ``json`` = the parameters used (``put_json``, incl. ``lever_arm_m``);
+* group attributes: ``json`` = the parameters (``LatencyParams.to_dict()``, ``put_json``;
+  ``lever_arm_m`` null when taken from the vessel sheet), ``params_schema_version``,
   ``software_version``, ``run_utc`` (ISO 8601); ``latency_s``, ``uncertainty_s``,
   ``ci95_low``, ``ci95_high`` (s, NaN when no line was used); ``joint_latency_s`` (s);
   ``n_used`` (int); ``weighting`` ("r" or "inverse_variance"); ``converged`` (bool);
@@ -28,19 +29,22 @@ Stored layout (stable; the PDF report section reads it) — ``/results/latency``
 from __future__ import annotations
 
 import json
+from collections.abc import Mapping
 from datetime import UTC, datetime
 
 import numpy as np
 
 from hydrosync_core import __version__
-from hydrosync_core.errors import InputError
 from hydrosync_core.methods.latency.api import estimate_latency, synchronise
 from hydrosync_core.methods.latency.combine import combine
 from hydrosync_core.methods.latency.correlation import heave_at
 from hydrosync_core.methods.latency.detrend import detrend
 from hydrosync_core.methods.latency.heave import total_heave_deg
+from hydrosync_core.methods.latency.lines import line_epochs
+from hydrosync_core.methods.latency.params import LatencyParams
 from hydrosync_core.methods.latency.quality import sigma0
-from hydrosync_core.methods.latency.result import LatencyParams, LatencyResult
+from hydrosync_core.methods.latency.result import LatencyResult
+from hydrosync_core.params import stored
 from hydrosync_core.progress import sub_progress
 from hydrosync_core.project import Project
 from hydrosync_core.project.vessel import lever_arm as vessel_lever_arm
@@ -48,15 +52,21 @@ from hydrosync_core.project.vessel import lever_arm as vessel_lever_arm
 RESULT = "results/latency"
 
 
-def project_lever_arm(project: Project, params: dict | None = None) -> np.ndarray:
-    """Lever arm (body FRD, m): ``params['lever_arm_m']`` or vessel sheet gnss − motion."""
-    given = (params or {}).get("lever_arm_m")
-    if given is not None:
-        arm = np.asarray(given, dtype=float).ravel()
-        if arm.size != 3 or not np.all(np.isfinite(arm)):
-            raise InputError(None, "lever_arm_m must be three finite numbers", field="lever_arm_m")
-        return arm
+def project_lever_arm(project: Project, params: LatencyParams | None = None) -> np.ndarray:
+    """Lever arm (body FRD, m): the parameter if given, else vessel sheet gnss − motion."""
+    if params is not None and params.lever_arm_m is not None:
+        return np.asarray(params.lever_arm_m, dtype=float)
     return vessel_lever_arm(project, "gnss", "motion")
+
+
+def as_params(params: LatencyParams | Mapping | None) -> LatencyParams:
+    """A validated :class:`LatencyParams` from an instance, a dict or None (defaults)."""
+    return params if isinstance(params, LatencyParams) else LatencyParams.from_dict(params)
+
+
+def stored_params(project: Project) -> LatencyParams | None:
+    """The parameters of the stored result (migrated to the current schema), or None."""
+    return stored(LatencyParams, project, RESULT)
 
 
 def read_inputs(project: Project) -> tuple[dict, dict, dict]:
@@ -65,25 +75,25 @@ def read_inputs(project: Project) -> tuple[dict, dict, dict]:
             project.get_table("raw/lines"))
 
 
-def run(project: Project, params: dict | None = None, progress=None, cancel=None) -> LatencyResult:
+def run(project: Project, params: LatencyParams | Mapping | None = None, progress=None,
+        cancel=None) -> LatencyResult:
     """Estimate the latency from the project's raw data and replace ``/results/latency``."""
-    params = dict(params or {})
-    arm = project_lever_arm(project, params)
+    p = as_params(params)
+    arm = project_lever_arm(project, p)
     gnss, attitude, lines = read_inputs(project)
-    p = LatencyParams.from_dict(params)
     result = estimate_latency(gnss, attitude, lines, arm, p, sub_progress(progress, 0, 0.9), cancel)
     sync = (synchronise(gnss, attitude, arm, result.latency_s) if result.converged else None)
-    used_params = p.to_dict() | {"lever_arm_m": [float(v) for v in arm]}
-    store(project, result, sync, used_params)
+    store(project, result, sync, p)
     if progress is not None:
         progress(1.0, "results stored")
     return result
 
 
-def store(project: Project, result: LatencyResult, sync: dict | None, params: dict) -> None:
+def store(project: Project, result: LatencyResult, sync: dict | None,
+          params: LatencyParams) -> None:
     """Write *result* under ``/results/latency`` (replacing it), layout in the module doc."""
     project.delete(RESULT)
-    project.put_json(RESULT, params)
+    project.put_json(RESULT, params.to_dict())
     lines = result.lines
     project.put_table(f"{RESULT}/lines", {
         "name": np.array([ln.name for ln in lines], dtype=str),
@@ -106,6 +116,7 @@ def store(project: Project, result: LatencyResult, sync: dict | None, params: di
                           time="corrected GNSS time (tag - latency)")
     project.set_attrs(
         RESULT, software_version=__version__,
+        params_schema_version=LatencyParams.SCHEMA_VERSION,
         run_utc=datetime.now(UTC).isoformat(timespec="seconds"),
         latency_s=float(result.latency_s), uncertainty_s=float(result.uncertainty_s),
         ci95_low=float(result.ci95_low), ci95_high=float(result.ci95_high),
@@ -128,7 +139,7 @@ def recombine(project: Project, used: np.ndarray, weighting: str | None = None) 
     if used.shape != table["used"].shape:
         raise ValueError("used mask does not match the number of lines")
     attrs = project.attrs(RESULT)
-    params = project.get_json(RESULT, {})
+    p = stored_params(project)
     weighting = weighting or attrs.get("weighting", "r")
     # Weighted mean of the selected lines from their stored values (seed section 2.4).
     comb = combine(table["latency_s"], table["r_max"], table["uncertainty_s"], used, weighting)
@@ -140,12 +151,10 @@ def recombine(project: Project, used: np.ndarray, weighting: str | None = None) 
     h_att = total_heave_deg(np.asarray(attitude["heave"], float),
                             np.asarray(attitude["roll"], float),
                             np.asarray(attitude["pitch"], float), arm)
-    p = LatencyParams.from_dict(params)
     after = np.full(table["name"].size, np.nan)
     if comb.n_used:
         for i, (start, end) in enumerate(zip(table["start"], table["end"], strict=True)):
-            sel = (t_g >= start + p.skip_s) & (t_g <= end)
-            sel &= (t_g - comb.latency_s >= t_att[0]) & (t_g - comb.latency_s <= t_att[-1])
+            sel = line_epochs(t_g, start, end, p.skip_s, t_att, comb.latency_s, comb.latency_s)
             if sel.sum() >= 3:
                 h, _ = detrend(t_g[sel], hgt[sel], int(p.detrend_degree))
                 # Seed eqs. 5–6 at the new final Δt.

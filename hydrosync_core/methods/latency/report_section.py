@@ -15,6 +15,8 @@ import json
 import numpy as np
 from reportlab.platypus import Flowable, Paragraph
 
+from hydrosync_core.methods.latency.params import LatencyParams
+from hydrosync_core.params import stored
 from hydrosync_core.report.context import ReportContext, esc, fmt, fmt_pm, utc_text
 from hydrosync_core.report.styles import INK, MUTED, SERIES
 
@@ -69,12 +71,12 @@ def summary(project) -> list[tuple[str, str]]:
     """Rows of the report's summary table (and of ``hydrosync demo``'s printout)."""
     attrs = project.attrs(RESULT)
     table = project.get_table(f"{RESULT}/lines")
-    params = project.get_json(RESULT, {}) or {}
+    params = stored(LatencyParams, project, RESULT)
     n = len(table["name"])
     rows = [("Latency \u0394t (GNSS tags late), 1\u03c3", final_value_text(attrs)),
             ("95 % interval of \u0394t", ci_text(attrs)),
             ("Lines used", f"{int(attrs.get('n_used', 0))} of {n} "
-                           f"(R_max > {params.get('min_r', 0.85)})")]
+                           f"(R_max > {params.min_r:g})")]
     used = np.asarray(table["used"], bool)
     if used.any():
         before = np.nanmedian(np.asarray(table["sigma0_before_m"], float)[used])
@@ -87,14 +89,14 @@ def summary(project) -> list[tuple[str, str]]:
 def section(project, ctx: ReportContext) -> list[Flowable]:
     """The latency section's flowables."""
     attrs = project.attrs(RESULT)
-    params = project.get_json(RESULT, {}) or {}
+    params = stored(LatencyParams, project, RESULT)
     table = project.get_table(f"{RESULT}/lines")
     warnings = _json_attr(attrs, "warnings", [])
-    arm = _json_attr(attrs, "lever_arm_m", params.get("lever_arm_m", [np.nan] * 3))
+    arm = _json_attr(attrs, "lever_arm_m", params.lever_arm_m or [np.nan] * 3)
     out: list[Flowable] = [
         ctx.heading(HEADING),
         ctx.para(
-            "Method: correlative approximation (seed 000). Per survey line the GNSS "
+            "Method: correlative approximation (Qi et al. 2010). Per survey line the GNSS "
             "antenna heights are detrended (eq. 1), the total heave at the antenna is formed "
             "from heave, roll and pitch with the lever arm (eq. 2) and interpolated at the "
             "corrected GNSS times (eq. 3), and the correlation R (eq. 4) is scanned over "
@@ -102,7 +104,6 @@ def section(project, ctx: ReportContext) -> list[Flowable]:
             "weighted mean. \u0394t is how late the GNSS time tags are relative to the "
             "attitude time tags: synchronised heights use <i>tag \u2212 \u0394t</i>."),
     ]
-    rng = params.get("range_s", [np.nan, np.nan])
     pairs = [
         ("Final latency \u0394t (1\u03c3)", final_value_text(attrs)),
         ("95 % interval", ci_text(attrs)),
@@ -114,16 +115,12 @@ def section(project, ctx: ReportContext) -> list[Flowable]:
         ("Outcome", str(attrs.get("message", ""))),
         ("Lever arm GNSS antenna \u2212 motion sensor (x fwd, y stbd, z down)",
          " / ".join(fmt(v, 3) for v in arm) + " m"),
-        ("Scan range / step", f"{fmt(rng[0], 3)} \u2026 {fmt(rng[1], 3)} s / "
-                              f"{fmt(params.get('step_s'), 3)} s"),
-        ("R threshold / detrend degree / skip at line start",
-         f"{params.get('min_r', '?')} / {params.get('detrend_degree', '?')} / "
-         f"{fmt(params.get('skip_s'), 0)} s"),
         ("Computed", f"{utc_text(attrs.get('run_utc'))} with HydroSync "
                      f"{attrs.get('software_version', '?')}"),
     ]
-    out += ctx.key_values(pairs, caption="Latency: final result and parameters used.",
-                          key_width=0.45)
+    out += ctx.key_values(pairs, caption="Latency: final result.", key_width=0.45)
+    out += ctx.params_table(params, "Latency: processing parameters (lever arm "
+                            "\u201cvessel sheet\u201d: the value above was taken from it).")
     for text in warnings:
         out.append(ctx.warning(text))
     out += _line_table(ctx, table, attrs)

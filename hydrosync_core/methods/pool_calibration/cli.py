@@ -1,4 +1,4 @@
-"""``hydrosync pool-calibrate``: pool calibration from files (formats.md) or a project."""
+"""``hydrosync pool-calibrate``: pool calibration from files (docs/formats.md) or a project."""
 
 from __future__ import annotations
 
@@ -7,6 +7,8 @@ from pathlib import Path
 
 from hydrosync_core.atomic import write_json_atomic
 from hydrosync_core.errors import InputError
+from hydrosync_core.methods.pool_calibration.params import PoolParams
+from hydrosync_core.params import add_cli_arguments, from_cli
 
 
 def _read_lidar(path: str):
@@ -31,25 +33,10 @@ def _summary(result) -> str:
     return text + "".join(f"\nwarning: {w}" for w in result.warnings)
 
 
-def _params(args: argparse.Namespace) -> dict:
-    """Method parameters given on the command line (the rest keep their defaults)."""
-    params: dict = {"final": args.final}
-    if args.ins_sigma is not None:
-        if not all(v >= 0 and v == v for v in args.ins_sigma):
-            raise InputError("--ins-sigma", "INS accuracies must be >= 0 degrees")
-        roll, pitch, heading = args.ins_sigma
-        params.update(ins_sigma_roll_deg=roll, ins_sigma_pitch_deg=pitch,
-                      ins_sigma_heading_deg=heading)
-    if args.ins_tau is not None:
-        if not args.ins_tau > 0:
-            raise InputError("--ins-tau", "the INS error correlation time must be > 0 s")
-        params["ins_tau_s"] = args.ins_tau
-    return params
-
-
 def cmd_pool(args: argparse.Namespace) -> int:
     from hydrosync_core.cli.terminal import TerminalProgress
 
+    params = from_cli(args, PoolParams)
     progress = TerminalProgress("pool-calibrate")
     if args.project:
         from hydrosync_core.methods.pool_calibration.project_run import run
@@ -60,7 +47,7 @@ def cmd_pool(args: argparse.Namespace) -> int:
                      "raw/pool/target"):
             if not project.exists(need):
                 raise InputError(args.project, f"pool calibration needs /{need}")
-        result = run(project, _params(args), progress, None)
+        result = run(project, params, progress, None)
         progress.done()
         project.save()
         if args.json:
@@ -81,7 +68,7 @@ def cmd_pool(args: argparse.Namespace) -> int:
     ins = read_ins_csv(args.ins)
     setup = read_setup_json(args.setup)
     target = read_target_json(args.target)
-    result = calibrate(lidar, mbes, ins, setup, target, _params(args), progress, None)
+    result = calibrate(lidar, mbes, ins, setup, target, params, progress, None)
     progress.done()
     write_json_atomic(args.json, result.to_dict())
     print(_summary(result))
@@ -90,9 +77,10 @@ def cmd_pool(args: argparse.Namespace) -> int:
 
 def register(sub: argparse._SubParsersAction) -> None:
     p = sub.add_parser(
-        "pool-calibrate", help="multibeam boresight and lever arm from a pool target",
-        description="Pool calibration (seed 003): the multibeam boresight and lever arm "
-        "relative to the INS, against laser-scanned target faces. Give the five files "
+        "pool-calibrate", aliases=["pool_calibration", "pool-calibration"],
+        help="multibeam boresight and lever arm from a pool target",
+        description="Pool calibration (patent CN 105425246 B): the multibeam boresight and "
+        "lever arm relative to the INS, against laser-scanned target faces. Give the five files "
         "and --json, or a project file holding raw/pool/*.")
     p.add_argument("project", nargs="?", help="project file (.h5) holding raw/pool/*")
     p.add_argument("--lidar", help="laser points x,y,z (CSV/PLY/LAS/LAZ, target ENU)")
@@ -101,12 +89,5 @@ def register(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--setup", help="setup.json (coarse boresight and lever arm)")
     p.add_argument("--target", help="target.json (target design)")
     p.add_argument("--json", help="result.json to write (atomically)")
-    p.add_argument("--final", choices=("joint", "seed"), default="joint",
-                   help="final values from the joint adjustment (default, with σ) or the "
-                   "seed (patent) iteration")
-    p.add_argument("--ins-sigma", nargs=3, type=float, metavar=("ROLL", "PITCH", "HEADING"),
-                   help="INS attitude accuracy (1σ, deg) from its specification, propagated "
-                   "into the σ of the result (default 0: INS taken as exact)")
-    p.add_argument("--ins-tau", type=float, metavar="S",
-                   help="correlation time of the INS attitude errors, s (default 1)")
+    add_cli_arguments(p, PoolParams)
     p.set_defaults(func=cmd_pool)

@@ -6,7 +6,8 @@ and ``raw/pool/target`` (JSON), runs :func:`~.api.calibrate` and REPLACES
 ``/results/pool_calibration``. Stable layout (the report section and GUI panel rely on it):
 
 ``results/pool_calibration`` attrs
-    ``params`` (JSON of the parameters used, via put_json), ``software_version``,
+    ``json`` (``PoolParams.to_dict()``, via put_json), ``params_schema_version``,
+    ``software_version``,
     ``run_utc``, ``method`` ("joint" or "seed"), ``iterations`` (int), ``converged`` (bool),
     ``roll_deg, pitch_deg, yaw_deg`` (final boresight), ``lever_x_m, lever_y_m,
     lever_z_m`` (final lever arm, body FRD), ``sigma_roll_deg, sigma_pitch_deg,
@@ -28,13 +29,17 @@ and ``raw/pool/target`` (JSON), runs :func:`~.api.calibrate` and REPLACES
 from __future__ import annotations
 
 import json
+from collections.abc import Mapping
 from datetime import UTC, datetime
 
 import numpy as np
 
 from hydrosync_core import __version__
 from hydrosync_core.methods.pool_calibration import georef
-from hydrosync_core.methods.pool_calibration.api import DEFAULT_PARAMS, iterate, segment
+from hydrosync_core.methods.pool_calibration.api import as_params, segment
+from hydrosync_core.methods.pool_calibration.params import PoolParams
+from hydrosync_core.methods.pool_calibration.solve import solve
+from hydrosync_core.params import stored
 from hydrosync_core.progress import sub_progress
 
 RESULT = "results/pool_calibration"
@@ -66,37 +71,41 @@ def _plan(project, seg, result, n_max: int, rng: np.random.Generator) -> None:
     project.put(f"{RESULT}/plan/mbes_face", face[sel])
 
 
-def run(project, params: dict | None = None, progress=None, cancel=None):
+def run(project, params: PoolParams | Mapping | None = None, progress=None, cancel=None):
     """Run the pool calibration on *project* and store the results (see module doc)."""
-    p = dict(DEFAULT_PARAMS)
-    p.update(params or {})
+    p = as_params(params)
     lidar = np.asarray(project.get("raw/pool/lidar"), dtype=float)
     mbes = project.get_table("raw/pool/mbes")
     ins = project.get_table("raw/pool/ins")
     setup = project.get_json("raw/pool/setup")
     target = project.get_json("raw/pool/target")
     seg = segment(lidar, mbes, ins, setup, target, p, sub_progress(progress, 0, 0.6), cancel)
-    return iterate_and_store(project, seg, p, sub_progress(progress, 0.6, 1.0), cancel)
+    return solve_and_store(project, seg, p, sub_progress(progress, 0.6, 1.0), cancel)
 
 
-def iterate_and_store(project, seg, params: dict | None = None, progress=None, cancel=None):
-    """Iterate on an existing segmentation (e.g. kept by the GUI) and store the results.
+def solve_and_store(project, seg, params: PoolParams | None = None, progress=None,
+                    cancel=None):
+    """Solve on an existing segmentation (e.g. kept by the GUI) and store the results.
 
-    Nothing is written to *project* unless the iteration completes (a cancel leaves the
+    Nothing is written to *project* unless the solution completes (a cancel leaves the
     previous results untouched).
     """
-    p = dict(DEFAULT_PARAMS)
-    p.update(params or {})
-    result = iterate(seg, p, sub_progress(progress, 0.0, 0.95), cancel)
+    p = seg.params if params is None else params
+    result = solve(seg, p, sub_progress(progress, 0.0, 0.95), cancel)
     store(project, seg, result, p)
     return result
 
 
-def store(project, seg, result, p: dict) -> None:
+def stored_params(project) -> PoolParams | None:
+    """The parameters of the stored result (migrated to the current schema), or None."""
+    return stored(PoolParams, project, RESULT)
+
+
+def store(project, seg, result, p: PoolParams) -> None:
     """REPLACE ``/results/pool_calibration`` with *result* (layout in the module doc)."""
     project.delete(RESULT)
     project.put_json(f"{RESULT}/result", result.to_dict())
-    project.put_json(RESULT, p)
+    project.put_json(RESULT, p.to_dict())
     # The joint σ describe the joint solution only: with final = seed they stay NaN here
     # (the joint solution and its σ remain in the result JSON for comparison).
     j = result.joint if result.method == "joint" else None
@@ -106,7 +115,7 @@ def store(project, seg, result, p: dict) -> None:
                       ("roll_deg", "pitch_deg", "yaw_deg", "lever_x_m", "lever_y_m",
                        "lever_z_m")})
     project.set_attrs(
-        RESULT, software_version=__version__,
+        RESULT, software_version=__version__, params_schema_version=PoolParams.SCHEMA_VERSION,
         run_utc=datetime.now(UTC).isoformat(timespec="seconds"), method=result.method,
         iterations=int(result.iterations), converged=bool(result.converged),
         **{f"{k}_deg": float(v) for k, v in result.boresight_deg.items()},
@@ -129,4 +138,4 @@ def store(project, seg, result, p: dict) -> None:
     project.put_table(f"{RESULT}/iterations", {
         c: np.array([row[c] for row in result.iteration_table],
                     dtype=np.int64 if c in ("iteration", "round") else float) for c in cols})
-    _plan(project, seg, result, int(p.get("plan_points", 20000)), np.random.default_rng(0))
+    _plan(project, seg, result, p.plan_points, np.random.default_rng(0))

@@ -17,7 +17,9 @@ import numpy as np
 from reportlab.lib.styles import ParagraphStyle
 from reportlab.platypus import Flowable, Paragraph
 
+from hydrosync_core.methods.pool_calibration.params import PoolParams
 from hydrosync_core.methods.pool_calibration.report_figures import plan_figures
+from hydrosync_core.params import stored
 from hydrosync_core.report.context import ReportContext, esc, fmt, fmt_pm, utc_text
 from hydrosync_core.report.styles import BAD_TEXT, SERIES
 
@@ -68,25 +70,27 @@ def section(project, ctx: ReportContext) -> list[Flowable]:
     out: list[Flowable] = [
         ctx.heading(HEADING),
         ctx.para(
-            "Method: pool calibration against a laser-scanned target (seed 003). Both point "
-            "clouds are segmented into the design faces of the target; planes are fitted by "
-            "total least squares. The seed method iterates the boresight angles from the "
-            "angles between multibeam and laser plane normals (roll from the wall, pitch and "
-            "yaw from the oblique faces), then derives the lever arm offsets (x from the wall, "
-            "y from the oblique faces, z from the horizontal faces). The joint adjustment "
+            "Method: pool calibration against a laser-scanned target (patent CN 105425246 "
+            "B). Both point clouds are segmented into the design faces of the target; planes "
+            "are fitted by total least squares. The patent method iterates the boresight "
+            "angles from the angles between multibeam and laser plane normals (roll from the "
+            "wall, pitch and yaw from the oblique faces), then derives the lever arm offsets "
+            "(x from the wall, y from the oblique faces, z from the horizontal faces). The joint adjustment "
             "estimates all six parameters at once by minimising the point-to-plane distances "
             "of the multibeam soundings to the laser planes, with their covariance. "
             "Angles follow setup.json: R<sub>m</sub> = Rz(yaw)\u00b7Ry(pitch)\u00b7Rx(roll); "
             "the lever arm is in the body frame (x forward, y starboard, z down)."),
     ]
     out += _parameter_table(ctx, attrs, res)
-    out += _run_info(ctx, attrs, res, project.get_json(RESULT, {}) or {})
+    params = stored(PoolParams, project, RESULT)
+    out += _run_info(ctx, attrs, res, params)
     for text in json.loads(attrs.get("warnings") or "[]"):
         out.append(ctx.warning(text))
     out += _face_table(project, ctx, res)
     out += _joint_tables(ctx, res)
     out += plan_figures(project, ctx)
     out += _iterations(project, ctx)
+    out += ctx.params_table(params, "Pool calibration: processing parameters.")
     return out
 
 
@@ -117,7 +121,7 @@ def _parameter_table(ctx, attrs, res) -> list[Flowable]:
         "values to enter in the acquisition software.")
 
 
-def _sigma_model(joint: dict, params: dict) -> str:
+def _sigma_model(joint: dict, params: PoolParams) -> str:
     """How the joint σ were obtained, so the reader knows what they cover."""
     factors = joint.get("variance_factor") or {}
     text = "point-to-plane fit incl. laser-plane errors"
@@ -125,7 +129,7 @@ def _sigma_model(joint: dict, params: dict) -> str:
         largest = max(factors, key=lambda k: float(factors[k] or 1.0))
         text += (f"; ping-block variance factors 1.00–{float(factors[largest] or 1.0):.2f}"
                  f" (largest: {largest})")
-    ins = [float(params.get(f"ins_sigma_{a}_deg", 0.0)) for a in ("roll", "pitch", "heading")]
+    ins = list(params.ins_sigma_deg)
     if any(ins):
         text += (f"; INS accuracy roll/pitch/heading {ins[0]:g}/{ins[1]:g}/{ins[2]:g}° "
                  "(1σ) propagated")
@@ -134,7 +138,7 @@ def _sigma_model(joint: dict, params: dict) -> str:
     return text
 
 
-def _run_info(ctx, attrs, res, params: dict) -> list[Flowable]:
+def _run_info(ctx, attrs, res, params: PoolParams) -> list[Flowable]:
     joint = res.get("joint") or {}
     seed = res.get("seed") or {}
     pairs = [

@@ -6,25 +6,9 @@ Angles in degrees and lengths in metres at this edge; boresight and lever arm in
 
 from __future__ import annotations
 
-import math
 from dataclasses import asdict, dataclass, field
 
-import numpy as np
-
-
-def jsonable(obj):
-    """Plain JSON types: numpy scalars/arrays converted, NaN/inf -> None."""
-    if isinstance(obj, dict):
-        return {str(k): jsonable(v) for k, v in obj.items()}
-    if isinstance(obj, list | tuple | np.ndarray):
-        return [jsonable(v) for v in obj]
-    if isinstance(obj, bool | np.bool_):
-        return bool(obj)
-    if isinstance(obj, int | np.integer):
-        return int(obj)
-    if isinstance(obj, float | np.floating):
-        return float(obj) if math.isfinite(obj) else None
-    return obj
+from hydrosync_core.jsonsafe import jsonable
 
 
 @dataclass(frozen=True)

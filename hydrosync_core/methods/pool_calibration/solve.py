@@ -1,7 +1,7 @@
 """The solving half of the pool calibration: seed angles, seed lever arm, joint LSQ.
 
-Called through :func:`hydrosync_core.methods.pool_calibration.api.iterate`. Inputs and outputs as
-documented there; the result is a :class:`~.result.PoolResult`.
+Runs on a :class:`~.api.Segmentation` (inputs as documented in :mod:`.api`); the result
+is a :class:`~.result.PoolResult`.
 """
 
 from __future__ import annotations
@@ -11,6 +11,7 @@ import numpy as np
 from hydrosync_core.methods.pool_calibration import georef
 from hydrosync_core.methods.pool_calibration.joint import NAMES, adjust, correlation
 from hydrosync_core.methods.pool_calibration.lever_arm import lever_offsets
+from hydrosync_core.methods.pool_calibration.params import PoolParams
 from hydrosync_core.methods.pool_calibration.planes import PlaneFit, angle_deg, fit_plane
 from hydrosync_core.methods.pool_calibration.result import (
     FaceRow,
@@ -75,14 +76,14 @@ def _joint_warnings(cov, corr, fixed, p) -> list[str]:
             out.append(f"joint adjustment: {name} cannot be determined from this pass "
                        "geometry (kept at the seed value)")
             continue
-        s, lim, unit = (np.degrees(sig[k]), p["max_sigma_deg"], "°") if k < 3 else \
-            (sig[k], p["max_sigma_m"], " m")
+        s, lim, unit = (np.degrees(sig[k]), p.max_sigma_deg, "°") if k < 3 else \
+            (sig[k], p.max_sigma_m, " m")
         if s > lim:
             out.append(f"joint adjustment: {name} poorly determined (σ = {s:.4g}{unit} > "
                        f"{lim}{unit})")
     for i in range(6):
         for j in range(i + 1, 6):
-            if abs(corr[i, j]) > p["max_corr"]:
+            if abs(corr[i, j]) > p.max_corr:
                 out.append(f"joint adjustment: {NAMES[i]} and {NAMES[j]} strongly correlated "
                            f"(r = {corr[i, j]:+.3f}); add passes at other ranges/headings")
     return out
@@ -92,35 +93,38 @@ def _resegment(seg, p, r_m, lever, cancel) -> dict[str, np.ndarray]:
     """Multibeam face indices re-cropped with tight tolerances around (r_m, lever)."""
     pts = georef.georeference(seg.ctx, r_m, lever)
     mseg = segment_cloud(pts, list(seg.design.values()), seg.water_level, "below",
-                         tol=p["refine_tol_m"], margin=p["face_margin_m"],
-                         water_margin=p["water_margin_m"], ransac_m=p["refine_ransac_m"],
-                         dbscan_eps=p["dbscan_mbes_m"], max_points=p["max_points_per_face"],
-                         band_sigma=p.get("refine_band_sigma", 0.0), cancel=cancel)
+                         tol=p.refine_tol_m, margin=p.face_margin_m,
+                         water_margin=p.water_margin_m, ransac_m=p.refine_ransac_m,
+                         dbscan_eps=p.dbscan_mbes_m, max_points=p.max_points_per_face,
+                         band_sigma=p.refine_band_sigma, cancel=cancel)
     return {n: s.indices for n, s in mseg.items()}
 
 
-def solve(seg, params=None, progress=None, cancel=None) -> PoolResult:
-    """Run steps 3 and 4 of the seed and the joint adjustment on a segmentation."""
-    p = dict(seg.params)
-    p.update(params or {})
+def solve(seg, params: PoolParams | None = None, progress=None, cancel=None) -> PoolResult:
+    """Run steps 3 and 4 of the patent and the joint adjustment on a segmentation.
+
+    *params* default to those the segmentation was made with (the GUI may change the
+    solving parameters between Segment and Iterate).
+    """
+    p = seg.params if params is None else params
     warnings = list(seg.warnings)
-    mp = p["min_points"]
+    mp = p.min_points
     # Seed steps 3 then 4, alternated: the angles are first found with the coarse lever
     # arm, whose error (through the varying attitude) slightly bends small faces, so the
     # angle iteration is repeated with the corrected lever arm until both settle.
     lever, r_m, table, total_it = seg.lever0.copy(), seg.r_m0.copy(), [], 0
     mfaces = seg.mbes_faces
-    for rnd in range(1, p["max_rounds"] + 1):
+    for rnd in range(1, p.max_rounds + 1):
         check_cancel(cancel)
         if rnd == 2:
             # Coarse-setup crops are wide; re-crop tightly around the first solution (once,
             # so that later rounds work on a fixed point set and can converge).
             mfaces = _resegment(seg, p, r_m, lever, cancel)
         angles = iterate_angles(seg.ctx, mfaces, seg.roles, seg.laser_planes, r_m,
-                                lever, tol_deg=p["tol_deg"], max_iter=p["max_iter"],
+                                lever, tol_deg=p.tol_deg, max_iter=p.max_iter,
                                 min_points=mp,
-                                progress=sub_progress(progress, 0.4 * (rnd - 1) / p["max_rounds"],
-                                                      0.4 * rnd / p["max_rounds"]),
+                                progress=sub_progress(progress, 0.4 * (rnd - 1) / p.max_rounds,
+                                                      0.4 * rnd / p.max_rounds),
                                 cancel=cancel)
         table += [dict(row, iteration=total_it + row["iteration"], round=rnd)
                   for row in angles.table]
@@ -131,9 +135,9 @@ def solve(seg, params=None, progress=None, cancel=None) -> PoolResult:
             georef.boresight_angles(angles.r_m.T @ r_m)))
         d_lever = float(np.linalg.norm(lev.lever - lever))
         r_m, lever = angles.r_m, lev.lever
-        if rnd > 1 and d_lever < p["lever_tol_m"] and d_angle < 10 * p["tol_deg"]:
+        if rnd > 1 and d_lever < p.lever_tol_m and d_angle < 10 * p.tol_deg:
             break
-    seed_converged = bool(angles.converged and d_lever < p["lever_tol_m"])
+    seed_converged = bool(angles.converged and d_lever < p.lever_tol_m)
     if not seed_converged:
         warnings.append(f"seed method did not converge (last round: angle iteration "
                         f"{'converged' if angles.converged else 'not converged'}, lever-arm "
@@ -155,12 +159,11 @@ def solve(seg, params=None, progress=None, cancel=None) -> PoolResult:
         # Without a horizontal face the vertical offset rests only on the vessel's roll
         # and pitch motion: fixed rather than reported as a weak, possibly wrong number.
         has_h = any(seg.roles[n].role == "horizontal" for n in obs)
-        fit = adjust(seg.ctx, obs, r_m, lever, huber_m=p["huber_m"], cancel=cancel,
+        fit = adjust(seg.ctx, obs, r_m, lever, huber_m=p.huber_m, cancel=cancel,
                      fix=() if has_h else ("lever_z",),
-                     block_s=p.get("sigma_block_s", 2.0),
-                     ins_sigma_rad=tuple(np.deg2rad([p.get(f"ins_sigma_{a}_deg", 0.0) for a in
-                                                     ("roll", "pitch", "heading")])),
-                     ins_tau_s=p.get("ins_tau_s", 1.0))
+                     block_s=p.sigma_block_s,
+                     ins_sigma_rad=tuple(np.deg2rad(p.ins_sigma_deg)),
+                     ins_tau_s=p.ins_tau_s)
     except (ValueError, np.linalg.LinAlgError) as exc:
         warnings.append(f"joint adjustment failed ({exc}); the seed solution is reported")
         fit = None
@@ -174,7 +177,7 @@ def solve(seg, params=None, progress=None, cancel=None) -> PoolResult:
             _lever(sig[3:]), list(NAMES), corr.tolist(), fit.sigma0_m, fit.n_obs,
             fit.iterations, fit.converged, list(fit.fixed), fit.residual_rms,
             dict(zip(NAMES, map(float, fit.variance_factor), strict=True)))
-        if p["final"] == "joint" and fit.converged:
+        if p.final == "joint" and fit.converged:
             r_final, l_final, method = fit.r_m, fit.lever, "joint"
     report(progress, 0.9, "face table")
     final_pts = georef.georeference(seg.ctx, r_final, l_final)

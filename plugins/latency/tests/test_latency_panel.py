@@ -41,9 +41,10 @@ def test_demo_run_table_curves_and_toggle(panel, qtbot):
     truth = fill_demo(project, seed=0)
     panel.set_project(project)
     # Lever arm comes from the vessel sheet (gnss − motion).
-    values = panel.form.values()
-    assert [values["lever_x"], values["lever_y"], values["lever_z"]] == truth["lever_arm_m"]
-    panel.form.set_values({"step_s": 0.01})
+    assert panel.form.values()["lever_arm_m"] is None
+    shown = [spin.value() for spin in panel.form.editors["lever_arm_m"].parts]
+    assert shown == truth["lever_arm_m"]
+    panel.form.set_params({"step_s": 0.01})
     modified = []
     panel.sig_project_modified.connect(lambda: modified.append(1))
     with qtbot.waitSignal(panel.sig_busy, timeout=30_000, check_params_cb=lambda b: not b):
@@ -96,7 +97,7 @@ def test_wrong_lever_arm_shows_no_latency_and_the_likely_cause(panel, qtbot):
     truth = fill_demo(project, seed=1)
     panel.set_project(project)
     x, y, z = truth["lever_arm_m"]
-    panel.form.set_values({"step_s": 0.02, "lever_y": -y})
+    panel.form.set_params({"step_s": 0.02, "lever_arm_m": [x, -y, z]})
     with qtbot.waitSignal(panel.sig_busy, timeout=30_000, check_params_cb=lambda b: not b):
         panel.run_button.click()
     qtbot.waitUntil(lambda: panel.table.rowCount() == 13, timeout=10_000)

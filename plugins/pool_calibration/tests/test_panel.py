@@ -228,10 +228,10 @@ def test_parameters_loaded_from_stored_run(panel, demo):
     values = panel.form.values()
     for key in ("crop_tol_m", "tol_deg", "max_iter", "final"):
         assert values[key] == stored[key]
-    panel.form.set_values({"max_iter": 7, "final": "seed"})
+    panel.form.set_params({"max_iter": 7, "final": "seed"})
     params = panel.params()
-    assert params["max_iter"] == 7 and params["final"] == "seed"
-    assert params["plan_points"] == 20000  # defaults not in the form are kept
+    assert params.max_iter == 7 and params.final == "seed"
+    assert params.plan_points == 20000  # advanced field, at its default
 
 
 def test_segment_then_run_in_worker(panel, demo, qtbot, tmp_path):
@@ -268,14 +268,14 @@ def test_segment_then_run_in_worker(panel, demo, qtbot, tmp_path):
     iterated = dict(project.attrs(RESULT))
     assert iterated["method"] == "joint"
     scratch = Project.new("scratch")
-    expect = project_run.iterate_and_store(scratch, panel.segmentation, panel.params())
+    expect = project_run.solve_and_store(scratch, panel.segmentation, panel.params())
     assert iterated["roll_deg"] == pytest.approx(expect.boresight_deg["roll"], abs=1e-9)
     assert iterated["lever_y_m"] == pytest.approx(expect.lever_arm_m["y"], abs=1e-12)
     assert np.isfinite(iterated["sigma_roll_deg"])
 
     # Run all: a worker writes the results, the panel redraws from them.
     modified.clear()
-    panel.form.set_values({"final": "seed"})
+    panel.form.set_params({"final": "seed"})
     panel.run_button.click()
     qtbot.waitUntil(lambda: bool(modified), timeout=120_000)
     attrs = project.attrs(RESULT)

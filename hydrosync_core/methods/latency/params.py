@@ -1,0 +1,83 @@
+"""Parameters of the latency estimation: the one place they are declared.
+
+The panel form, the ``hydrosync latency`` flags, ``hydrosync run latency --param``, the
+stored parameters and the report's parameter table all derive from
+:class:`LatencyParams` (``hydrosync_core.params``). Imports only the standard library.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import ClassVar
+
+from hydrosync_core.errors import InputError
+from hydrosync_core.params import Params, param
+
+#: How the per-line delays are combined (Qi et al. 2010 weight by R).
+WEIGHTINGS = ("r", "inverse_variance")
+
+
+@dataclass(frozen=True)
+class LatencyParams(Params):
+    """Parameters of the latency estimation (Qi et al. 2010 and HydroSync's additions).
+
+    Times in seconds, lengths in metres, the lever arm in the body frame (x forward,
+    y starboard, z down).
+    """
+
+    SCHEMA_VERSION: ClassVar[int] = 1
+
+    range_s: tuple[float, float] = param(
+        (-1.0, 1.0), label="Scan range", unit="s", minimum=-10.0, maximum=10.0,
+        cli="--range", metavar=("MIN", "MAX"),
+        help="range of delays tried; symmetric by default since the sign is not known")
+    step_s: float = param(
+        0.005, label="Step", unit="s", minimum=0.0, min_exclusive=True, maximum=0.5,
+        cli="--step", decimals=4, step=0.001,
+        help="scan step of the delay (Qi et al. 2010: 0.005 s); refined below the step")
+    min_r: float = param(
+        0.85, label="R threshold", minimum=-1.0, maximum=1.0, max_exclusive=True,
+        help="lines whose best correlation R_max is above this are used "
+             "(Qi et al. 2010: 0.85)")
+    detrend_degree: int = param(
+        1, label="Detrend degree", minimum=0, maximum=5,
+        help="degree of the polynomial (tide, squat) removed from each line's heights")
+    skip_s: float = param(
+        0.0, label="Skip at line start", unit="s", minimum=0.0, maximum=3600.0,
+        cli="--skip", decimals=1, step=1.0,
+        help="seconds of unsteady run-in skipped at each line start "
+             "(Qi et al. 2010 skip ≥ 60 s; 0 when the line times already exclude it)")
+    weighting: str = param(
+        "r", label="Weights", choices=WEIGHTINGS,
+        help="weights of the line mean: r = R_max of each line (Qi et al. 2010), "
+             "inverse_variance = 1/uncertainty²")
+    outlier_k: float = param(
+        4.0, label="Outlier limit", unit="σ", minimum=0.0, maximum=100.0, decimals=1,
+        step=0.5, metavar=("K",),
+        help="lines whose delay departs from the median by more than K robust σ are not "
+             "used (0 disables; needs 4 or more lines)")
+    lever_arm_m: tuple[float, float, float] | None = param(
+        None, label="Lever arm (antenna − motion sensor)", unit="m", minimum=-200.0,
+        maximum=200.0, cli="--lever-arm", metavar=("X", "Y", "Z"),
+        none_label="vessel sheet (gnss − motion)",
+        help="GNSS antenna phase centre relative to the motion sensor, body frame "
+             "x forward, y starboard, z down; default: from the vessel sheet")
+    min_epochs: int = param(
+        30, label="Minimum epochs per line", minimum=5, maximum=1_000_000, advanced=True,
+        help="lines with fewer GNSS epochs are not used")
+    gap_factor: float = param(
+        3.0, label="Gap factor", minimum=1.0, min_exclusive=True, maximum=1000.0,
+        advanced=True, decimals=1,
+        help="an interval longer than this many median intervals is a data gap")
+
+    def validate(self) -> None:
+        lo, hi = self.range_s
+        if not hi > lo:
+            raise InputError(None, f"range maximum must be above minimum, got {lo:g}..{hi:g}",
+                             field="range_s")
+        if self.step_s > hi - lo:
+            raise InputError(None, f"step must be within the range, got {self.step_s:g} s",
+                             field="step_s")
+        if (hi - lo) / self.step_s > 200_000:
+            raise InputError(None, "too many scan candidates (> 200000): use a larger step",
+                             field="step_s")

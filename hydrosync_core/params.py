@@ -397,7 +397,10 @@ def parse_assignment(schema: type[Params], text: str) -> tuple[str, Any]:
     raw = raw.strip()
     if info.optional and raw.lower() in ("none", "null", ""):
         return name, None
-    return name, _coerce(info, raw)
+    try:
+        return name, _coerce(info, raw)
+    except InputError as exc:
+        raise InputError("--param", exc.message, field=name) from None
 
 
 def describe(schema: type[Params], values: Mapping) -> list[tuple[str, str, str]]:

@@ -74,3 +74,33 @@ def test_core_cli_and_plugin_specs_import(probe):
 
 def test_no_qt_is_loaded_by_the_core(probe):
     assert probe["forbidden"] == [], f"Qt loaded by the core: {probe['forbidden']}"
+
+
+SPEC_PROBE = textwrap.dedent(
+    """
+    import json, sys
+    sys.path.insert(0, {example!r})
+    import importlib
+    importlib.import_module({module!r})
+    heavy = sorted(m for m in sys.modules
+                   if m.split(".")[0] in ("scipy", "open3d", "PySide6", "shiboken6",
+                                          "pyqtgraph", "reportlab", "laspy", "h5py")
+                   or (m.startswith("hydrosync_core.methods.") and m.count(".") >= 3))
+    print(json.dumps(heavy))
+    """
+)
+
+
+@pytest.mark.parametrize("module", ["plugins.latency", "plugins.pool_calibration",
+                                    "hydrosync_heave_stats"])
+def test_importing_a_spec_is_cheap(module):
+    """A spec is declared, then loaded lazily: no scipy, open3d, Qt, nor method modules."""
+    from pathlib import Path
+
+    example = str(Path(__file__).resolve().parents[1] / "examples" / "heave_stats")
+    done = subprocess.run([sys.executable, "-c", SPEC_PROBE.format(example=example,
+                                                                   module=module)],
+                          capture_output=True, text=True, timeout=120,
+                          env={"PATH": "/usr/bin:/bin", "HOME": "/tmp"})
+    assert done.returncode == 0, done.stderr
+    assert json.loads(done.stdout.strip().splitlines()[-1]) == []

@@ -1,4 +1,5 @@
-"""The Latency panel: parameters, Run, R curves per line, the line table and seed fig. 4.
+"""The Latency panel: parameters, Run, R curves per line, the line table and the
+before/after plot (fig. 4 of Qi et al. 2010).
 
 A thin view over :mod:`hydrosync_core.methods.latency`: the run happens in a worker
 (``project_run.run``), toggling a line's *Used* box recombines the stored per-line values
@@ -31,7 +32,7 @@ from plugins.latency.views import CorrelationPlot, LineTable, SeriesPlot
 
 
 class LatencyPanel(PluginPanel):
-    """Latency between GNSS heights and attitude (seed 000)."""
+    """Latency between GNSS heights and attitude (Qi et al. 2010)."""
 
     def __init__(self, spec=None, parent: QWidget | None = None) -> None:
         if spec is None:

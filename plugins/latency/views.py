@@ -124,7 +124,7 @@ class CorrelationPlot(pg.PlotWidget):
 
 
 class SeriesPlot(pg.PlotWidget):
-    """Seed fig. 4: detrended GNSS height and total heave of one line, before and after."""
+    """Detrended GNSS height and total heave of one line, before and after (Qi et al. fig. 4)."""
 
     def __init__(self, parent=None) -> None:
         super().__init__(parent)

@@ -50,7 +50,7 @@ WARN_STYLE = ("QLabel { background: #fff3cd; border: 1px solid #d39e00; border-r
 
 
 class PoolCalibrationPanel(PluginPanel):
-    """Multibeam boresight and lever arm from the pool target (seed 003 + joint fit)."""
+    """Multibeam boresight and lever arm from the pool target (CN 105425246 B + joint fit)."""
 
     def __init__(self, spec=None, parent: QWidget | None = None) -> None:
         if spec is None:
@@ -99,7 +99,7 @@ class PoolCalibrationPanel(PluginPanel):
         buttons.addWidget(self.run_button)
         values_box = QGroupBox("Boresight and lever arm (body FRD)")
         QVBoxLayout(values_box).addWidget(self.values)
-        conv_box = QGroupBox("Convergence of the seed angle iteration")
+        conv_box = QGroupBox("Convergence of the patent's angle iteration")
         cv = QVBoxLayout(conv_box)
         conv_top = QHBoxLayout()
         conv_top.addWidget(self.log_check)
@@ -217,7 +217,8 @@ class PoolCalibrationPanel(PluginPanel):
         attrs = project.attrs(RESULT)
         result = project.get_json(f"{RESULT}/result", {}) or {}
         joint = result.get("joint") or {}
-        text = (f"<b>{'Joint' if attrs.get('method') == 'joint' else 'Seed'} solution</b>, "
+        method = "Joint" if attrs.get("method") == "joint" else "Patent method"
+        text = (f"<b>{method} solution</b>, "
                 f"{'converged' if attrs.get('converged') else '<b>NOT converged</b>'}. "
                 f"{result.get('message', '')}")
         if joint.get("sigma0_m") is not None:

@@ -43,9 +43,9 @@ VALUE_ROWS = (("Roll", "roll", "boresight_deg", "°"), ("Pitch", "pitch", "bores
 ROW_TIPS = ("boresight roll (+ starboard down)", "boresight pitch (+ bow up)",
             "boresight yaw (+ clockwise)", "lever arm forward", "lever arm starboard",
             "lever arm down")
-VALUE_COLUMNS = ("Final", "± σ", "Seed", "Coarse", "Δ coarse")
-VALUE_TIPS = ("final values (joint solution unless 'Final values' = seed)",
-              "1-σ of the joint least-squares solution", "seed (patent) iteration solution",
+VALUE_COLUMNS = ("Final", "± σ", "Patent", "Coarse", "Δ coarse")
+VALUE_TIPS = ("final values (joint solution unless 'Final values' = seed, the patent's method)",
+              "1-σ of the joint least-squares solution", "solution of the patent's iteration",
               "coarse setup from setup.json (installation drawing)", "final − coarse")
 RIGHT = Qt.AlignmentFlag.AlignRight | Qt.AlignmentFlag.AlignVCenter
 CURVES = (("d_roll_deg", "Δ roll", "#d62728"), ("d_pitch_deg", "Δ pitch", "#1f77b4"),

@@ -1,6 +1,8 @@
 """The contract every plugin of the real registry must keep (Orange widget-test style).
 
-For each entry point of ``hydrosync.plugins``: the spec loads (a broken *built-in* plugin
+For each entry point of ``hydrosync.plugins`` — and for the example third-party analysis
+under ``examples/heave_stats`` (loaded from its folder, as an installed package would be
+through its entry point) —: the spec loads (a broken *built-in* plugin
 fails here; a broken third-party one is skipped with its error), its dotted paths import,
 its panel opens on an empty project, on a demo project and on one holding the results of
 a run, and its run can be cancelled, both
@@ -19,9 +21,10 @@ from hydrosync_core.errors import Cancelled
 from hydrosync_core.plugins import discover, load_object
 from hydrosync_core.plugins.registry import Discovered
 from hydrosync_core.project import Project
+from example_plugin import example_discovered
 
-BUILT_IN_PREFIXES = ("plugins.", "hydrosync_core.", "hydrosync_gui.")
-FOUND = discover()
+BUILT_IN_PREFIXES = ("plugins.", "hydrosync_core.", "hydrosync_gui.", "hydrosync_heave_stats")
+FOUND = discover() + [example_discovered()]
 
 
 def _id(d: Discovered) -> str:
@@ -69,6 +72,10 @@ def test_spec_loads_and_is_consistent(found):
     assert spec.name.strip() and spec.run and spec.panel
     assert all(isinstance(p, str) and p and not p.startswith("/") for p in spec.requires)
     json.dumps(spec.default_params)  # parameters are stored with the results as JSON
+    schema = spec.load_params()
+    assert schema.from_dict(spec.default_params) == schema()  # defaults round-trip
+    for info in schema.schema():
+        assert info.meta.label and (info.meta.help or info.kind == "bool"), info.name
     ids = [d.spec.id for d in FOUND if d.spec is not None]
     assert ids.count(spec.id) == 1, f"plugin id '{spec.id}' is not unique"
 
@@ -83,9 +90,28 @@ def test_dotted_paths_import(found):
     assert params[:2] == ["project", "params"] and {"progress", "cancel"} <= set(params)
     panel = spec.load_panel()
     assert isinstance(panel, type) and issubclass(panel, PluginPanel)
-    for extra in (spec.demo, spec.report_section):
+    for extra in (spec.demo, spec.report_section, spec.cli):
         if extra:
             assert callable(load_object(extra))
+    for kind in spec.data_kinds:
+        assert kind.store in ("table", "points", "json", "custom")
+        assert callable(load_object(kind.reader)), kind.name
+
+
+@pytest.mark.parametrize("found", FOUND, ids=_id)
+def test_command_registers_with_schema_flags(found):
+    """The analysis command adds one flag per parameter, none of them with a default."""
+    import argparse
+
+    spec = _spec(found)
+    if not spec.cli:
+        pytest.skip("no command")
+    sub = argparse.ArgumentParser(prog="hydrosync").add_subparsers()
+    load_object(spec.cli)(sub)
+    (parser,) = set(sub.choices.values())
+    dests = {a.dest for a in parser._actions}
+    for info in spec.load_params().schema():
+        assert f"param_{info.name}" in dests, f"no flag for parameter {info.name}"
 
 
 def _open_panel(qtbot, spec, project):
@@ -124,11 +150,15 @@ def test_panel_shows_stored_results(qtbot, found, demo_files):
     """After a headless run the panel redraws from ``/results/<id>`` without error."""
     spec = _spec(found)
     with demo_files(spec) as project:
-        spec.load_run()(project, dict(spec.default_params))
+        spec.load_run()(project, spec.make_params())
         assert project.exists(f"results/{spec.id}"), "run stored nothing under /results/<id>"
-        # the results contract: the params used (JSON), software version and run time
-        assert isinstance(project.get_json(f"results/{spec.id}"), dict)
-        assert {"software_version", "run_utc"} <= set(project.attrs(f"results/{spec.id}"))
+        # the results contract: the params used (JSON, schema version), software version
+        # and run time
+        stored = project.get_json(f"results/{spec.id}")
+        assert stored == spec.make_params().to_dict()
+        attrs = project.attrs(f"results/{spec.id}")
+        assert {"software_version", "run_utc", "params_schema_version"} <= set(attrs)
+        assert attrs["params_schema_version"] == spec.load_params().SCHEMA_VERSION
         _open_panel(qtbot, spec, project)
 
 
@@ -147,7 +177,7 @@ def test_run_can_be_cancelled(found, demo_files, when):
         if when == "before start":
             cancel.set()
         with pytest.raises(Cancelled):
-            spec.load_run()(project, dict(spec.default_params), progress, cancel)
+            spec.load_run()(project, spec.make_params(), progress, cancel)
         if when == "after first progress":
             assert calls, "run never reported progress"
         assert not project.exists(f"results/{spec.id}"), "a cancelled run left partial results"

@@ -140,7 +140,8 @@ def _line_table(ctx: ReportContext, table: dict, attrs: dict) -> list[Flowable]:
     return ctx.table(
         header, rows, col_widths=[0.16, 0.1, 0.11, 0.11, 0.11, 0.15, 0.15, 0.11],
         highlight_rows=[len(rows) - 1], extra_style=style,
-        caption="Per-line results (seed tables 1 and 2): maximum correlation R<sub>max</sub>, the "
+        caption="Per-line results (as tables 1 and 2 of Qi et al. 2010): maximum correlation "
+        "R<sub>max</sub>, the "
         "latency at the peak \u0394t with its uncertainty \u03c3\u0394t (from the peak "
         "curvature), and the standard error \u03c3<sub>0</sub> of height minus total heave "
         "(eqs. 5\u20136) before (\u0394t = 0) and after synchronisation with the final "
@@ -250,5 +251,6 @@ def _before_after_figures(project, ctx, table, attrs, params, arm) -> list[Flowa
             f"(R<sub>max</sub> = {fmt(table['r_max'][i], R_DECIMALS)}): "
             f"\u03c3<sub>0</sub> {fmt(table['sigma0_before_m'][i], SIGMA0_DECIMALS)} m before, "
             f"{fmt(table['sigma0_after_m'][i], SIGMA0_DECIMALS)} m after synchronisation "
-            f"over the whole line; a {EXCERPT_S:.0f}-s excerpt from its middle (seed fig. 4).")))
+            f"over the whole line; a {EXCERPT_S:.0f}-s excerpt from its middle (as fig. 4 of "
+            "Qi et al. 2010).")))
     return out

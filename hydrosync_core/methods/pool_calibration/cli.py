@@ -28,7 +28,7 @@ def _summary(result) -> str:
     b, la = result.boresight_deg, result.lever_arm_m
     text = (f"boresight roll {b['roll']:.4f} pitch {b['pitch']:.4f} yaw {b['yaw']:.4f} deg; "
             f"lever arm x {la['x']:.4f} y {la['y']:.4f} z {la['z']:.4f} m "
-            f"({result.method}, {result.iterations} seed iterations, "
+            f"({result.method}, {result.iterations} patent iterations, "
             f"{'converged' if result.converged else 'NOT converged'})")
     return text + "".join(f"\nwarning: {w}" for w in result.warnings)
 

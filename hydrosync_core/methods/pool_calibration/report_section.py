@@ -56,7 +56,7 @@ def parameter_rows(attrs: dict) -> list[tuple[str, str]]:
 def summary(project) -> list[tuple[str, str]]:
     """Rows of the report's summary table (and of ``hydrosync demo``'s printout)."""
     attrs = project.attrs(RESULT)
-    method = {"joint": "joint adjustment", "seed": "seed iteration"}.get(
+    method = {"joint": "joint adjustment", "seed": "patent iteration"}.get(
         str(attrs.get("method")), str(attrs.get("method")))
     state = "converged" if attrs.get("converged") else "NOT converged"
     return [(f"{label} (final, 1\u03c3)", value) for label, value in parameter_rows(attrs)] + [
@@ -70,15 +70,15 @@ def section(project, ctx: ReportContext) -> list[Flowable]:
     out: list[Flowable] = [
         ctx.heading(HEADING),
         ctx.para(
-            "Method: pool calibration against a laser-scanned target (patent CN 105425246 "
-            "B). Both point clouds are segmented into the design faces of the target; planes "
-            "are fitted by total least squares. The patent method iterates the boresight "
-            "angles from the angles between multibeam and laser plane normals (roll from the "
-            "wall, pitch and yaw from the oblique faces), then derives the lever arm offsets "
-            "(x from the wall, y from the oblique faces, z from the horizontal faces). The joint adjustment "
-            "estimates all six parameters at once by minimising the point-to-plane distances "
-            "of the multibeam soundings to the laser planes, with their covariance. "
-            "Angles follow setup.json: R<sub>m</sub> = Rz(yaw)\u00b7Ry(pitch)\u00b7Rx(roll); "
+            "Method: pool calibration against a laser-scanned target (patent CN 105425246 B). "
+            "Both point clouds are segmented into the design faces of the target; planes are "
+            "fitted by total least squares. The patent method iterates the boresight angles from "
+            "the angles between multibeam and laser plane normals (roll from the wall, pitch and "
+            "yaw from the oblique faces), then derives the lever arm offsets (x from the wall, y "
+            "from the oblique faces, z from the horizontal faces). The joint adjustment estimates"
+            " all six parameters at once by minimising the point-to-plane distances of the "
+            "multibeam soundings to the laser planes, with their covariance. Angles follow "
+            "setup.json: R<sub>m</sub> = Rz(yaw)\u00b7Ry(pitch)\u00b7Rx(roll); "
             "the lever arm is in the body frame (x forward, y starboard, z down)."),
     ]
     out += _parameter_table(ctx, attrs, res)
@@ -113,11 +113,11 @@ def _parameter_table(ctx, attrs, res) -> list[Flowable]:
             fmt(None if c is None or final is None else final - c, dec)])
     method = str(attrs.get("method", "?"))
     return ctx.table(
-        ["Parameter", "Coarse (setup)", "Seed method", "Joint adjustment \u00b1 1\u03c3",
+        ["Parameter", "Coarse (setup)", "Patent method", "Joint adjustment \u00b1 1\u03c3",
          f"Final ({method})", "Correction (final \u2212 coarse)"], rows,
         col_widths=[0.22, 0.13, 0.13, 0.2, 0.15, 0.17],
         caption="Boresight angles and lever arm: the coarse values of the installation "
-        "drawing, the seed method's and the joint adjustment's solutions, and the final "
+        "drawing, the patent method's and the joint adjustment's solutions, and the final "
         "values to enter in the acquisition software.")
 
 
@@ -143,7 +143,7 @@ def _run_info(ctx, attrs, res, params: PoolParams) -> list[Flowable]:
     seed = res.get("seed") or {}
     pairs = [
         ("Outcome", str(res.get("message", attrs.get("message", "")))),
-        ("Seed method", f"{seed.get('iterations', '?')} angle iterations, "
+        ("Patent method", f"{seed.get('iterations', '?')} angle iterations, "
                         + ("converged" if seed.get("converged") else "not converged")
                         + (f"; undetermined: {', '.join(seed['undetermined'])}"
                            if seed.get("undetermined") else "")),
@@ -211,13 +211,13 @@ def _iterations(project, ctx) -> list[Flowable]:
     n = len(t["iteration"])
     if n == 0:
         return []
-    out: list[Flowable] = [ctx.heading("Seed method: angle iterations", 2)]
+    out: list[Flowable] = [ctx.heading("Patent method: angle iterations", 2)]
     chart = ctx.chart(height=180, xlabel="iteration", ylabel="max. normal angle [\u00b0]")
     it = np.asarray(t["iteration"], float)
     chart.line(it, t["max_normal_angle_deg"], color=SERIES[0], width=1.0,
                label="largest angle between multibeam and laser normals")
     chart.points(it, t["max_normal_angle_deg"], color=SERIES[0], size=1.4)
-    out.append(ctx.figure(chart, "Convergence of the seed iteration (steps 3.1\u20133.6): the "
+    out.append(ctx.figure(chart, "Convergence of the patent's iteration (steps 3.1\u20133.6): the "
                           "largest angle between corresponding plane normals after each "
                           "boresight update."))
     rows = [[str(int(t["iteration"][i])), str(int(t["round"][i])),
@@ -229,7 +229,7 @@ def _iterations(project, ctx) -> list[Flowable]:
          "\u03b4yaw [\u00b0]", "Roll [\u00b0]", "Pitch [\u00b0]", "Yaw [\u00b0]",
          "Max normal angle [\u00b0]"], rows,
         col_widths=[0.11, 0.08, 0.11, 0.11, 0.11, 0.11, 0.11, 0.11, 0.15], numeric_from=0,
-        caption="Seed iteration: boresight corrections of each iteration (about the body "
+        caption="Patent iteration: boresight corrections of each iteration (about the body "
         "axes), the accumulated angles and the largest remaining normal angle. A new round "
         "starts after the lever arm has been re-estimated.")
     return out

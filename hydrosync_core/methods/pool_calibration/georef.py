@@ -16,20 +16,18 @@ import numpy as np
 from scipy.spatial.transform import Rotation, Slerp
 
 from hydrosync_core.errors import InputError
+from hydrosync_core.rotations import C_NED_TO_ENU, euler_zyx_angles, euler_zyx_matrix
 
-#: NED -> ENU (swap north/east, flip down to up).
-C_NED_TO_ENU = np.array([[0.0, 1.0, 0.0], [1.0, 0.0, 0.0], [0.0, 0.0, -1.0]])
-
+__all__ = ["C_NED_TO_ENU", "GeorefContext", "boresight_angles", "boresight_matrix"]
 
 def boresight_matrix(roll: float, pitch: float, yaw: float) -> np.ndarray:
     """R_m = Rz(yaw)·Ry(pitch)·Rx(roll), radians; sensor frame -> body FRD."""
-    return Rotation.from_euler("ZYX", [yaw, pitch, roll]).as_matrix()
+    return euler_zyx_matrix(roll, pitch, yaw)
 
 
 def boresight_angles(matrix: np.ndarray) -> tuple[float, float, float]:
     """(roll, pitch, yaw) radians of a boresight matrix (inverse of :func:`boresight_matrix`)."""
-    yaw, pitch, roll = Rotation.from_matrix(matrix).as_euler("ZYX")
-    return float(roll), float(pitch), float(yaw)
+    return euler_zyx_angles(matrix)
 
 
 @dataclass(frozen=True)

@@ -162,6 +162,7 @@ class PluginHost(QObject):
         for entry in self.entries:
             if entry.panel is not None:
                 self._call(entry, entry.panel.refresh)
+                self._call(entry, entry.panel.update_stale_banner)
 
     def _bind(self, entry: PluginEntry) -> None:
         panel = entry.panel

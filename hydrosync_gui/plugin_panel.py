@@ -16,11 +16,14 @@ from collections.abc import Callable
 from typing import Any
 
 from PySide6.QtCore import Signal
-from PySide6.QtWidgets import QWidget
+from PySide6.QtWidgets import QLabel, QWidget
 
 from hydrosync_core.plugins.spec import PluginSpec
 from hydrosync_core.project import Project
 from hydrosync_gui.workers import Worker, start
+
+STALE_STYLE = ("QLabel { background: #f8d7da; border: 1px solid #c0392b; border-radius: 3px;"
+               " color: #6e1a12; padding: 6px; }")
 
 
 class PluginPanel(QWidget):
@@ -36,12 +39,38 @@ class PluginPanel(QWidget):
         self.spec = spec
         self.project: Project | None = None
         self.worker: Worker | None = None
+        # Shown above the panel by the tab holding it (PluginTabs) when the stored result
+        # no longer matches its inputs.
+        self.stale_banner = QLabel()
+        self.stale_banner.setObjectName("stale_banner")
+        self.stale_banner.setWordWrap(True)
+        self.stale_banner.setStyleSheet(STALE_STYLE)
+        self.stale_banner.setVisible(False)
 
     # -------------------------------------------------------------- project
     def set_project(self, project: Project | None) -> None:
         """Bind *project* (or None) and redraw."""
         self.project = project
         self.refresh()
+        self.update_stale_banner()
+
+    def stale_reasons(self) -> list[str]:
+        """Why the stored result of this analysis is out of date (empty if it is not)."""
+        if self.project is None or self.spec is None:
+            return []
+        from hydrosync_core.provenance import stale_reasons
+
+        return stale_reasons(self.project, f"results/{self.spec.id}")
+
+    def update_stale_banner(self) -> None:
+        """Show or hide the "out of date" banner from the project's current state."""
+        reasons = self.stale_reasons()
+        self.stale_banner.setVisible(bool(reasons))
+        if reasons:
+            self.stale_banner.setText(
+                "<b>Out of date</b>: the results shown were computed before "
+                + "; ".join(r.replace(" since the run", "") for r in reasons[:4])
+                + ("; …" if len(reasons) > 4 else "") + ". Run the analysis again.")
 
     def refresh(self) -> None:  # pragma: no cover - overridden
         """Redraw everything from ``self.project`` (results already stored there)."""
@@ -78,6 +107,7 @@ class PluginPanel(QWidget):
     def _on_worker_done(self) -> None:
         self.sig_busy.emit(False)
         self.work_done()
+        self.update_stale_banner()
 
     def work_done(self) -> None:
         """Called on the GUI thread after every task, whatever its outcome."""

@@ -76,4 +76,5 @@ class PluginTabs(QTabWidget):
         layout = label.parentWidget().layout()
         layout.removeWidget(label)
         label.deleteLater()
-        layout.addWidget(panel)
+        layout.addWidget(panel.stale_banner)
+        layout.addWidget(panel, 1)

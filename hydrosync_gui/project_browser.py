@@ -134,6 +134,7 @@ class ProjectBrowser(QWidget):
         for info in self.project.walk():
             self._add(info)
         self._label_tables()
+        self._mark_stale()
         for path, item in self._items.items():
             top_level = "/" not in path
             item.setExpanded(path in expanded or (first_build and top_level))
@@ -183,6 +184,20 @@ class ProjectBrowser(QWidget):
         item.setData(0, DETAIL_ROLE, detail)
         item.setToolTip(0, detail)
         self._items[info.path] = item
+
+    def _mark_stale(self) -> None:
+        """Mark each stored result whose inputs changed since it was computed."""
+        from hydrosync_core.provenance import OUT_OF_DATE, stale_reasons
+
+        for path, item in self._items.items():
+            if not (path.startswith(schema.RESULTS + "/") and path.count("/") == 1):
+                continue
+            reasons = stale_reasons(self.project, path)
+            if reasons:
+                item.setText(0, f"{item.text(0)} ({OUT_OF_DATE})")
+                item.setForeground(0, Qt.GlobalColor.darkRed)
+                item.setToolTip(0, f"{OUT_OF_DATE}: " + "; ".join(reasons) + "\n\n"
+                                + item.toolTip(0))
 
     def _label_tables(self) -> None:
         """Give each table row its size (``table N × C``); a JSON group with children

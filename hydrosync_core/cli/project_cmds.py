@@ -69,7 +69,26 @@ def cmd_info(args: argparse.Namespace) -> int:
             else:
                 shape = "x".join(str(n) for n in info.shape) or "scalar"
                 print(f"  {'  ' * depth}{label}  {shape} {info.dtype}")
+        _print_results_status(project)
     return 0
+
+
+def _print_results_status(project: Project) -> None:
+    """One line per stored result: up to date, or out of date and why."""
+    from hydrosync_core.plugins import plugin_specs
+    from hydrosync_core.provenance import OUT_OF_DATE, read_record, stale_reasons
+
+    specs = [s for s in plugin_specs() if project.exists(f"results/{s.id}")]
+    if not specs:
+        return
+    print("results:")
+    for spec in specs:
+        path = f"results/{spec.id}"
+        reasons = stale_reasons(project, path)
+        when = (read_record(project, path) or {}).get("run_utc") or \
+            project.attrs(path).get("run_utc", "?")
+        state = f"{OUT_OF_DATE.upper()}: " + "; ".join(reasons) if reasons else "up to date"
+        print(f"  {spec.id}: {state} (computed {when})")
 
 
 def cmd_vessel(args: argparse.Namespace) -> int:

@@ -7,6 +7,7 @@ Paths are slash-separated group/dataset names relative to the file root
 
 from __future__ import annotations
 
+import hashlib
 import json
 import os
 from collections.abc import Iterator, Mapping
@@ -233,11 +234,16 @@ class Project:
         return parent, parts[-1]
 
     def put(self, path: str, data, attrs: Mapping | None = None) -> None:
-        """Store *data* (array-like) at *path*, replacing what was there."""
+        """Store *data* (array-like) at *path*, replacing what was there.
+
+        The dataset's content hash is kept as its ``sha256`` attribute, so results can
+        record what they were computed from without re-reading large inputs.
+        """
         array = np.asarray(data)
         parent, name = self._parent_and_name(path)
         parent.children[name] = DatasetNode(
-            attrs=dict(attrs or {}), shape=array.shape, dtype=array.dtype, data=array
+            attrs={**dict(attrs or {}), "sha256": content_sha256(array)}, shape=array.shape,
+            dtype=array.dtype, data=array,
         )
         self.dirty = True
 
@@ -277,6 +283,16 @@ class Project:
         parent, name = self._parent_and_name(new)
         parent.children[name] = node
         self.dirty = True
+
+
+def content_sha256(array: np.ndarray) -> str:
+    """SHA-256 of an array's values, shape and kind (strings hashed as UTF-8 text)."""
+    digest = hashlib.sha256(f"{array.dtype.kind}{array.shape}".encode())
+    if array.dtype.kind in "USO":
+        digest.update("\x1f".join(str(v) for v in array.ravel()).encode("utf-8"))
+    else:
+        digest.update(np.ascontiguousarray(array).tobytes())
+    return digest.hexdigest()
 
 
 def default_vessel() -> dict:

@@ -101,7 +101,14 @@ def build_report(project, pdf_path: str | os.PathLike, progress=None, cancel=Non
             report(progress, 0.1 + 0.6 * i / max(len(with_results), 1),
                    f"section {status.spec.name}")
             story.append(PageBreak())
-            story += _section(project, ctx, status)
+            section = _section(project, ctx, status)
+            if status.stale:
+                # Right under the heading, before any number of the section.
+                section[1:1] = [ctx.warning(
+                    "OUT OF DATE: these results were computed before "
+                    + "; ".join(r.replace(" since the run", "") for r in status.stale)
+                    + ". Run the analysis again before signing.")]
+            story += section
         check_cancel(cancel)
         report(progress, 0.75, "laying out pages")
         canvas = type("ReportCanvas", (NumberedCanvas,), {

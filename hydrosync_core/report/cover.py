@@ -20,6 +20,7 @@ from reportlab.platypus.tableofcontents import TableOfContents
 from hydrosync_core import __version__
 from hydrosync_core.plugins.spec import PluginSpec, load_object
 from hydrosync_core.project.vessel import vessel_config
+from hydrosync_core.provenance import OUT_OF_DATE, stale_reasons
 from hydrosync_core.report.context import ReportContext, esc, utc_text
 from hydrosync_core.report.styles import ACCENT, FONT, FONT_BOLD, INK, RULE
 
@@ -36,6 +37,8 @@ class ModuleStatus:
     run_utc: str
     software_version: str
     rows: tuple[tuple[str, str], ...]
+    #: Why the stored result no longer matches its inputs (empty: up to date).
+    stale: tuple[str, ...] = ()
 
 
 def results_path(spec: PluginSpec) -> str:
@@ -63,7 +66,8 @@ def module_status(project, spec: PluginSpec) -> ModuleStatus:
             log.error("summary of %s failed: %s", spec.id, exc)
             rows = (("summary unavailable", f"{type(exc).__name__}: {exc}"),)
     return ModuleStatus(spec, True, "run", str(attrs.get("run_utc", "")),
-                        str(attrs.get("software_version", "")), rows)
+                        str(attrs.get("software_version", "")), rows,
+                        tuple(stale_reasons(project, path)))
 
 
 def file_sha256(path: Path | None) -> str:
@@ -145,7 +149,9 @@ def contents_and_summary(ctx: ReportContext, statuses: list[ModuleStatus]) -> li
     for s in statuses:
         if rows:
             separators.append(("LINEABOVE", (0, len(rows) + 1), (-1, len(rows) + 1), 0.5, RULE))
-        name = Paragraph(f"<b>{esc(s.spec.name)}</b>", ctx.styles["Cell"])
+        name = Paragraph(f"<b>{esc(s.spec.name)}</b>"
+                         + (f"<br/><font color='#b00000'><b>{OUT_OF_DATE.upper()}</b></font>"
+                            if s.stale else ""), ctx.styles["Cell"])
         if not s.has_results:
             rows.append([name, Paragraph(esc(s.reason), ctx.styles["Cell"]), "", ""])
             continue
@@ -162,6 +168,12 @@ def contents_and_summary(ctx: ReportContext, statuses: list[ModuleStatus]) -> li
                      extra_style=[("VALIGN", (0, 1), (-1, -1), "TOP"), *separators],
                      caption="Key results of every module. Values are the final, corrected "
                      "values; uncertainties are one standard deviation unless stated.")
+    for s in statuses:
+        if s.stale:
+            out.append(ctx.warning(f"{s.spec.name} results are {OUT_OF_DATE}: "
+                                   + "; ".join(s.stale) + ". They were computed from other "
+                                   "inputs than the project now holds; run the analysis again "
+                                   "before signing."))
     not_run = [s.spec.name for s in statuses if not s.has_results]
     if not_run:
         out.append(ctx.para("Modules not run (their sections are omitted): "

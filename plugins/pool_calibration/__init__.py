@@ -5,6 +5,7 @@ with it scipy and open3d), the parameter schema and the panel are named by dotte
 and imported when used.
 """
 
+from hydrosync_core.methods.pool_calibration import VERSION
 from hydrosync_core.plugins.spec import DataKind, PluginSpec
 
 CORE = "hydrosync_core.methods.pool_calibration"
@@ -38,5 +39,5 @@ SPEC = PluginSpec(
     demo=f"{CORE}.demo:fill_demo",
     report_section=f"{CORE}.report_section:section",
     order=20,
-    version="1.1.0",
+    version=VERSION,
 )

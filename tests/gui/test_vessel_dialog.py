@@ -236,3 +236,24 @@ def test_menu_entry_disabled_while_task_runs(qtbot, make_window):
     release.set()
     qtbot.waitUntil(lambda: not window.busy, timeout=5000)
     assert window.act_vessel.isEnabled()
+
+
+def test_out_of_date_banner_and_browser_mark(qtbot, make_window):
+    """Changing the vessel sheet after a run marks the latency result out of date."""
+    from hydrosync_core.methods.latency.params import LatencyParams
+    from hydrosync_core.methods.latency.project_run import run
+
+    project = Project.new("demo")
+    fill_demo(project, seed=0)
+    run(project, LatencyParams(step_s=0.02))
+    window = make_window(project, discover=_latency_discover)
+    panel = window.current_panel()
+    assert not panel.stale_banner.isVisible()
+    assert "out of date" not in window.browser.row_texts("results/latency")[0]
+    set_sensor(project, "gnss", [0.5, -1.25, -7.0])
+    window.browser.refresh()
+    window.host.refresh()
+    assert panel.stale_banner.isVisible()
+    assert "Out of date" in panel.stale_banner.text()
+    assert "vessel sheet entry 'gnss'" in panel.stale_banner.text()
+    assert window.browser.row_texts("results/latency")[0] == "latency (out of date)"

@@ -13,6 +13,9 @@ from __future__ import annotations
 
 import importlib
 
+#: Version of the analysis (stored with its results; ``PluginSpec.version``).
+VERSION = "1.1.0"
+
 _PUBLIC = {
     "LatencyParams": "params", "LatencyResult": "result", "LineResult": "result",
     "estimate_latency": "api", "line_series": "api", "synchronise": "api",

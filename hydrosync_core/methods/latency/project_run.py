@@ -35,6 +35,7 @@ from datetime import UTC, datetime
 import numpy as np
 
 from hydrosync_core import __version__
+from hydrosync_core.methods.latency import VERSION
 from hydrosync_core.methods.latency.api import estimate_latency, synchronise
 from hydrosync_core.methods.latency.combine import combine
 from hydrosync_core.methods.latency.correlation import heave_at
@@ -48,6 +49,7 @@ from hydrosync_core.params import stored
 from hydrosync_core.progress import sub_progress
 from hydrosync_core.project import Project
 from hydrosync_core.project.vessel import lever_arm as vessel_lever_arm
+from hydrosync_core.provenance import record
 
 RESULT = "results/latency"
 
@@ -84,6 +86,9 @@ def run(project: Project, params: LatencyParams | Mapping | None = None, progres
     result = estimate_latency(gnss, attitude, lines, arm, p, sub_progress(progress, 0, 0.9), cancel)
     sync = (synchronise(gnss, attitude, arm, result.latency_s) if result.converged else None)
     store(project, result, sync, p)
+    record(project, RESULT, ("raw/gnss", "raw/attitude", "raw/lines"), p,
+           vessel_sensors=("gnss", "motion") if p.lever_arm_m is None else (),
+           plugin_version=VERSION)
     if progress is not None:
         progress(1.0, "results stored")
     return result

@@ -6,3 +6,6 @@ faces), ``georef`` (multibeam georeferencing), ``segment`` (face segmentation),
 ``lever_arm`` (patent offsets), ``joint`` (joint least squares), ``result``, ``api``,
 ``project_run``, ``demo``.
 """
+
+#: Version of the analysis (stored with its results; ``PluginSpec.version``).
+VERSION = "1.1.0"

@@ -35,14 +35,17 @@ from datetime import UTC, datetime
 import numpy as np
 
 from hydrosync_core import __version__
-from hydrosync_core.methods.pool_calibration import georef
+from hydrosync_core.methods.pool_calibration import VERSION, georef
 from hydrosync_core.methods.pool_calibration.api import as_params, segment
 from hydrosync_core.methods.pool_calibration.params import PoolParams
 from hydrosync_core.methods.pool_calibration.solve import solve
 from hydrosync_core.params import stored
 from hydrosync_core.progress import sub_progress
+from hydrosync_core.provenance import record
 
 RESULT = "results/pool_calibration"
+INPUTS = ("raw/pool/lidar", "raw/pool/mbes", "raw/pool/ins", "raw/pool/setup",
+          "raw/pool/target")
 
 
 def _plan(project, seg, result, n_max: int, rng: np.random.Generator) -> None:
@@ -93,6 +96,7 @@ def solve_and_store(project, seg, params: PoolParams | None = None, progress=Non
     p = seg.params if params is None else params
     result = solve(seg, p, sub_progress(progress, 0.0, 0.95), cancel)
     store(project, seg, result, p)
+    record(project, RESULT, INPUTS, p, plugin_version=VERSION)
     return result
 
 

@@ -110,7 +110,8 @@ def stale_reasons(project, result_path: str) -> list[str]:
         return []
     rec = read_record(project, result_path)
     if rec is None:
-        return ["it records no inputs (computed by an older HydroSync): run it again"]
+        return ["the result records no inputs (computed by an older HydroSync), so its "
+                "inputs cannot be checked"]
     reasons = []
     for path, old in (rec.get("inputs") or {}).items():
         now = fingerprint(project, path)

@@ -68,9 +68,9 @@ class PluginPanel(QWidget):
         self.stale_banner.setVisible(bool(reasons))
         if reasons:
             self.stale_banner.setText(
-                "<b>Out of date</b>: the results shown were computed before "
-                + "; ".join(r.replace(" since the run", "") for r in reasons[:4])
-                + ("; …" if len(reasons) > 4 else "") + ". Run the analysis again.")
+                "<b>Out of date</b>: the results shown no longer match the project — "
+                + "; ".join(reasons[:4]) + ("; …" if len(reasons) > 4 else "")
+                + ". Run the analysis again before using them.")
 
     def refresh(self) -> None:  # pragma: no cover - overridden
         """Redraw everything from ``self.project`` (results already stored there)."""

@@ -10,7 +10,7 @@ tabs keep working. Tab text is ``spec.name``, the icon ``resources/icons/<spec.i
 from __future__ import annotations
 
 from PySide6.QtCore import Qt, Slot
-from PySide6.QtWidgets import QLabel, QTabWidget, QVBoxLayout, QWidget
+from PySide6.QtWidgets import QLabel, QScrollArea, QTabWidget, QVBoxLayout, QWidget
 
 from hydrosync_gui.plugin_host import PluginEntry, PluginHost
 from hydrosync_gui.plugin_panel import PluginPanel
@@ -77,4 +77,11 @@ class PluginTabs(QTabWidget):
         layout.removeWidget(label)
         label.deleteLater()
         layout.addWidget(panel.stale_banner)
-        layout.addWidget(panel, 1)
+        # A panel taller or wider than the screen scrolls instead of pushing the log,
+        # status bar and Cancel off a 1366×768 laptop screen.
+        scroll = QScrollArea()
+        scroll.setWidget(panel)
+        scroll.setWidgetResizable(True)
+        scroll.setFrameShape(QScrollArea.Shape.NoFrame)
+        scroll.setMinimumSize(320, 240)
+        layout.addWidget(scroll, 1)

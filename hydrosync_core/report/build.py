@@ -105,9 +105,8 @@ def build_report(project, pdf_path: str | os.PathLike, progress=None, cancel=Non
             if status.stale:
                 # Right under the heading, before any number of the section.
                 section[1:1] = [ctx.warning(
-                    "OUT OF DATE: these results were computed before "
-                    + "; ".join(r.replace(" since the run", "") for r in status.stale)
-                    + ". Run the analysis again before signing.")]
+                    "OUT OF DATE: these results no longer match the project \u2014 "
+                    + "; ".join(status.stale) + ". Run the analysis again before signing.")]
             story += section
         check_cancel(cancel)
         report(progress, 0.75, "laying out pages")

@@ -329,3 +329,19 @@ def test_open_missing_or_bad_file_reports_and_prunes_recent(qtbot, make_window, 
     assert ui.boxes[1][2] == f"{tmp_path / 'gone.h5'}: no such project file"
     assert window.project.name == "Untitled"  # the current project stays
     assert window.recent.files() == [str(bad.resolve())]  # unreadable but existing: kept
+
+
+def test_every_panel_fits_a_1366x768_screen(qtbot, make_window, tmp_path):
+    """With any tab shown the window's minimum size leaves room on a laptop screen (the
+    log, status bar and Cancel stay visible): panels scroll instead of growing."""
+    from hydrosync_core.demo import build_demo
+    from hydrosync_core.plugins import discover
+
+    outcome = build_demo(tmp_path, seed=3)
+    project = Project.open(outcome.project_path)
+    window = make_window(project, discover=discover)
+    for index in range(window.tabs.count()):
+        window.tabs.setCurrentIndex(index)
+        qtbot.wait(10)
+        hint = window.minimumSizeHint()
+        assert hint.width() <= 1366 and hint.height() <= 700, (index, hint)

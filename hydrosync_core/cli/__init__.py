@@ -148,9 +148,8 @@ def _interrupt_message(command: str) -> str:
 
 def main(argv: list[str] | None = None) -> int:
     in_main_thread = threading.current_thread() is threading.main_thread()
-    previous = signal.getsignal(signal.SIGINT) if in_main_thread else None
     interrupts.reset()
-    interrupts.install()
+    undo_interrupts = interrupts.install()
     logging.captureWarnings(True)
     command = "hydrosync"
     try:
@@ -159,7 +158,10 @@ def main(argv: list[str] | None = None) -> int:
             args = parser.parse_args(argv)
             command = f"hydrosync {args.command}"
             _configure_logging(args.verbose)
-            return int(args.func(args) or 0)
+            code = int(args.func(args) or 0)
+            if interrupts.interrupted():  # held back during clean-up, never raised
+                raise KeyboardInterrupt
+            return code
         except InputError as exc:
             print(f"{command}: {exc.one_line()}", file=sys.stderr)
             return EXIT_INPUT
@@ -185,8 +187,11 @@ def main(argv: list[str] | None = None) -> int:
         return EXIT_INTERRUPTED
     finally:
         logging.captureWarnings(False)
-        if in_main_thread and previous is not None:
-            signal.signal(signal.SIGINT, previous)
+        undo_interrupts()
+        if in_main_thread and _started_as_command():
+            # The command is over: a Ctrl-C while the interpreter shuts down must neither
+            # kill it silently nor print anything (Python keeps SIG_IGN through shutdown).
+            signal.signal(signal.SIGINT, signal.SIG_IGN)
 
 
 def _silence_stdout() -> None:

@@ -313,13 +313,17 @@ def _laz_failure(done: subprocess.CompletedProcess) -> str:
     """One line on why the LAZ child failed (its last error line, clipped)."""
     lines = [ln.strip() for ln in done.stderr.decode("utf-8", "replace").splitlines()
              if ln.strip()]
-    errors = [ln for ln in lines if "Error" in ln or "error" in ln or "panicked" in ln]
-    if done.returncode < 0 or any("memory allocation" in ln for ln in lines):
+    if (done.returncode < 0 or any("panicked" in ln or "memory allocation" in ln
+                                   for ln in lines)):
         return ("cannot decode the LAZ point data: the decoder crashed on damaged compressed "
                 "data" + (f" (signal {-done.returncode})" if done.returncode < 0 else ""))
     if any("MemoryError" in ln for ln in lines):
         return "cannot decode the LAZ point data: it would need more memory than it can hold"
+    errors = [ln for ln in lines if "Error" in ln or "error" in ln]
     reason = errors[-1] if errors else (lines[-1] if lines else f"exit {done.returncode}")
+    reason = reason.rsplit("Error: ", 1)[-1]
+    if "failed to fill whole buffer" in reason:
+        reason = "the compressed data end early (truncated or damaged file)"
     return f"cannot decode the LAZ point data: {clip(reason, 120)}"
 
 

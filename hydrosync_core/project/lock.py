@@ -21,6 +21,7 @@ import threading
 import time
 from pathlib import Path
 
+from hydrosync_core import interrupts
 from hydrosync_core.atomic import pid_alive
 from hydrosync_core.errors import ProjectLockedError, ProjectReadOnlyError
 
@@ -84,8 +85,12 @@ class ProjectLock:
             return lock
 
     def release(self) -> None:
-        """Drop one reference; the last one removes the lock file and unlocks."""
-        with _registry_lock:
+        """Drop one reference; the last one removes the lock file and unlocks.
+
+        Never raises, and a Ctrl-C arriving meanwhile is held back (it may run in a
+        finalizer), so the lock file and the lock always go together.
+        """
+        with interrupts.deferred(), _registry_lock:
             if self._count <= 0:
                 return
             self._count -= 1

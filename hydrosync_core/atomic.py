@@ -1,32 +1,257 @@
-"""Atomic writing of output files (JSON, CSV, PDF): temporary file, fsync, rename."""
+"""Atomic writing of files: a unique temporary beside the target, fsync, rename.
+
+Every save (project, JSON, CSV, PDF) writes a temporary file in the target's folder,
+named ``.NAME.XXXXXXXX.PID.tmp`` (unique per save, so two processes never share one),
+fsyncs it, gives it the mode and owner of the file it replaces, renames it over the
+target and fsyncs the folder. A failure or an exception leaves the target as it was and
+removes the temporary; a process killed mid-save leaves its temporary behind, and
+:func:`clean_stale_temporaries` removes those of processes that no longer run.
+
+:func:`write_problem` says, before any work, why a target cannot be written.
+"""
 
 from __future__ import annotations
 
+import contextlib
 import json
+import logging
 import os
+import re
+import stat
+import tempfile
+import time
 from collections.abc import Callable, Iterator
 from contextlib import contextmanager
 from pathlib import Path
 from typing import IO
 
+from hydrosync_core import interrupts
+from hydrosync_core.errors import InputError
+
+notice_log = logging.getLogger("hydrosync.notice")
+"""Things the user should hear about that are not errors (stale temporaries removed)."""
+
+LEGACY_TMP_AGE_S = 120.0
+"""A pre-lock ``NAME.tmp`` untouched for this long is stale (its writer is gone)."""
+
+
+def temp_prefix(target: Path) -> str:
+    return f".{target.name}."
+
+
+def temp_suffix(pid: int | None = None) -> str:
+    return f".{os.getpid() if pid is None else pid}.tmp"
+
+
+def make_temp(target: Path) -> Path:
+    """Create an empty, unique temporary file in *target*'s folder and return its path."""
+    fd, name = tempfile.mkstemp(dir=target.parent, prefix=temp_prefix(target),
+                                suffix=temp_suffix())
+    os.close(fd)
+    return Path(name)
+
+
+def pid_alive(pid: int) -> bool:
+    """True if process *pid* exists (or may: it belongs to another user)."""
+    if pid <= 0:
+        return False
+    try:
+        os.kill(pid, 0)
+    except ProcessLookupError:
+        return False
+    except PermissionError:
+        return True
+    except OSError:
+        return True
+    return True
+
+
+def _human(nbytes: int) -> str:
+    size = float(nbytes)
+    for unit in ("bytes", "KB", "MB", "GB"):
+        if size < 1000 or unit == "GB":
+            return f"{size:.0f} {unit}" if unit == "bytes" else f"{size:.1f} {unit}"
+        size /= 1000
+    return f"{size:.1f} GB"
+
+
+def clean_stale_temporaries(target: str | os.PathLike, *, legacy: bool = False) -> list[str]:
+    """Remove temporaries of *target* left by processes that no longer run; say so.
+
+    ``.NAME.XXXXXXXX.PID.tmp`` files are removed when process PID is gone. With
+    *legacy* (the caller holds the project's write lock) an old-style ``NAME.tmp`` not
+    modified for :data:`LEGACY_TMP_AGE_S` seconds is removed too. Returns (and logs on
+    ``hydrosync.notice``) one message per file removed; never raises.
+    """
+    target = Path(target)
+    folder = target.parent if str(target.parent) else Path(".")
+    pattern = re.compile(r"^" + re.escape(temp_prefix(target)) + r"[A-Za-z0-9_]+\.(\d+)\.tmp$")
+    messages: list[str] = []
+    try:
+        entries = list(os.scandir(folder))
+    except OSError:
+        return messages
+    for entry in entries:
+        match = pattern.match(entry.name)
+        stale_pid = None
+        if match:
+            pid = int(match.group(1))
+            if pid == os.getpid() or pid_alive(pid):
+                continue
+            stale_pid = pid
+        elif not (legacy and entry.name == f"{target.name}.tmp"):
+            continue
+        try:
+            info = entry.stat(follow_symlinks=False)
+            if not stat.S_ISREG(info.st_mode):
+                continue
+            if stale_pid is None and time.time() - info.st_mtime < LEGACY_TMP_AGE_S:
+                continue
+            os.unlink(entry.path)
+        except OSError:
+            continue
+        who = (f"by HydroSync process {stale_pid}, which ended before finishing its save"
+               if stale_pid is not None else "by an interrupted save of an older HydroSync")
+        message = (f"removed the stale temporary file {entry.name} ({_human(info.st_size)}) "
+                   f"left beside {target.name} {who}")
+        notice_log.warning("%s", message)
+        messages.append(message)
+    return messages
+
+
+def _umask() -> int:
+    try:
+        with open("/proc/self/status", encoding="ascii") as fh:
+            for line in fh:
+                if line.startswith("Umask:"):
+                    return int(line.split()[1], 8)
+    except (OSError, ValueError):
+        pass
+    mask = os.umask(0o022)
+    os.umask(mask)
+    return mask
+
+
+def _may_write(info: os.stat_result, path: Path) -> bool:
+    if os.name == "posix" and os.geteuid() == 0:
+        return bool(info.st_mode & 0o222)  # root too respects a file marked read-only
+    return os.access(path, os.W_OK)
+
+
+def _owner_name(uid: int) -> str:
+    try:
+        import pwd
+
+        return pwd.getpwuid(uid).pw_name
+    except (ImportError, KeyError):
+        return f"uid {uid}"
+
+
+def write_problem(path: str | os.PathLike) -> str | None:
+    """Why *path* cannot be (re)written atomically by this process now, or None.
+
+    Checks that the folder exists and can be written, that *path* is not a folder, and,
+    when it exists, that its permissions allow writing and its owner can be kept. The
+    answer reads after the file name: ``"P.h5 cannot be changed: " + problem``.
+    """
+    path = Path(path)
+    folder = path.parent if str(path.parent) else Path(".")
+    if not folder.exists():
+        return f"its folder {folder} does not exist"
+    if not folder.is_dir():
+        return f"{folder} is not a folder"
+    if path.is_dir():
+        return "it is a folder, not a file"
+    if not os.access(folder, os.W_OK | os.X_OK):
+        return f"its folder {folder} cannot be written (permissions or read-only disk)"
+    if path.exists():
+        info = path.stat()
+        if not _may_write(info, path):
+            return (f"it is read-only (mode {stat.S_IMODE(info.st_mode):o}, owner "
+                    f"{_owner_name(info.st_uid)})")
+        if os.name == "posix" and os.geteuid() not in (0, info.st_uid):
+            return (f"it belongs to {_owner_name(info.st_uid)}, and HydroSync cannot replace "
+                    "it keeping its owner")
+    return None
+
+
+def check_writable(path: str | os.PathLike, what: str | None = None) -> None:
+    """Raise :class:`InputError` naming *path* (or option *what*) if it cannot be written."""
+    problem = write_problem(path)
+    if problem is not None:
+        raise InputError(str(path), ("cannot be written: " if what is None
+                                     else f"{what} cannot be written: ") + problem)
+
+
+def _keep_metadata(tmp: Path, old: os.stat_result | None, target: Path) -> None:
+    """Give *tmp* the mode (and owner, where possible) of the file it will replace."""
+    if old is None:
+        os.chmod(tmp, 0o666 & ~_umask())
+        return
+    if os.name == "posix":
+        mine = os.stat(tmp)
+        if (mine.st_uid, mine.st_gid) != (old.st_uid, old.st_gid):
+            try:
+                os.chown(tmp, old.st_uid, old.st_gid)
+            except PermissionError:
+                with contextlib.suppress(PermissionError):
+                    os.chown(tmp, -1, old.st_gid)
+                if os.stat(tmp).st_uid != old.st_uid:
+                    raise InputError(str(target), f"cannot be written: it belongs to "
+                                     f"{_owner_name(old.st_uid)}, and HydroSync cannot "
+                                     "replace it keeping its owner") from None
+    os.chmod(tmp, stat.S_IMODE(old.st_mode))
+
+
+def fsync_file(path: Path) -> None:
+    with open(path, "rb+") as fh:
+        os.fsync(fh.fileno())
+
+
+def publish(pairs: list[tuple[Path, Path]]) -> None:
+    """Rename each temporary over its target (mode/owner kept), then fsync the folders.
+
+    The renames run with Ctrl-C held back, and each target is recorded in
+    :data:`hydrosync_core.interrupts.completed` as it lands.
+    """
+    olds = []
+    for tmp, target in pairs:
+        fsync_file(tmp)
+        try:
+            old = os.stat(target)
+        except FileNotFoundError:
+            old = None
+        _keep_metadata(tmp, old, target)
+        olds.append(old)
+    with interrupts.critical():
+        for tmp, target in pairs:
+            os.replace(tmp, target)
+            interrupts.note_completed(target)
+        for folder in {target.parent for _, target in pairs}:
+            _fsync_folder(folder)
+
+
+def real_target(path: str | os.PathLike) -> Path:
+    """*path* with symbolic links resolved: a save replaces the file, not the link."""
+    path = Path(path)
+    return Path(os.path.realpath(path)) if path.is_symlink() else path
+
 
 @contextmanager
 def atomic_path(path: str | os.PathLike) -> Iterator[Path]:
-    """Yield a temporary path beside *path*; on success fsync and rename it to *path*.
+    """Yield a unique temporary path beside *path*; on success publish it as *path*.
 
-    On any exception the temporary file is removed and *path* is left as it was.
+    On any exception (Ctrl-C included) the temporary file is removed and *path* is left
+    as it was.
     """
-    path = Path(path)
-    tmp = path.with_name(path.name + ".tmp")
+    path = real_target(path)
+    tmp = make_temp(path)
     try:
         yield tmp
-        with open(tmp, "rb+") as fh:
-            os.fsync(fh.fileno())
-        os.replace(tmp, path)
+        publish([(tmp, path)])
     except BaseException:
         tmp.unlink(missing_ok=True)
         raise
-    _fsync_folder(path.parent)
 
 
 def _fsync_folder(folder: Path) -> None:

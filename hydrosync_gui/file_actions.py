@@ -5,6 +5,10 @@ unsaved-changes prompt in front of anything that would drop the current project.
 step that touches the disk runs in a :class:`~hydrosync_gui.workers.Worker` through
 ``MainWindow.run_shell_task`` so the window never freezes; the steps that must follow it
 (open after save, quit after save) are passed on as continuations.
+
+A project another HydroSync process is writing (its write lock is held), or whose file
+or folder may not be written, opens read-only: the window shows a banner saying why,
+and Save becomes Save As.
 """
 
 from __future__ import annotations
@@ -16,6 +20,7 @@ from pathlib import Path
 
 from PySide6.QtWidgets import QFileDialog, QMessageBox
 
+from hydrosync_core.errors import ProjectAccessError
 from hydrosync_core.importers.kinds import KINDS, import_file
 from hydrosync_core.project import Project
 from hydrosync_core.project.subtree import copy_subtree
@@ -24,6 +29,20 @@ from hydrosync_gui.dialogs import ImportDialog
 log = logging.getLogger("hydrosync_gui.file")
 
 PROJECT_FILTER = "HydroSync projects (*.h5 *.hdf5);;All files (*)"
+
+
+def open_for_gui(path: str) -> Project:
+    """Open *path* to edit it; read-only (with the reason) when that is refused.
+
+    Refused means another process holds the project's write lock, or the file or its
+    folder may not be written: the user can still look at it and save a copy elsewhere.
+    """
+    try:
+        return Project.open(path)
+    except ProjectAccessError as exc:
+        project = Project.open(path, readonly=True)
+        project.readonly_reason = exc.one_line()
+        return project
 
 
 def _import_into_scratch(kind: str, path: str, options: dict):
@@ -92,6 +111,12 @@ class FileActions:
             self.set_project(project)
             self.recent.add(path)
             self.remember_dir(path)
+            for notice in project.notices:
+                log.warning("%s", notice)
+            if project.readonly:
+                log.warning("opened %s read-only: %s", path, project.readonly_reason)
+                self.statusBar().showMessage(f"Opened {path} read-only", 8000)
+                return
             log.info("opened %s", path)
             self.statusBar().showMessage(f"Opened {path}", 5000)
 
@@ -100,7 +125,7 @@ class FileActions:
                 self.recent.remove(path)
             self.show_error("Cannot open project", message)
 
-        self.run_shell_task(f"Opening {Path(path).name}", lambda p, c: Project.open(path),
+        self.run_shell_task(f"Opening {Path(path).name}", lambda p, c: open_for_gui(path),
                             opened, failed)
 
     # ---------------------------------------------------------------- save
@@ -122,6 +147,12 @@ class FileActions:
         if project is None:
             return
         target = project.path
+        if project.readonly and not ask:
+            QMessageBox.information(
+                self, "Project is read-only",
+                f"{project.readonly_reason}.\n\nChoose another file name to save your "
+                "changes.")
+            ask = True
         if ask or target is None:
             start = str(Path(self.last_dir()) / f"{project.name or 'project'}.h5")
             chosen, _ = QFileDialog.getSaveFileName(self, "Save project as", start,
@@ -133,6 +164,7 @@ class FileActions:
                 target = target.with_suffix(".h5")
 
         def saved(path: Path) -> None:
+            self.update_banner()
             self.recent.add(path)
             self.remember_dir(path)
             self.browser.refresh()

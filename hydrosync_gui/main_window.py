@@ -8,6 +8,10 @@ follow the running task. File-menu behaviour lives in :mod:`hydrosync_gui.file_a
 
 While a shell task (open, save, import, report) runs, the browser and the panels are
 disabled: the project may be rebinding in the worker and must not be touched.
+
+A project opened read-only (another HydroSync process is writing it, or its file or
+folder may not be written) shows a yellow banner above the tabs saying why; Save then
+asks for another file name.
 """
 
 from __future__ import annotations
@@ -21,8 +25,10 @@ from PySide6.QtGui import QAction, QCloseEvent, QKeySequence
 from PySide6.QtWidgets import (
     QDialog,
     QDockWidget,
+    QLabel,
     QMainWindow,
     QMessageBox,
+    QVBoxLayout,
     QWidget,
 )
 
@@ -90,7 +96,19 @@ class MainWindow(QMainWindow, FileActions):
         self.host.sig_project_modified.connect(self._on_project_modified)
         self.host.load()
         self.tabs = PluginTabs(self.host)
-        self.setCentralWidget(self.tabs)
+        self.banner = QLabel()
+        self.banner.setObjectName("readonly_banner")
+        self.banner.setWordWrap(True)
+        self.banner.setStyleSheet("QLabel#readonly_banner { background: #fff3c4; color: #5a4500;"
+                                  " border-bottom: 1px solid #e0c060; padding: 6px 10px; }")
+        self.banner.hide()
+        central = QWidget()
+        layout = QVBoxLayout(central)
+        layout.setContentsMargins(0, 0, 0, 0)
+        layout.setSpacing(0)
+        layout.addWidget(self.banner)
+        layout.addWidget(self.tabs, 1)
+        self.setCentralWidget(central)
         self.resizeDocks([self.browser_dock], [420], Qt.Orientation.Horizontal)
         self.resizeDocks([self.log_dock], [140], Qt.Orientation.Vertical)
         self._build_menus()
@@ -174,10 +192,26 @@ class MainWindow(QMainWindow, FileActions):
         if old is not None and old is not project:
             old.close()
         self.update_title()
+        self.update_banner()
         self._update_edit_actions()
+
+    def update_banner(self) -> None:
+        """Show why the project is read-only (and what to do), or hide the banner."""
+        project = self.project
+        if project is None or not project.readonly:
+            self.banner.hide()
+            return
+        self.banner.setText(f"<b>Read-only.</b> {project.readonly_reason}. You can look at "
+                            "the project and work with it; <b>Save</b> asks for another file "
+                            "name (File → Save As…).")
+        self.banner.show()
 
     def update_title(self) -> None:
         name = self.project.name if self.project is not None else ""
+        if self.project is not None and self.project.readonly:
+            self.setWindowTitle(f"HydroSync — {name or 'Untitled'} (read-only)[*]")
+            self.setWindowModified(bool(self.project.dirty))
+            return
         self.setWindowTitle(f"HydroSync — {name or 'Untitled'}[*]")
         self.setWindowModified(bool(self.project is not None and self.project.dirty))
 

@@ -1,27 +1,59 @@
 """The ``hydrosync`` command line.
 
 Exit codes (``docs/formats.md``): 0 success; 2 bad input, with one line on stderr naming
-the file and what is wrong; 1 anything else. Each sub-command lives in a module exposing
-``register(subparsers)``: the project commands here, each analysis's command in its core
-package, found through its plugin spec (``PluginSpec.cli``).
+the file and what is wrong; 3 finished with results the data do not determine; 130
+interrupted (Ctrl-C), with one line saying what was and was not saved; 1 anything else.
+Each sub-command lives in a module exposing ``register(subparsers)``: the project
+commands here, each analysis's command in its core package, found through its plugin
+spec (``PluginSpec.cli``).
+
+Ctrl-C never prints a traceback: while the modules load, a handler installed before
+any heavy import ends the process at once (exit 130, nothing can have been saved yet);
+while a command runs, :mod:`hydrosync_core.interrupts` defers it around the renames that
+publish files, so the message says truthfully what was saved. Library warnings and log
+lines stay quiet unless ``-v``: the one-line error is the only line of a failure.
 """
 
 from __future__ import annotations
 
-import argparse
-import importlib
-import logging
 import os
+import signal
 import sys
+import threading
 
-from hydrosync_core import __version__
-from hydrosync_core.errors import Cancelled, InputError
+
+def _interrupted_while_loading(signum, frame) -> None:  # pragma: no cover - timing
+    try:
+        sys.stderr.write("hydrosync: interrupted (Ctrl-C) while starting: cancelled, "
+                         "nothing was saved\n")
+        sys.stderr.flush()
+    finally:
+        os._exit(130)
+
+
+def _started_as_command() -> bool:
+    name = os.path.basename(sys.argv[0]) if sys.argv and sys.argv[0] else ""
+    return name == "-m" or (name.startswith("hydrosync") and "gui" not in name)
+
+
+if _started_as_command() and threading.current_thread() is threading.main_thread():
+    signal.signal(signal.SIGINT, _interrupted_while_loading)
+
+import argparse  # noqa: E402 - after the Ctrl-C handler on purpose
+import contextlib  # noqa: E402
+import importlib  # noqa: E402
+import logging  # noqa: E402
+
+from hydrosync_core import __version__, interrupts  # noqa: E402
+from hydrosync_core.errors import Cancelled, InputError  # noqa: E402
 
 SUBCOMMAND_MODULES = (
     "hydrosync_core.cli.project_cmds",
     "hydrosync_core.cli.report_cmd",
     "hydrosync_core.cli.demo_cmd",
 )
+
+EXIT_OK, EXIT_ERROR, EXIT_INPUT, EXIT_UNDETERMINED, EXIT_INTERRUPTED = 0, 1, 2, 3, 130
 
 
 def _register_analyses(sub: argparse._SubParsersAction) -> None:
@@ -61,30 +93,118 @@ def build_parser() -> argparse.ArgumentParser:
     return parser
 
 
+class _OwnRecords(logging.Filter):
+    """Pass HydroSync's own log records; library records only with ``-v``."""
+
+    def __init__(self) -> None:
+        super().__init__()
+        self.verbose = False
+
+    def filter(self, record: logging.LogRecord) -> bool:
+        if record.name == "hydrosync.notice":
+            return False  # printed on stdout by _NoticeHandler
+        return self.verbose or record.name.startswith("hydrosync")
+
+
+class _NoticeHandler(logging.Handler):
+    """``hydrosync.notice`` records (stale temporaries removed, …) as notes on stdout."""
+
+    def emit(self, record: logging.LogRecord) -> None:
+        # A closed stdout must not fail the command.
+        with contextlib.suppress(Exception):
+            print(f"note: {record.getMessage()}", file=sys.stdout, flush=True)
+
+
+_FILTER = _OwnRecords()
+
+
+def _configure_logging(verbose: bool) -> None:
+    """Like ``logging.basicConfig`` (nothing changes if the root logger is set up by the
+    host, e.g. pytest), with library records filtered and notices on stdout."""
+    root = logging.getLogger()
+    notice = logging.getLogger("hydrosync.notice")
+    if not any(isinstance(h, _NoticeHandler) for h in notice.handlers):
+        notice.addHandler(_NoticeHandler())
+    _FILTER.verbose = verbose
+    ours = getattr(root, "_hydrosync_cli", False)
+    if root.handlers and not ours:
+        return
+    if not ours:
+        handler = logging.StreamHandler()
+        handler.setFormatter(logging.Formatter("%(levelname)s %(name)s: %(message)s"))
+        handler.addFilter(_FILTER)
+        root.addHandler(handler)
+        root._hydrosync_cli = True
+    root.setLevel(logging.INFO if verbose else logging.WARNING)
+
+
+def _interrupt_message(command: str) -> str:
+    saved = [os.path.basename(p) for p in interrupts.completed]
+    if saved:
+        return (f"{command}: interrupted (Ctrl-C); saved before the interrupt: "
+                f"{', '.join(dict.fromkeys(saved))}")
+    return f"{command}: interrupted (Ctrl-C): cancelled, nothing was saved"
+
+
 def main(argv: list[str] | None = None) -> int:
-    parser = build_parser()
-    args = parser.parse_args(argv)
-    logging.basicConfig(
-        level=logging.INFO if args.verbose else logging.WARNING,
-        format="%(levelname)s %(name)s: %(message)s",
-    )
+    in_main_thread = threading.current_thread() is threading.main_thread()
+    interrupts.reset()
+    undo_interrupts = interrupts.install()
+    logging.captureWarnings(True)
+    command = "hydrosync"
     try:
-        return int(args.func(args) or 0)
-    except InputError as exc:
-        print(f"hydrosync {args.command}: {exc.one_line()}", file=sys.stderr)
-        return 2
-    except (Cancelled, KeyboardInterrupt):
-        print(f"hydrosync {args.command}: cancelled", file=sys.stderr)
-        return 1
-    except Exception as exc:
-        if os.environ.get("HYDROSYNC_DEBUG"):
-            raise
-        print(
-            f"hydrosync {args.command}: internal error: {type(exc).__name__}: {exc} "
-            "(set HYDROSYNC_DEBUG=1 for the traceback)",
-            file=sys.stderr,
-        )
-        return 1
+        try:
+            parser = build_parser()
+            args = parser.parse_args(argv)
+            command = f"hydrosync {args.command}"
+            _configure_logging(args.verbose)
+            code = int(args.func(args) or 0)
+            if interrupts.interrupted():  # held back during clean-up, never raised
+                raise KeyboardInterrupt
+            return code
+        except InputError as exc:
+            print(f"{command}: {exc.one_line()}", file=sys.stderr)
+            return EXIT_INPUT
+        except BrokenPipeError:  # ``hydrosync info P.h5 | head``: the reader left
+            _silence_stdout()
+            return EXIT_ERROR
+        except (Cancelled, KeyboardInterrupt):
+            _ignore_further_interrupts(in_main_thread)
+            print(_interrupt_message(command), file=sys.stderr)
+            return EXIT_INTERRUPTED
+        except Exception as exc:
+            if interrupts.interrupted():  # a Ctrl-C a library turned into another error
+                _ignore_further_interrupts(in_main_thread)
+                print(_interrupt_message(command), file=sys.stderr)
+                return EXIT_INTERRUPTED
+            if os.environ.get("HYDROSYNC_DEBUG"):
+                raise
+            text = " ".join(f"{type(exc).__name__}: {exc}".split())[:300]
+            print(f"{command}: internal error: {text} (set HYDROSYNC_DEBUG=1 for the "
+                  "traceback)", file=sys.stderr)
+            return EXIT_ERROR
+    except KeyboardInterrupt:  # a second Ctrl-C while reporting the first
+        return EXIT_INTERRUPTED
+    finally:
+        logging.captureWarnings(False)
+        undo_interrupts()
+        if in_main_thread and _started_as_command():
+            # The command is over: a Ctrl-C while the interpreter shuts down must neither
+            # kill it silently nor print anything (Python keeps SIG_IGN through shutdown).
+            signal.signal(signal.SIGINT, signal.SIG_IGN)
+
+
+def _silence_stdout() -> None:
+    try:
+        devnull = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(devnull, sys.stdout.fileno())
+    except (OSError, ValueError, AttributeError):  # not a real file (tests)
+        pass
+
+
+def _ignore_further_interrupts(in_main_thread: bool) -> None:
+    if in_main_thread:
+        signal.signal(signal.SIGINT, signal.SIG_IGN)
 
 
 if __name__ == "__main__":

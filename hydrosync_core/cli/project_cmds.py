@@ -11,8 +11,9 @@ from hydrosync_core.plugins.spec import DataKind
 from hydrosync_core.project import Project
 
 
-def _open_project(path: str) -> Project:
-    return Project.open(path)
+def _open_project(path: str, readonly: bool = False) -> Project:
+    """Open to change (write lock, writability checked first) unless *readonly*."""
+    return Project.open(path, readonly=readonly)
 
 
 def cmd_new(args: argparse.Namespace) -> int:
@@ -27,7 +28,7 @@ def cmd_new(args: argparse.Namespace) -> int:
 
 def cmd_import(args: argparse.Namespace) -> int:
     path = Path(args.project)
-    project = _open_project(path) if path.exists() else Project.new(name=path.stem)
+    project = _open_project(path) if path.exists() else Project.create(path)
     table = kinds()
     chosen = [(kind, getattr(args, kind)) for kind in table if getattr(args, kind, None)]
     if not chosen:
@@ -56,7 +57,7 @@ def _human(nbytes: int) -> str:
 
 
 def cmd_info(args: argparse.Namespace) -> int:
-    with _open_project(args.project) as project:
+    with _open_project(args.project, readonly=True) as project:
         attrs = project.attrs_root
         print(f"{args.project}: {attrs.get('name', '')}")
         for key in ("schema_version", "software_version", "created", "modified"):
@@ -94,7 +95,7 @@ def _print_results_status(project: Project) -> None:
 def cmd_vessel(args: argparse.Namespace) -> int:
     from hydrosync_core.project.vessel import set_sensor, vessel_config
 
-    project = _open_project(args.project)
+    project = _open_project(args.project, readonly=not args.set and args.name is None)
     for name, *xyz in args.set or []:
         try:
             offset = [float(v) for v in xyz]

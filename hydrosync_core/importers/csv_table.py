@@ -4,6 +4,11 @@ Fast path: numpy's C parser reads the whole file. Only when it fails (or a value
 finite) is the file re-scanned line by line to name the exact line and field at fault,
 so a 10-million-row point file loads at numpy speed while a bad file still gets a
 precise one-line error.
+
+Every data row must have as many fields as the header (a row with extra fields is an
+error, not silently cut), values must lie in their plausible range when the reader gives
+one (:mod:`hydrosync_core.plausible`), and hostile files (a field of megabytes, a header
+of thousands of columns) end as one line quoting at most a few dozen characters.
 """
 
 from __future__ import annotations
@@ -12,12 +17,28 @@ import csv
 import io
 import math
 import os
-from collections.abc import Sequence
+import warnings
+from collections.abc import Mapping, Sequence
 from pathlib import Path
 
 import numpy as np
 
-from hydrosync_core.errors import InputError
+from hydrosync_core import plausible
+from hydrosync_core.errors import InputError, quote
+
+MAX_COLUMNS = 1000
+"""More header fields than this is not one of our tables."""
+
+
+def cells(path: Path, line: str, number: int) -> list[str]:
+    """The comma-separated fields of one *line*; a field too long for csv is an InputError."""
+    try:
+        return next(csv.reader([line]), [])
+    except csv.Error as exc:
+        text = str(exc)
+        if "field larger than field limit" in text:
+            text = f"a field is longer than {csv.field_size_limit()} characters"
+        raise InputError(str(path), f"unreadable CSV line: {text[:80]}", line=number) from None
 
 
 def _read_text(path: Path) -> str:
@@ -38,9 +59,17 @@ def _header(path: Path, text: str) -> tuple[list[str], int]:
     """Return the lower-cased column names and the 1-based line number of the header."""
     for number, line in enumerate(text.splitlines(), start=1):
         if line.strip() and not line.lstrip().startswith("#"):
-            names = [c.strip().lower() for c in next(csv.reader([line]))]
+            names = [c.strip().lower() for c in cells(path, line, number)]
+            if len(names) > MAX_COLUMNS:
+                raise InputError(str(path), f"header has {len(names)} columns: not a table "
+                                 "of this kind", line=number)
             return names, number
     raise InputError(str(path), "file has no header row")
+
+
+def header_text(names: list[str]) -> str:
+    """The header names for a message, clipped."""
+    return quote(", ".join(names), 100)
 
 
 def _scan_for_error(
@@ -52,24 +81,62 @@ def _scan_for_error(
         line = lines[number - 1]
         if not line.strip() or line.lstrip().startswith("#"):
             continue
-        cells = next(csv.reader([line]))
-        if len(cells) != len(names):
+        fields = cells(path, line, number)
+        if len(fields) != len(names):
             return InputError(
-                str(path), f"expected {len(names)} fields, found {len(cells)}", line=number
+                str(path), f"expected {len(names)} fields, found {len(fields)}", line=number
             )
         for index in wanted:
-            raw = cells[index].strip()
+            raw = fields[index].strip()
             try:
                 value = float(raw)
             except ValueError:
                 return InputError(
-                    str(path), f"'{raw}' is not a number", line=number, field=names[index]
+                    str(path), f"{quote(raw)} is not a number", line=number, field=names[index]
                 )
             if not math.isfinite(value):
                 return InputError(
-                    str(path), f"value '{raw}' is not finite", line=number, field=names[index]
+                    str(path), f"value {quote(raw)} is not finite", line=number,
+                    field=names[index]
                 )
     return InputError(str(path), "could not parse the numeric columns")
+
+
+def _check_field_counts(path: Path, body: str, first_line: int, n_fields: int) -> None:
+    """Every data row has *n_fields* fields (vectorised comma count, csv on suspects)."""
+    raw = np.frombuffer(body.encode("utf-8", "surrogatepass"), dtype=np.uint8)
+    if raw.size == 0:
+        return
+    ends = np.flatnonzero(raw == 10)
+    if ends.size == 0 or ends[-1] != raw.size - 1:
+        ends = np.append(ends, raw.size)
+    starts = np.concatenate([[0], ends[:-1] + 1])
+    commas = np.concatenate([[0], np.cumsum(raw == 44)])
+    count = commas[ends] - commas[starts]
+    suspects = np.flatnonzero(count != n_fields - 1)
+    if suspects.size == 0:
+        return
+    for k in suspects:
+        line = bytes(raw[starts[k]:ends[k]]).decode("utf-8", "replace")
+        if not line.strip() or line.lstrip().startswith("#"):
+            continue
+        number = first_line + int(k)
+        found = len(cells(path, line.rstrip("\r"), number))
+        if found != n_fields:
+            raise InputError(str(path), f"expected {n_fields} fields, found {found}",
+                             line=number)
+
+
+def _check_limits(path: Path, text: str, header_line: int,
+                  columns: dict[str, np.ndarray], limits: Mapping[str, plausible.Limits]) -> None:
+    for name, values in columns.items():
+        if name not in limits:
+            continue
+        i = plausible.first_outside(values, limits[name])
+        if i is not None:
+            line = int(_data_line_numbers(text, header_line)[i])
+            raise InputError(str(path), plausible.problem(float(values[i]), limits[name]),
+                             line=line, field=name)
 
 
 def read_numeric_csv(
@@ -79,6 +146,7 @@ def read_numeric_csv(
     *,
     time_column: str | None = "time",
     min_rows: int = 1,
+    limits: Mapping[str, plausible.Limits] | None = None,
 ) -> dict[str, np.ndarray]:
     """Read a comma-separated numeric table with a header row.
 
@@ -94,6 +162,8 @@ def read_numeric_csv(
         are rejected with the two offending lines named.
     min_rows : int
         Fewer data rows than this is an error.
+    limits : mapping of column name to (low, high, unit), optional
+        Plausible range of each column; a value outside is an error naming its line.
 
     Returns
     -------
@@ -113,18 +183,21 @@ def read_numeric_csv(
     if missing:
         raise InputError(
             str(path),
-            f"missing column(s) {', '.join(missing)} (header has: {', '.join(names)})",
+            f"missing column(s) {', '.join(missing)} (header has: {header_text(names)})",
             line=header_line,
         )
     wanted_names = list(required) + [c for c in optional if c in names]
     wanted = [names.index(c) for c in wanted_names]
     body = "\n".join(text.splitlines()[header_line:])
+    _check_field_counts(path, body, header_line + 1, len(names))
     try:
-        table = np.loadtxt(
-            io.StringIO(body), delimiter=",", usecols=wanted, ndmin=2, dtype=np.float64,
-            comments="#",
-        )
-    except ValueError:
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")  # "input contained no data": min_rows says it
+            table = np.loadtxt(
+                io.StringIO(body), delimiter=",", usecols=wanted, ndmin=2, dtype=np.float64,
+                comments="#",
+            )
+    except (ValueError, IndexError):
         raise _scan_for_error(path, text, header_line, names, wanted) from None
     if table.shape[0] and not np.isfinite(table).all():
         raise _scan_for_error(path, text, header_line, names, wanted)
@@ -133,6 +206,8 @@ def read_numeric_csv(
             str(path), f"has {table.shape[0]} data row(s); at least {min_rows} needed"
         )
     columns = {name: np.ascontiguousarray(table[:, i]) for i, name in enumerate(wanted_names)}
+    if limits:
+        _check_limits(path, text, header_line, columns, limits)
     if time_column is not None:
         columns = _sort_by_time(path, text, header_line, columns, time_column)
     return columns

@@ -1,4 +1,10 @@
-"""Readers for the pool-calibration ``setup.json`` and ``target.json`` files."""
+"""Readers for the pool-calibration ``setup.json`` and ``target.json`` files.
+
+:func:`check_setup` / :func:`check_target` validate a parsed document (the readers, and
+the project checks of ``raw/pool/setup`` / ``raw/pool/target``, use them). Hostile
+documents — 400-digit numbers, nesting thousands deep, megabytes of text in one
+string — end as one :class:`InputError` line like any other bad input.
+"""
 
 from __future__ import annotations
 
@@ -7,7 +13,11 @@ import math
 import os
 from pathlib import Path
 
-from hydrosync_core.errors import InputError
+from hydrosync_core import plausible
+from hydrosync_core.errors import InputError, quote
+
+MAX_JSON_BYTES = 50_000_000
+"""A setup, target or vessel file is a few kB; more is not one of them."""
 
 
 def read_json(path: str | os.PathLike) -> dict:
@@ -15,6 +25,11 @@ def read_json(path: str | os.PathLike) -> dict:
     path = Path(path)
     if not path.exists():
         raise InputError(str(path), "no such file")
+    if path.is_dir():
+        raise InputError(str(path), "is a folder, not a file")
+    if path.stat().st_size > MAX_JSON_BYTES:
+        raise InputError(str(path), f"file is {path.stat().st_size} bytes: too large for a "
+                         "JSON settings file")
     text = path.read_text(encoding="utf-8", errors="replace")
     if not text.strip():
         raise InputError(str(path), "file is empty")
@@ -22,57 +37,93 @@ def read_json(path: str | os.PathLike) -> dict:
         document = json.loads(text)
     except json.JSONDecodeError as exc:
         raise InputError(str(path), f"invalid JSON: {exc.msg}", line=exc.lineno) from None
+    except RecursionError:
+        raise InputError(str(path), "invalid JSON: nested too deeply") from None
+    except ValueError as exc:  # e.g. an integer of more than 4300 digits
+        raise InputError(str(path), f"invalid JSON: {str(exc)[:80]}") from None
     if not isinstance(document, dict):
         raise InputError(str(path), "expected a JSON object at the top level")
     return document
 
 
-def finite_number(path: Path, value, field: str) -> float:
-    """*value* as float if it is a finite JSON number, else an InputError naming *field*."""
-    if isinstance(value, bool) or not isinstance(value, int | float) or not math.isfinite(value):
+def finite_number(path, value, field: str, limits: plausible.Limits | None = None) -> float:
+    """*value* as float if it is a finite JSON number (within *limits*), else InputError."""
+    if isinstance(value, bool) or not isinstance(value, int | float):
+        shown = quote(value) if isinstance(value, str) else type(value).__name__
+        raise InputError(str(path), f"expected a finite number, got {shown}", field=field)
+    try:
+        number = float(value)
+    except OverflowError:
+        raise InputError(str(path), f"number with {len(str(abs(value)))} digits is far too "
+                         "large", field=field) from None
+    if not math.isfinite(number):
         raise InputError(str(path), f"expected a finite number, got {value!r}", field=field)
-    return float(value)
+    if limits is not None and not limits[0] <= number <= limits[1]:
+        raise InputError(str(path), plausible.problem(number, limits), field=field)
+    return number
+
+
+def check_setup(document, source="setup.json") -> dict:
+    """Coarse boresight (deg) and lever arm (m, body FRD) from a parsed setup document."""
+    if not isinstance(document, dict):
+        raise InputError(str(source), "expected a JSON object")
+    out: dict[str, dict[str, float]] = {}
+    for block, keys, limits in (("boresight_deg", ("roll", "pitch", "yaw"), plausible.ANGLE),
+                                ("lever_arm_m", "xyz", plausible.OFFSET)):
+        values = document.get(block)
+        if not isinstance(values, dict):
+            raise InputError(str(source), "missing object", field=block)
+        out[block] = {}
+        for key in keys:
+            if key not in values:
+                raise InputError(str(source), "missing value", field=f"{block}.{key}")
+            out[block][key] = finite_number(source, values[key], f"{block}.{key}", limits)
+    return out
 
 
 def read_setup_json(path: str | os.PathLike) -> dict:
     """Coarse boresight (deg) and lever arm (m, body FRD) of the multibeam."""
     path = Path(path)
-    document = read_json(path)
-    out: dict[str, dict[str, float]] = {}
-    for block, keys in (("boresight_deg", ("roll", "pitch", "yaw")), ("lever_arm_m", "xyz")):
-        values = document.get(block)
-        if not isinstance(values, dict):
-            raise InputError(str(path), "missing object", field=block)
-        out[block] = {}
-        for key in keys:
-            if key not in values:
-                raise InputError(str(path), "missing value", field=f"{block}.{key}")
-            out[block][key] = finite_number(path, values[key], f"{block}.{key}")
-    return out
+    return check_setup(read_json(path), path)
+
+
+def check_target(document, source="target.json") -> dict:
+    """Target design (faces with corners in target ENU, m; water level) from a document."""
+    if not isinstance(document, dict):
+        raise InputError(str(source), "expected a JSON object")
+    faces = document.get("faces")
+    if not isinstance(faces, list) or not faces:
+        raise InputError(str(source), "expected a non-empty list of faces", field="faces")
+    clean = []
+    for i, face in enumerate(faces):
+        where = f"faces[{i}]"
+        if not isinstance(face, dict) or "corners" not in face:
+            raise InputError(str(source), "expected an object with 'corners'", field=where)
+        corners = face["corners"]
+        if not isinstance(corners, list) or len(corners) < 3:
+            raise InputError(str(source), "a face needs 3 or more corners",
+                             field=f"{where}.corners")
+        points = []
+        for j, corner in enumerate(corners):
+            if not isinstance(corner, list) or len(corner) != 3:
+                raise InputError(
+                    str(source), "a corner is [e, n, u]", field=f"{where}.corners[{j}]"
+                )
+            points.append([finite_number(source, v, f"{where}.corners[{j}]",
+                                         plausible.COORDINATE) for v in corner])
+        name = face.get("name", f"face{i}")
+        if not isinstance(name, str | int | float) or len(str(name)) > 200:
+            raise InputError(str(source), "a face name is a short text", field=f"{where}.name")
+        clean.append({"name": str(name), "corners": points})
+    water = finite_number(source, document.get("water_level_m", 0.0), "water_level_m",
+                          plausible.HEIGHT)
+    frame = document.get("frame", "ENU")
+    if not isinstance(frame, str) or len(frame) > 50:
+        raise InputError(str(source), "expected a short text such as \"ENU\"", field="frame")
+    return {"frame": frame, "water_level_m": water, "faces": clean}
 
 
 def read_target_json(path: str | os.PathLike) -> dict:
     """Target design: faces (name, corners in target ENU, m) and the water level (m)."""
     path = Path(path)
-    document = read_json(path)
-    faces = document.get("faces")
-    if not isinstance(faces, list) or not faces:
-        raise InputError(str(path), "expected a non-empty list of faces", field="faces")
-    clean = []
-    for i, face in enumerate(faces):
-        where = f"faces[{i}]"
-        if not isinstance(face, dict) or "corners" not in face:
-            raise InputError(str(path), "expected an object with 'corners'", field=where)
-        corners = face["corners"]
-        if not isinstance(corners, list) or len(corners) < 3:
-            raise InputError(str(path), "a face needs 3 or more corners", field=f"{where}.corners")
-        points = []
-        for j, corner in enumerate(corners):
-            if not isinstance(corner, list) or len(corner) != 3:
-                raise InputError(
-                    str(path), "a corner is [e, n, u]", field=f"{where}.corners[{j}]"
-                )
-            points.append([finite_number(path, v, f"{where}.corners[{j}]") for v in corner])
-        clean.append({"name": str(face.get("name", f"face{i}")), "corners": points})
-    water = finite_number(path, document.get("water_level_m", 0.0), "water_level_m")
-    return {"frame": document.get("frame", "ENU"), "water_level_m": water, "faces": clean}
+    return check_target(read_json(path), path)

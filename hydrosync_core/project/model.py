@@ -10,6 +10,7 @@ from __future__ import annotations
 import hashlib
 import json
 import os
+import weakref
 from collections.abc import Iterator, Mapping
 from dataclasses import dataclass
 from datetime import UTC, datetime
@@ -19,10 +20,36 @@ import h5py
 import numpy as np
 
 from hydrosync_core import __version__
-from hydrosync_core.errors import InputError, ProjectFormatError
-from hydrosync_core.project import migrations, schema
+from hydrosync_core.atomic import clean_stale_temporaries, real_target, write_problem
+from hydrosync_core.errors import (
+    InputError,
+    ProjectChangedError,
+    ProjectDataError,
+    ProjectFormatError,
+    ProjectReadOnlyError,
+)
+from hydrosync_core.project import migrations, schema, validate
+from hydrosync_core.project.lock import ProjectLock
 from hydrosync_core.project.nodes import DatasetNode, GroupNode, load_tree
 from hydrosync_core.project.store import atomic_write
+
+
+def _signature(path: Path) -> tuple | None:
+    """What identifies the file's state on disk (device, inode, size, mtime), or None."""
+    try:
+        info = os.stat(path)
+    except FileNotFoundError:
+        return None
+    return (info.st_dev, info.st_ino, info.st_size, info.st_mtime_ns)
+
+
+def _same_file(a: Path, b: Path) -> bool:
+    return os.path.normcase(os.path.realpath(a)) == os.path.normcase(os.path.realpath(b))
+
+
+def _release(lock: ProjectLock | None) -> None:
+    if lock is not None:
+        lock.release()
 
 
 def _now() -> str:
@@ -56,6 +83,25 @@ class Project:
         self.path: Path | None = path
         self._source = source
         self.dirty = False
+        self.readonly = False
+        """Opened without the write lock: :meth:`save` to this path is refused."""
+        self.readonly_reason = ""
+        self.notices: list[str] = []
+        """Things done on the user's behalf (stale temporary files removed)."""
+        self._lock: ProjectLock | None = None
+        self._signature: tuple | None = None
+        self._finalizer = None
+
+    def _hold(self, lock: ProjectLock | None) -> None:
+        """Keep *lock* (releasing the one held before) until :meth:`close`."""
+        if self._finalizer is not None:
+            self._finalizer.detach()
+            self._finalizer = None
+        old, self._lock = self._lock, lock
+        if lock is not None:
+            self._finalizer = weakref.finalize(self, _release, lock)
+        if old is not None and old is not lock:
+            old.release()
 
     # ---------------------------------------------------------------- life cycle
     @classmethod
@@ -80,11 +126,42 @@ class Project:
         return project
 
     @classmethod
-    def open(cls, path: str | os.PathLike) -> Project:
-        """Open *path* lazily; upgrade an older schema in memory; refuse a newer one."""
+    def open(cls, path: str | os.PathLike, *, readonly: bool = False) -> Project:
+        """Open *path* lazily; upgrade an older schema in memory; refuse a newer one.
+
+        By default the project is opened to be changed: the file and its folder must be
+        writable (else :class:`ProjectReadOnlyError`) and the project's write lock is
+        taken and held until :meth:`close` (another process holding it:
+        :class:`ProjectLockedError`). ``readonly=True`` takes no lock and checks nothing
+        of the kind; :meth:`save` to the same path is then refused (save elsewhere).
+        Stale temporary files of killed saves are removed either way (:attr:`notices`).
+        """
         path = Path(path)
         if not path.exists():
             raise InputError(str(path), "no such project file")
+        if path.is_dir():
+            raise InputError(str(path), "is a folder, not a project file")
+        lock = None
+        if not readonly:
+            problem = write_problem(real_target(path))
+            if problem is not None:
+                raise ProjectReadOnlyError(str(path), f"{path} cannot be changed: {problem}")
+            lock = ProjectLock.acquire(real_target(path))
+        try:
+            notices = clean_stale_temporaries(real_target(path), legacy=lock is not None)
+            project = cls._load(path)
+        except BaseException:
+            _release(lock)
+            raise
+        project.notices = notices
+        project.readonly = readonly
+        project.readonly_reason = "opened read-only" if readonly else ""
+        project._hold(lock)
+        return project
+
+    @classmethod
+    def _load(cls, path: Path) -> Project:
+        signature = _signature(path)
         try:
             source = h5py.File(path, "r")
         except OSError as exc:
@@ -98,6 +175,7 @@ class Project:
             source.close()
             raise ProjectFormatError(str(path), "not a HydroSync project (no 'format' attribute)")
         project = cls(root, path, source)
+        project._signature = signature
         version = root.attrs.get("schema_version")
         if not isinstance(version, int):
             source.close()
@@ -111,11 +189,31 @@ class Project:
             raise
         return project
 
+    @classmethod
+    def create(cls, path: str | os.PathLike, name: str | None = None,
+               vessel: Mapping | None = None) -> Project:
+        """A new, unsaved project that will be saved as *path* (which must not exist yet).
+
+        The folder is checked and the write lock taken now, before any work, so a
+        command that builds a project fails at once when it could not save it.
+        """
+        path = Path(path)
+        problem = write_problem(path)
+        if problem is not None:
+            raise ProjectReadOnlyError(str(path), f"{path} cannot be written: {problem}")
+        lock = ProjectLock.acquire(path)
+        project = cls.new(name=name or path.stem, vessel=vessel)
+        project.path = path
+        project._signature = _signature(path)
+        project._hold(lock)
+        return project
+
     def close(self) -> None:
-        """Release the source file handle (lazy datasets become unreadable)."""
+        """Release the source file handle (lazy datasets become unreadable) and the lock."""
         if self._source is not None:
             self._source.close()
             self._source = None
+        self._hold(None)
 
     def __enter__(self) -> Project:
         return self
@@ -124,20 +222,65 @@ class Project:
         self.close()
 
     def save(self, path: str | os.PathLike | None = None) -> Path:
-        """Write the project atomically to *path* (default: where it was opened)."""
+        """Write the project atomically to *path* (default: where it was opened).
+
+        Refused (:class:`~hydrosync_core.errors.ProjectAccessError`, nothing written)
+        when the project was opened read-only, when another process holds the target's
+        write lock, when the target or its folder may not be written, or when the file
+        changed on disk since it was opened (another program wrote it). The replaced
+        file's mode and owner are kept.
+        """
         target = Path(path) if path is not None else self.path
         if target is None:
             raise ValueError("project has no file name yet: give a path")
-        self._root.attrs["modified"] = _now()
-        self._root.attrs["software_version"] = __version__
-        atomic_write(target, self._root)
+        same = self.path is not None and _same_file(target, self.path)
+        if same and self.readonly:
+            raise ProjectReadOnlyError(
+                str(target), f"{target} was {self.readonly_reason or 'opened read-only'}: "
+                "save it under another name")
+        lock = self._lock if same and self._lock is not None else ProjectLock.acquire(
+            real_target(target))
+        try:
+            problem = write_problem(real_target(target))
+            if problem is not None:
+                raise ProjectReadOnlyError(str(target), f"{target} cannot be saved: {problem}")
+            if same:
+                self._check_unchanged(target)
+            self.notices += clean_stale_temporaries(real_target(target), legacy=True)
+            self._root.attrs["modified"] = _now()
+            self._root.attrs["software_version"] = __version__
+            atomic_write(target, self._root)
+        except BaseException:
+            if lock is not self._lock:
+                lock.release()
+            raise
         # Re-bind lazy datasets to the file just written: the old one may be gone.
-        self.close()
+        if self._source is not None:
+            self._source.close()
+            self._source = None
+        self._hold(lock)
         self._source = h5py.File(target, "r")
+        self._signature = _signature(target)
         self._root = load_tree(self._source)
         self.path = target
         self.dirty = False
+        self.readonly = False
+        self.readonly_reason = ""
         return target
+
+    def _check_unchanged(self, target: Path) -> None:
+        now = _signature(target)
+        if now == self._signature:
+            return
+        if self._signature is None:
+            what = "was created by another program since this project was started"
+        elif now is None:
+            what = "was moved or deleted since it was opened"
+        else:
+            what = "changed on disk since it was opened (another program wrote it)"
+        raise ProjectChangedError(
+            str(target), f"{target} {what}: not overwritten; save under another name or "
+            "open it again")
 
     # ------------------------------------------------------------------ queries
     @property
@@ -169,31 +312,76 @@ class Project:
         node = self._root if not path.strip("/") else self._require(path)
         return list(node.children) if isinstance(node, GroupNode) else []
 
+    def _where(self) -> str:
+        return str(self.path or "<project>")
+
+    def _read(self, path: str, node: DatasetNode) -> np.ndarray:
+        """Values of *node*, with a damaged file (broken chunk, bad dtype) as InputError."""
+        try:
+            return node.read()
+        except (OSError, RuntimeError, ValueError, TypeError, KeyError) as exc:
+            raise ProjectDataError(self._where(), path,
+                                   f"cannot be read, the file is damaged ({exc})") from None
+
     def get(self, path: str) -> np.ndarray:
-        """Read the dataset at *path* (from memory or, lazily, from the file)."""
+        """Read the dataset at *path* (from memory or, lazily, from the file).
+
+        Known inputs (``raw/pool/lidar``, …) are checked (shape, numbers, finite) by
+        :mod:`hydrosync_core.project.validate`.
+        """
         node = self._require(path)
         if not isinstance(node, DatasetNode):
-            raise InputError(str(self.path or "<project>"), f"'{path}' is a group, not a dataset")
-        return node.read()
+            raise InputError(self._where(), f"'{path}' is a group, not a dataset")
+        return validate.check_dataset(self._where(), path, self._read(path, node))
 
     def attrs(self, path: str = "") -> dict:
         node = self._root if not path.strip("/") else self._require(path)
         return dict(node.attrs)
 
     def get_json(self, path: str, default=None):
-        """Return the JSON document stored on *path*, or *default*."""
+        """Return the JSON document stored on *path*, or *default*.
+
+        A document that does not parse, or (for the known ones: vessel sheet, pool setup
+        and target) has the wrong shape, raises :class:`ProjectDataError`.
+        """
         node = self._find(path)
         if node is None or schema.JSON_ATTR not in node.attrs:
             return default
-        return json.loads(node.attrs[schema.JSON_ATTR])
+        text = node.attrs[schema.JSON_ATTR]
+        try:
+            document = json.loads(text)
+        except (TypeError, ValueError, RecursionError) as exc:
+            raise ProjectDataError(self._where(), f"{path}@{schema.JSON_ATTR}",
+                                   f"is not valid JSON ({exc})") from None
+        return validate.check_json(self._where(), path, document)
 
     def get_table(self, path: str) -> dict[str, np.ndarray]:
-        """Return a table group as ``{column: 1-D array}`` in stored column order."""
+        """Return a table group as ``{column: 1-D array}`` in stored column order.
+
+        Every table is checked: the ``columns`` attribute names datasets that exist,
+        columns are 1-D and of one length; known input tables (``raw/gnss``, …) also have
+        their required columns, numbers, finite and plausible values
+        (:mod:`hydrosync_core.project.validate`).
+        """
         node = self._require(path)
         if not isinstance(node, GroupNode):
-            raise InputError(str(self.path or "<project>"), f"'{path}' is not a table")
-        order = node.attrs.get("columns") or list(node.children)
-        return {name: node.children[name].read() for name in order}
+            raise InputError(self._where(), f"'{path}' is not a table")
+        order = node.attrs.get("columns")
+        if order is None:
+            order = list(node.children)
+        elif isinstance(order, str) or not all(isinstance(n, str) for n in order):
+            raise ProjectDataError(self._where(), f"{path}@columns",
+                                   "is not a list of column names")
+        table = {}
+        for name in order:
+            child = node.children.get(name)
+            if not isinstance(child, DatasetNode):
+                raise ProjectDataError(
+                    self._where(), f"{path}/{name}",
+                    "is listed in the table's 'columns' attribute but "
+                    + ("is a group" if child is not None else "does not exist"))
+            table[name] = self._read(f"{path}/{name}", child)
+        return validate.check_table(self._where(), path, table)
 
     def walk(self, path: str = "") -> Iterator[NodeInfo]:
         """Yield :class:`NodeInfo` for every node below *path*, depth first."""

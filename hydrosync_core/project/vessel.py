@@ -6,8 +6,11 @@ the vessel reference point, and optionally ``angles_deg`` ``{roll, pitch, yaw}``
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
+from hydrosync_core import plausible
 from hydrosync_core.errors import InputError
 from hydrosync_core.project.model import Project, default_vessel
 from hydrosync_core.project.schema import VESSEL
@@ -22,13 +25,28 @@ def set_sensor(
     project: Project, name: str, offset_m, angles_deg: dict | None = None, **info
 ) -> None:
     """Set sensor *name*'s offset (body FRD, m) and optional mounting angles (deg)."""
+    where = str(project.path or "<project>")
     config = vessel_config(project)
-    entry = {"offset_m": [float(v) for v in offset_m]}
+    entry = {"offset_m": [_checked(where, name, "offset", v, plausible.OFFSET)
+                          for v in offset_m]}
     if angles_deg is not None:
-        entry["angles_deg"] = {k: float(v) for k, v in angles_deg.items()}
+        entry["angles_deg"] = {k: _checked(where, name, k, v, plausible.ANGLE)
+                               for k, v in angles_deg.items()}
     entry.update(info)
     config.setdefault("sensors", {})[name] = entry
     project.put_json(VESSEL, config)
+
+
+def _checked(where: str, sensor: str, what: str, value, limits) -> float:
+    """*value* as a finite float within *limits*, else InputError naming the sensor."""
+    try:
+        number = float(value)
+    except (TypeError, ValueError, OverflowError):
+        raise InputError(where, f"{sensor} {what}: expected a number", field="vessel") from None
+    if not math.isfinite(number) or not limits[0] <= number <= limits[1]:
+        raise InputError(where, f"{sensor} {what}: " + plausible.problem(number, limits),
+                         field="vessel")
+    return number
 
 
 def sensor_offset(project: Project, name: str) -> np.ndarray:

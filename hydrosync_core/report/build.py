@@ -2,8 +2,11 @@
 
 Sections come from the plugins: ``spec.report_section`` is the dotted path of
 ``section(project, ctx) -> list[Flowable]``. A module without results gets no section
-(the summary says it was not run); a section that raises is replaced by a short notice
-so one faulty plugin cannot prevent the report.
+(the summary says it was not run). A section that cannot be produced — a damaged project
+(:class:`~hydrosync_core.errors.ProjectDataError`) or a faulty plugin — is never silently
+missing: the PDF shows its heading and "could not be produced: <reason>", and the reason
+is added to the caller's *problems* list (``hydrosync report`` warns, and fails with
+``--strict``).
 """
 
 from __future__ import annotations
@@ -16,7 +19,7 @@ from reportlab.platypus import Flowable, PageBreak
 
 from hydrosync_core import __version__
 from hydrosync_core.atomic import atomic_path
-from hydrosync_core.errors import InputError
+from hydrosync_core.errors import InputError, clip
 from hydrosync_core.plugins import plugin_specs
 from hydrosync_core.plugins.spec import PluginSpec, load_object
 from hydrosync_core.progress import check_cancel, report
@@ -43,23 +46,50 @@ def _generic_section(project, ctx: ReportContext, spec: PluginSpec) -> list[Flow
                      + esc(", ".join(items[:30]) or "(empty)") + ".")]
 
 
-def _section(project, ctx: ReportContext, status: ModuleStatus) -> list[Flowable]:
+def failure_reason(exc: BaseException) -> str:
+    """Why a section failed, in one line: the input problem, or the exception."""
+    if isinstance(exc, InputError):
+        return clip(exc.message, 300)
+    return clip(f"{type(exc).__name__}: {exc}", 300)
+
+
+def _section(project, ctx: ReportContext, status: ModuleStatus,
+             problems: list[str]) -> list[Flowable]:
     spec = status.spec
     if not spec.report_section:
         return _generic_section(project, ctx, spec)
     try:
         flowables = list(load_object(spec.report_section)(project, ctx))
-    except Exception as exc:  # a faulty plugin must not prevent the rest of the report
-        log.error("report section of %s failed: %s: %s", spec.id, type(exc).__name__, exc)
+    except Exception as exc:  # a damaged project or faulty plugin must not sink the report
+        reason = failure_reason(exc)
+        log.error("report section of %s could not be produced: %s", spec.id, reason)
+        problems.append(f"section '{spec.name}' could not be produced: {reason}")
         return [ctx.heading(spec.name),
-                ctx.warning(f"the {spec.name} section could not be produced "
-                            f"({type(exc).__name__}: {exc}). The results stored in the "
-                            f"project are unaffected.")]
+                ctx.warning(f"The {spec.name} section could not be produced: {reason}. "
+                            "The results stored in the project are unaffected; repair or "
+                            "re-import the damaged data and run the module again.")]
     return flowables
 
 
+def _status_problems(project, statuses: list[ModuleStatus]) -> list[str]:
+    """Summary rows that failed, and a vessel sheet that cannot be read."""
+    out = []
+    for status in statuses:
+        for quantity, value in status.rows:
+            if quantity == "summary unavailable":
+                out.append(f"summary of '{status.spec.name}' could not be produced: {value}")
+    try:
+        from hydrosync_core.project.vessel import vessel_config
+
+        vessel_config(project)
+    except InputError as exc:
+        out.append(f"vessel sheet could not be read: {failure_reason(exc)}")
+    return out
+
+
 def build_report(project, pdf_path: str | os.PathLike, progress=None, cancel=None, *,
-                 specs: list[PluginSpec] | None = None) -> Path:
+                 specs: list[PluginSpec] | None = None,
+                 problems: list[str] | None = None) -> Path:
     """Write the PDF report of *project* to *pdf_path* atomically and return the path.
 
     Parameters
@@ -73,6 +103,9 @@ def build_report(project, pdf_path: str | os.PathLike, progress=None, cancel=Non
     cancel : object with ``is_set()``, optional
     specs : list of PluginSpec, optional
         The modules to report on (default: every registered plugin).
+    problems : list of str, optional
+        Receives one line per part of the report that could not be produced (a damaged
+        project); those parts show "could not be produced: <reason>" in the PDF.
 
     Returns
     -------
@@ -85,6 +118,8 @@ def build_report(project, pdf_path: str | os.PathLike, progress=None, cancel=Non
     report(progress, 0.0, "collecting results")
     specs = plugin_specs() if specs is None else specs
     statuses = [module_status(project, spec) for spec in specs]
+    problems = [] if problems is None else problems
+    problems += _status_problems(project, statuses)
     check_cancel(cancel)
 
     doc_title = f"HydroSync report \u2014 {project.name or 'Untitled project'}"
@@ -101,7 +136,7 @@ def build_report(project, pdf_path: str | os.PathLike, progress=None, cancel=Non
             report(progress, 0.1 + 0.6 * i / max(len(with_results), 1),
                    f"section {status.spec.name}")
             story.append(PageBreak())
-            section = _section(project, ctx, status)
+            section = _section(project, ctx, status, problems)
             if status.stale:
                 # Right under the heading, before any number of the section.
                 section[1:1] = [ctx.warning(

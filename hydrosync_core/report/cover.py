@@ -18,6 +18,7 @@ from reportlab.platypus import Flowable, PageBreak, Paragraph, Spacer, Table, Ta
 from reportlab.platypus.tableofcontents import TableOfContents
 
 from hydrosync_core import __version__
+from hydrosync_core.errors import InputError
 from hydrosync_core.plugins.spec import PluginSpec, load_object
 from hydrosync_core.project.vessel import vessel_config
 from hydrosync_core.provenance import OUT_OF_DATE, stale_reasons
@@ -84,7 +85,10 @@ def file_sha256(path: Path | None) -> str:
 def cover_page(project, ctx: ReportContext, statuses: list[ModuleStatus]) -> list[Flowable]:
     """Title block, project identification, and a sign-off box."""
     attrs = project.attrs_root
-    vessel = vessel_config(project).get("name") or "(not set in the vessel sheet)"
+    try:
+        vessel = vessel_config(project).get("name") or "(not set in the vessel sheet)"
+    except InputError as exc:  # a damaged sheet: say so, the report goes on
+        vessel = f"(the vessel sheet could not be read: {exc.message})"
     now = datetime.now(UTC).strftime("%Y-%m-%d %H:%M:%S UTC")
     path = project.path
     run = [s.spec.name for s in statuses if s.has_results]

@@ -116,9 +116,11 @@ def test_faulty_section_does_not_sink_the_report(latency_project, tmp_path):
     # A section whose callable has the wrong signature raises inside the build.
     broken = PluginSpec(id="latency", name="Latency", run=real.run, panel=real.panel,
                         report_section="hydrosync_core.report.context:esc")
-    out = build_report(latency_project, tmp_path / "b.pdf", specs=[broken])
+    problems: list[str] = []
+    out = build_report(latency_project, tmp_path / "b.pdf", specs=[broken], problems=problems)
     text = " ".join(pdf_pages(out))
-    assert "the Latency section could not be produced (TypeError" in text
+    assert "The Latency section could not be produced: TypeError" in text
+    assert problems and problems[0].startswith("section 'Latency' could not be produced")
     assert "Summary of results" in text
 
 

@@ -6,9 +6,9 @@ import argparse
 import sys
 from pathlib import Path
 
-from hydrosync_core.atomic import write_json_atomic
 from hydrosync_core.errors import InputError
 from hydrosync_core.methods.latency.params import LatencyParams
+from hydrosync_core.outputs import Outputs
 from hydrosync_core.params import add_cli_arguments, cli_values
 
 
@@ -52,30 +52,33 @@ def _run_csv(args: argparse.Namespace) -> int:
     if missing:
         raise InputError(None, f"missing option(s) {', '.join(missing)} (or give a project file)")
     files = {"gnss": args.gnss, "attitude": args.attitude, "lines": args.lines}
-    try:
-        params = _params(args)
-        gnss = read_gnss_csv(args.gnss)
-        attitude = read_attitude_csv(args.attitude, args.heave_positive)
-        lines = read_lines_csv(args.lines)
-        result = estimate_latency(gnss, attitude, lines, params.lever_arm_m, params)
-    except InputError as exc:
-        raise _rename(exc, files) from None
-    _print_table(result)
-    if not result.converged:
-        raise InputError(args.lines, f"{result.message}; " + "; ".join(result.warnings[-2:]))
-    write_json_atomic(args.json, result.to_dict())
-    if args.sync_csv is not None:
-        from hydrosync_core.methods.latency.api import synchronise
+    with Outputs({"--gnss": args.gnss, "--attitude": args.attitude,
+                  "--lines": args.lines}) as out:
+        out.plan(args.json, "--json")  # checked before any work
+        out.plan(args.sync_csv, "--sync-csv")
+        try:
+            params = _params(args)
+            gnss = read_gnss_csv(args.gnss)
+            attitude = read_attitude_csv(args.attitude, args.heave_positive)
+            lines = read_lines_csv(args.lines)
+            result = estimate_latency(gnss, attitude, lines, params.lever_arm_m, params)
+        except InputError as exc:
+            raise _rename(exc, files) from None
+        _print_table(result)
+        if not result.converged:
+            raise InputError(args.lines, f"{result.message}; " + "; ".join(result.warnings[-2:]))
+        out.write_json(args.json, result.to_dict())
+        if args.sync_csv is not None:
+            from hydrosync_core.methods.latency.api import synchronise
 
-        _write_sync(args.sync_csv, synchronise(gnss, attitude, params.lever_arm_m,
-                                               result.latency_s))
+            _write_sync(out, args.sync_csv, synchronise(gnss, attitude, params.lever_arm_m,
+                                                        result.latency_s))
+        out.publish()  # all outputs together, or none
     return 0
 
 
-def _write_sync(path: Path, columns: dict) -> None:
-    from hydrosync_core.exporters import write_csv_table
-
-    rows = write_csv_table(path, columns)
+def _write_sync(out: Outputs, path: Path, columns: dict) -> None:
+    rows = out.write_csv(path, columns)
     print(f"synchronised data set: {rows} epochs written to {path}")
 
 
@@ -86,23 +89,27 @@ def _run_project(args: argparse.Namespace) -> int:
 
     if any(v is not None for v in (args.gnss, args.attitude, args.lines)):
         raise InputError(args.project, "give either a project file or --gnss/--attitude/--lines")
-    project = Project.open(args.project)
-    for path in ("raw/gnss", "raw/attitude", "raw/lines"):
-        if not project.exists(path):
-            raise InputError(args.project, f"project has no /{path} (import it first)")
-    progress = TerminalProgress("latency")
-    try:
-        result = run(project, _params(args), progress, None)
-    except InputError as exc:
-        raise _rename(exc, {"gnss": args.project, "attitude": args.project,
-                            "lines": args.project}) from None
-    progress.done()
-    _print_table(result)
-    if args.json is not None and result.converged:
-        write_json_atomic(args.json, result.to_dict())
-    if args.sync_csv is not None and project.exists("results/latency/synchronised"):
-        _write_sync(args.sync_csv, project.get_table("results/latency/synchronised"))
-    project.save()
+    out = Outputs({"project": args.project})
+    out.plan(args.json, "--json")  # checked before any work
+    out.plan(args.sync_csv, "--sync-csv")
+    with out, Project.open(args.project) as project:
+        for path in ("raw/gnss", "raw/attitude", "raw/lines"):
+            if not project.exists(path):
+                raise InputError(args.project, f"project has no /{path} (import it first)")
+        progress = TerminalProgress("latency")
+        try:
+            result = run(project, _params(args), progress, None)
+        except InputError as exc:
+            raise _rename(exc, {"gnss": args.project, "attitude": args.project,
+                                "lines": args.project}) from None
+        progress.done()
+        _print_table(result)
+        if args.json is not None and result.converged:
+            out.write_json(args.json, result.to_dict())
+        if args.sync_csv is not None and project.exists("results/latency/synchronised"):
+            _write_sync(out, args.sync_csv, project.get_table("results/latency/synchronised"))
+        project.save()
+        out.publish()
     print(f"results stored in {args.project} under /results/latency")
     if not result.converged:
         print(f"hydrosync latency: {args.project}: {result.message}", file=sys.stderr)

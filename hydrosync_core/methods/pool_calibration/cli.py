@@ -5,9 +5,9 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
-from hydrosync_core.atomic import write_json_atomic
 from hydrosync_core.errors import InputError
 from hydrosync_core.methods.pool_calibration.params import PoolParams
+from hydrosync_core.outputs import Outputs
 from hydrosync_core.params import add_cli_arguments, from_cli
 
 
@@ -38,20 +38,24 @@ def cmd_pool(args: argparse.Namespace) -> int:
 
     params = from_cli(args, PoolParams)
     progress = TerminalProgress("pool-calibrate")
+    out = Outputs({f"--{n}": getattr(args, n) for n in ("lidar", "mbes", "ins", "setup",
+                                                         "target", "project")})
+    out.plan(args.json, "--json")  # checked before any work
     if args.project:
         from hydrosync_core.methods.pool_calibration.project_run import run
         from hydrosync_core.project import Project
 
-        project = Project.open(args.project)
-        for need in ("raw/pool/lidar", "raw/pool/mbes", "raw/pool/ins", "raw/pool/setup",
-                     "raw/pool/target"):
-            if not project.exists(need):
-                raise InputError(args.project, f"pool calibration needs /{need}")
-        result = run(project, params, progress, None)
-        progress.done()
-        project.save()
-        if args.json:
-            write_json_atomic(args.json, result.to_dict())
+        with out, Project.open(args.project) as project:
+            for need in ("raw/pool/lidar", "raw/pool/mbes", "raw/pool/ins", "raw/pool/setup",
+                         "raw/pool/target"):
+                if not project.exists(need):
+                    raise InputError(args.project, f"pool calibration needs /{need}")
+            result = run(project, params, progress, None)
+            progress.done()
+            if args.json:
+                out.write_json(args.json, result.to_dict())
+            project.save()
+            out.publish()
         print(_summary(result))
         return 0
     missing = [f"--{n}" for n in ("lidar", "mbes", "ins", "setup", "target", "json")
@@ -70,7 +74,9 @@ def cmd_pool(args: argparse.Namespace) -> int:
     target = read_target_json(args.target)
     result = calibrate(lidar, mbes, ins, setup, target, params, progress, None)
     progress.done()
-    write_json_atomic(args.json, result.to_dict())
+    with out:
+        out.write_json(args.json, result.to_dict())
+        out.publish()
     print(_summary(result))
     return 0
 

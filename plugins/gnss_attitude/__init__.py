@@ -1,0 +1,33 @@
+"""GNSS Attitude plugin: heading, pitch and roll from an antenna array (Qt-free declaration).
+
+Importing this module loads only :mod:`hydrosync_core.plugins.spec`; the method, its
+parameter schema and the panel are named by dotted path and imported when used.
+"""
+
+from hydrosync_core.plugins.spec import DataKind, PluginSpec
+
+CORE = "hydrosync_core.methods.gnss_attitude"
+
+SPEC = PluginSpec(
+    id="gnss_attitude",
+    name="GNSS Attitude",
+    run=f"{CORE}.project_run:run",
+    panel="plugins.gnss_attitude.panel:GnssAttitudePanel",
+    params=f"{CORE}.params:GnssAttitudeParams",
+    cli=f"{CORE}.cli:register",
+    data_kinds=(
+        DataKind("pos", "RTKLIB solution file .pos of one antenna (llh/xyz/enu; the file "
+                 "stem names the antenna)", "raw/gnss_attitude/pos",
+                 "hydrosync_core.importers.rtklib_pos:store_pos", "custom"),
+        DataKind("antennas", "antennas.json: antenna coordinates in the body frame (FRD, m)",
+                 "raw/gnss_attitude/antennas", f"{CORE}.antennas:read_antennas_json", "json"),
+    ),
+    requires=("raw/gnss_attitude/pos", "raw/gnss_attitude/antennas"),
+    description="Heading, pitch and roll from three or more GNSS antennas: direct method and "
+    "iterative least squares (Liu et al.), closed-form Wahba cross-check, precision "
+    "prediction.",
+    demo=f"{CORE}.demo:fill_demo",
+    report_section=f"{CORE}.report_section:section",
+    order=30,
+    version="1.0.0",
+)

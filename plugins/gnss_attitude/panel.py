@@ -1,0 +1,162 @@
+"""The GNSS Attitude panel: parameters, Run, statistics and the plots of the stored run.
+
+Plots (pyqtgraph): heading, pitch and roll against time with the direct method and the
+least squares overlaid (the interval of the statistics shaded), the baseline-length
+residuals, and the predicted / simulated precision versus baseline length.
+"""
+
+from __future__ import annotations
+
+import json
+
+import numpy as np
+import pyqtgraph as pg
+from PySide6.QtCore import Qt
+from PySide6.QtWidgets import (
+    QHBoxLayout,
+    QLabel,
+    QPushButton,
+    QSplitter,
+    QTabWidget,
+    QVBoxLayout,
+    QWidget,
+)
+
+from hydrosync_core.methods.gnss_attitude.params import GnssAttitudeParams
+from hydrosync_core.methods.gnss_attitude.project_run import RESULT, run
+from hydrosync_core.params import stored
+from hydrosync_gui.plugin_panel import PluginPanel
+from hydrosync_gui.widgets import ColumnsTable, ParamForm
+
+ANGLES = ("heading", "pitch", "roll")
+COLOURS = {"direct": (200, 60, 40), "lsq": (30, 90, 200), "wahba": (40, 150, 60)}
+
+
+def _plot(ylabel: str, xlabel: str = "time from first epoch [s]") -> pg.PlotWidget:
+    w = pg.PlotWidget(background="w")
+    w.setLabel("left", ylabel)
+    w.setLabel("bottom", xlabel)
+    w.showGrid(x=True, y=True, alpha=0.3)
+    w.addLegend(offset=(10, 2), labelTextColor="k")
+    return w
+
+
+class GnssAttitudePanel(PluginPanel):
+    """Attitude from a GNSS antenna array."""
+
+    def __init__(self, spec=None, parent=None) -> None:
+        if spec is None:
+            from plugins.gnss_attitude import SPEC
+
+            spec = SPEC
+        super().__init__(spec, parent)
+        self.form = ParamForm(GnssAttitudeParams)
+        self.run_button = QPushButton("Run")
+        self.run_button.clicked.connect(self._on_run)
+        self.summary = QLabel()
+        self.summary.setWordWrap(True)
+        self.stats = ColumnsTable()
+        left = QWidget()
+        lay = QVBoxLayout(left)
+        for widget in (self.form, self.run_button, self.summary, self.stats):
+            lay.addWidget(widget)
+        self.series = {a: _plot(f"{a} [°]") for a in ANGLES}
+        self.series["pitch"].setXLink(self.series["heading"])
+        self.series["roll"].setXLink(self.series["heading"])
+        series_page = QWidget()
+        sl = QVBoxLayout(series_page)
+        for a in ANGLES:
+            sl.addWidget(self.series[a])
+        self.residuals = _plot("length residual [mm]")
+        self.curve = _plot("1σ [°]", "longest baseline [m]")
+        self.tabs = QTabWidget()
+        self.tabs.addTab(series_page, "Heading / pitch / roll")
+        self.tabs.addTab(self.residuals, "Baseline residuals")
+        self.tabs.addTab(self.curve, "Precision vs baseline")
+        split = QSplitter(Qt.Orientation.Horizontal)
+        split.addWidget(left)
+        split.addWidget(self.tabs)
+        split.setStretchFactor(1, 3)
+        outer = QHBoxLayout(self)
+        outer.addWidget(split)
+
+    # ------------------------------------------------------------------ drawing
+    def _clear(self) -> None:
+        for w in (*self.series.values(), self.residuals, self.curve):
+            w.clear()
+        self.stats.set_columns({})
+
+    def refresh(self) -> None:
+        project = self.project
+        missing = self.spec.missing_inputs(project) if project is not None else ["a project"]
+        self.run_button.setEnabled(not missing and not self.busy)
+        self._clear()
+        if project is None or not project.exists(f"{RESULT}/lsq"):
+            self.summary.setText("Needs " + ", ".join(missing) + " (File → Import: --pos, "
+                                 "--antennas)." if missing else "Press Run.")
+            return
+        self.form.set_params(stored(GnssAttitudeParams, project, RESULT))
+        attrs = project.attrs(RESULT)
+        counts = json.loads(attrs["counts"])
+        stats = json.loads(attrs["statistics"])
+        self.summary.setText(
+            f"{counts['solved']} of {counts['epochs']} epochs solved; "
+            f"{counts['too_few_antennas']} with fewer than 3 usable antennas, "
+            f"{counts['with_dropped_antenna']} with an antenna dropped by the length check, "
+            f"{counts['gaps']} gaps. Statistics: scatter and predicted 1σ (°).")
+        table: dict[str, list] = {"method": []}
+        for a in ANGLES:
+            table[f"sd_{a}"], table[f"pred_{a}"] = [], []
+        table["epochs"] = []
+        for m, s in stats.items():
+            table["method"].append(m)
+            table["epochs"].append(s["epochs"])
+            for a in ANGLES:
+                table[f"sd_{a}"].append(np.nan if s[a]["std"] is None else s[a]["std"])
+                table[f"pred_{a}"].append(np.nan if s[a]["predicted"] is None
+                                          else s[a]["predicted"])
+        self.stats.set_columns({k: np.asarray(v) for k, v in table.items()},
+                               units={k: "°" for k in table if k[:3] in ("sd_", "pre")})
+        lsq = project.get_table(f"{RESULT}/lsq")
+        direct = project.get_table(f"{RESULT}/direct")
+        t0 = float(np.nanmin(lsq["time"])) if lsq["time"].size else 0.0
+        for a in ANGLES:
+            for name, tab in (("direct", direct), ("lsq", lsq)):
+                self.series[a].plot(tab["time"] - t0, tab[a], name=name,
+                                    pen=pg.mkPen(COLOURS[name], width=1), connect="finite")
+        params = stored(GnssAttitudeParams, project, RESULT)
+        if params.static_start_s is not None or params.static_end_s is not None:
+            lo = (params.static_start_s if params.static_start_s is not None else t0) - t0
+            hi = (params.static_end_s if params.static_end_s is not None
+                  else float(np.nanmax(lsq["time"]))) - t0
+            for a in ANGLES:
+                region = pg.LinearRegionItem((lo, hi), movable=False,
+                                             brush=pg.mkBrush(200, 200, 240, 60))
+                self.series[a].addItem(region)
+        res = project.get_table(f"{RESULT}/baseline_residuals")
+        pairs = [k for k in res if k != "time"]
+        for i, pair in enumerate(pairs):
+            self.residuals.plot(res["time"] - t0, 1000 * res[pair], name=pair, pen=None,
+                                symbol="s", symbolSize=3,
+                                symbolBrush=pg.intColor(i, hues=max(len(pairs), 1)),
+                                symbolPen=None)
+        curve = project.get_table(f"{RESULT}/precision")
+        for i, a in enumerate(ANGLES):
+            colour = pg.intColor(i, hues=3)
+            self.curve.plot(curve["baseline_m"], curve[f"lsq_{a}_deg"],
+                            name=f"{a} predicted", pen=pg.mkPen(colour, width=2))
+            if f"mc_lsq_{a}_deg" in curve:
+                self.curve.plot(curve["baseline_m"], curve[f"mc_lsq_{a}_deg"],
+                                name=f"{a} simulated", pen=None, symbol="o", symbolSize=6,
+                                symbolBrush=colour)
+
+    # ------------------------------------------------------------------ running
+    def _on_run(self) -> None:
+        project, params = self.project, self.form.params()
+        self.run_button.setEnabled(False)
+        self.start_work(lambda progress, cancel: run(project, params, progress, cancel),
+                        lambda _sol: (self.sig_project_modified.emit(), self.refresh()),
+                        label="GNSS attitude")
+
+    def work_done(self) -> None:
+        self.run_button.setEnabled(True)

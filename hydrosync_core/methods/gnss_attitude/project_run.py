@@ -46,6 +46,7 @@ from hydrosync_core.methods.gnss_attitude.pipeline import (
     statistics,
 )
 from hydrosync_core.progress import check_cancel, report, sub_progress
+from hydrosync_core.provenance import record
 
 RESULT = "results/gnss_attitude"
 RAW = "raw/gnss_attitude"
@@ -128,5 +129,6 @@ def run(project, params: GnssAttitudeParams | Mapping | None = None, progress=No
     resid.update({pair: sol.length_residual_m[:, c] for c, pair in enumerate(sol.pairs)})
     project.put_table(f"{RESULT}/baseline_residuals", resid, units="m")
     project.put_table(f"{RESULT}/precision", curve, units="deg, m")
+    record(project, RESULT, (f"{RAW}/pos", f"{RAW}/antennas"), p)
     report(progress, 1.0, "attitude stored")
     return sol

@@ -57,13 +57,16 @@ face's own least-squares plane (``segment.band_refit``, ``refine_band_sigma`` = 
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
-from scipy.spatial.transform import Rotation
 
 from hydrosync_core.methods.pool_calibration.block_sigma import block_factors
-from hydrosync_core.methods.pool_calibration.georef import GeorefContext, boresight_angles
+from hydrosync_core.methods.pool_calibration.georef import (
+    GeorefContext,
+    boresight_angles,
+    boresight_matrix,
+)
 from hydrosync_core.methods.pool_calibration.ins_cov import ins_covariance
 from hydrosync_core.methods.pool_calibration.planes import PlaneFit
 from hydrosync_core.progress import check_cancel
@@ -73,7 +76,8 @@ NAMES = ("roll", "pitch", "yaw", "lever_x", "lever_y", "lever_z")
 
 @dataclass(frozen=True)
 class JointFit:
-    """Joint solution: boresight matrix, lever (body FRD, m), covariance of NAMES order."""
+    """Joint solution: boresight matrix, lever (body FRD, m), covariance of NAMES order
+    (Euler angles rad, lever m; rows/columns of undetermined parameters NaN)."""
 
     r_m: np.ndarray
     lever: np.ndarray
@@ -85,10 +89,26 @@ class JointFit:
     fixed: tuple[str, ...]
     residual_rms: dict[str, float]
     variance_factor: np.ndarray | None = None
+    #: Parameters not determined by the data -> the reason (held at their start value).
+    undetermined: dict[str, str] = field(default_factory=dict)
 
 
-def _system(ctx: GeorefContext, obs: dict[str, tuple[np.ndarray, PlaneFit]], r_m, lever):
-    """Residuals (m), Jacobian (n, 6) and face labels of all observations."""
+def _axes(theta: np.ndarray) -> np.ndarray:
+    """Columns ω_roll, ω_pitch, ω_yaw (body FRD) with ∂R_m/∂θ_k = [ω_k]× R_m for
+    R_m = Rz(yaw)·Ry(pitch)·Rx(roll)."""
+    _, pitch, yaw = theta
+    cy, sy, cp, sp = np.cos(yaw), np.sin(yaw), np.cos(pitch), np.sin(pitch)
+    return np.array([[cy * cp, -sy, 0.0], [sy * cp, cy, 0.0], [-sp, 0.0, 1.0]])
+
+
+def _system(ctx: GeorefContext, obs: dict[str, tuple[np.ndarray, PlaneFit]], r_m, lever,
+            theta=None):
+    """Residuals (m), Jacobian (n, 6) and face labels of all observations.
+
+    Columns: Euler angles (roll, pitch, yaw) of R_m (rad) when *theta* is given, else small
+    rotations about the body axes; then the lever arm (m).
+    """
+    w = np.eye(3) if theta is None else _axes(theta)
     res, jac, lab = [], [], []
     for name, (idx, plane) in obs.items():
         p = ctx.ping[idx]
@@ -96,38 +116,68 @@ def _system(ctx: GeorefContext, obs: dict[str, tuple[np.ndarray, PlaneFit]], r_m
         a = np.einsum("nji,j->ni", ctx.rot[p], plane.normal)      # A_iᵀ n
         pts = ctx.origin[p] + np.einsum("nij,nj->ni", ctx.rot[p], y + lever)
         res.append(pts @ plane.normal - plane.d)
-        jac.append(np.hstack([np.cross(y, a), a]))
+        jac.append(np.hstack([np.cross(y, a) @ w, a]))
         lab.append(np.full(len(idx), name, dtype=object))
     return np.concatenate(res), np.vstack(jac), np.concatenate(lab)
 
 
-def _reference_cov(ctx, obs, r_m, lever, free, weights, n_inv) -> np.ndarray:
+def _points(ctx, idx, r_m, lever):
+    p = ctx.ping[idx]
+    return ctx.origin[p] + np.einsum("nij,nj->ni", ctx.rot[p], ctx.x_m[idx] @ r_m.T + lever)
+
+
+def _reference_cov(ctx, obs, r_m, lever, theta, free, weights, n_inv, refs=None,
+                   build_sigma=(0.0, 0.0)) -> np.ndarray:
     """Covariance added by the reference planes' own uncertainty (free parameters).
 
-    A plane perturbed by tilts (α, β) about its in-plane axes and an offset γ changes the
-    residuals by ``B = [a1·(p - c), a2·(p - c), -1]``; the solution moves by
-    ``-N⁻¹ JᵀW B (α, β, γ)``, so each face adds ``M C_plane Mᵀ`` with ``M = N⁻¹ JᵀW B``.
+    Laser fit: a plane perturbed by tilts (α, β) about its in-plane axes and an offset γ
+    changes the residuals by ``B = [a1·(p - c), a2·(p - c), -1]``; the solution moves by
+    ``-N⁻¹ JᵀW B (α, β, γ)``. Faces whose reference is the same laser plane (a face crossing
+    the water, the twins moved from it) share (α, β, γ): their ``M = N⁻¹ JᵀW B`` are summed
+    per laser plane before ``M C_plane Mᵀ`` (c is the moved centroid: a translated copy keeps
+    the tilt about its own centroid).
+
+    Build: the faces of one below-water body share its rigid error relative to the twin
+    body, translation δt and rotation δω about the body's centroid q; the residual changes
+    by ``[-n, n × (p - q)] (δt, δω)``, summed per body pair, with
+    ``C = diag(σ_t² I, σ_ω² I)`` (*build_sigma* = (σ_t m, σ_ω rad)).
     """
-    out = np.zeros((int(free.sum()),) * 2)
+    k = int(free.sum())
+    per_src: dict[str, tuple[np.ndarray, np.ndarray]] = {}
+    per_group: dict[tuple, np.ndarray] = {}
     start = 0
-    for _name, (idx, plane) in obs.items():
-        sub = {_name: (idx, plane)}
-        _, jac, _ = _system(ctx, sub, r_m, lever)
+    for name, (idx, plane) in obs.items():
+        _, jac, _ = _system(ctx, {name: (idx, plane)}, r_m, lever, theta)
         w = weights[start:start + len(idx)]
         start += len(idx)
-        if plane.axes is None:
-            continue
-        p = ctx.ping[idx]
-        pts = ctx.origin[p] + np.einsum("nij,nj->ni", ctx.rot[p], ctx.x_m[idx] @ r_m.T + lever)
-        rel = pts - plane.centroid
-        b = np.column_stack([rel @ plane.axes[:, 1], rel @ plane.axes[:, 2], -np.ones(len(idx))])
-        m = n_inv @ (jac[:, free].T @ (b * w[:, None]))
-        out += m @ plane.covariance() @ m.T
+        jw = jac[:, free] * w[:, None]
+        pts = _points(ctx, idx, r_m, lever)
+        ref = refs.get(name) if refs else None
+        if plane.axes is not None:
+            rel = pts - plane.centroid
+            b = np.column_stack([rel @ plane.axes[:, 1], rel @ plane.axes[:, 2],
+                                 -np.ones(len(idx))])
+            src = ref.source if ref is not None else name
+            m = n_inv @ (jw.T @ b)
+            old = per_src.get(src)
+            per_src[src] = (m if old is None else old[0] + m, plane.covariance())
+        if ref is not None and ref.group is not None and any(build_sigma):
+            n = plane.normal
+            b6 = np.hstack([-np.tile(n, (len(idx), 1)), np.cross(n, pts - ref.pivot)])
+            per_group[ref.group] = per_group.get(ref.group, 0.0) + n_inv @ (jw.T @ b6)
+    out = np.zeros((k, k))
+    for m, c in per_src.values():
+        out += m @ c @ m.T
+    c_build = np.diag([build_sigma[0] ** 2] * 3 + [build_sigma[1] ** 2] * 3)
+    for m in per_group.values():
+        out += m @ c_build @ m.T
     return out
 
 
 def euler_jacobian(r_m: np.ndarray, h: float = 1e-7) -> np.ndarray:
     """d(roll, pitch, yaw)/dδ at δ = 0 for ``R = Rot(δ)·r_m`` (3, 3), numeric."""
+    from scipy.spatial.transform import Rotation
+
     base = np.array(boresight_angles(r_m))
     out = np.zeros((3, 3))
     for k in range(3):
@@ -138,80 +188,136 @@ def euler_jacobian(r_m: np.ndarray, h: float = 1e-7) -> np.ndarray:
     return out
 
 
-def adjust(ctx: GeorefContext, obs: dict[str, tuple[np.ndarray, PlaneFit]], r_m0: np.ndarray,
-           lever0: np.ndarray, *, huber_m: float = 0.03, max_iter: int = 30,
-           tol: float = 1e-9, cond_max: float = 1e10, fix: tuple[str, ...] = (),
-           cancel=None, block_s: float = 2.0,
-           ins_sigma_rad: tuple[float, float, float] = (0.0, 0.0, 0.0),
-           ins_tau_s: float = 1.0) -> JointFit:
-    """Gauss-Newton / IRLS solution from the start values (r_m0, lever0).
-
-    *fix* names parameters (of NAMES) held at their start values. *block_s* (s) is the
-    ping-time block of the cluster-robust variance factor (see the module docstring).
-    *ins_sigma_rad* (roll, pitch, heading 1-σ, rad) and *ins_tau_s* (s) describe the INS
-    attitude accuracy propagated by :func:`~.ins_cov.ins_covariance` (zero: not added).
-    """
-    r_m, lever = r_m0.copy(), np.asarray(lever0, float).copy()
-    n_obs = sum(len(i) for i, _ in obs.values())
-    if n_obs < 6:
-        raise ValueError("fewer than 6 multibeam points on reference planes")
-    # Observability: scaled normal matrix at the start; weak directions are fixed.
-    _, jac, _ = _system(ctx, obs, r_m, lever)
-    scale = np.linalg.norm(jac, axis=0)
-    scale[scale == 0] = 1.0
-    js = jac / scale
-    w, v = np.linalg.eigh(js.T @ js)
-    free = np.array([n not in fix for n in NAMES])
-    for k in np.flatnonzero(w < w.max() / cond_max):
-        free[np.argmax(np.abs(v[:, k]))] = False
-    fixed = tuple(n for n, f in zip(NAMES, free, strict=True) if not f)
-    weights = None
-    converged, it = False, 0
+def _gauss_newton(ctx, obs, theta, free, huber_m, max_iter, tol, cancel):
+    """IRLS Gauss-Newton on the free parameters; returns theta, weights, iterations, ok."""
+    theta = theta.copy()
+    weights, converged, it = None, False, 0
     for it in range(1, max_iter + 1):
         check_cancel(cancel)
-        res, jac, _ = _system(ctx, obs, r_m, lever)
+        r_m = boresight_matrix(*theta[:3])
+        res, jac, _ = _system(ctx, obs, r_m, theta[3:], theta[:3])
         scale_r = 1.4826 * np.median(np.abs(res - np.median(res)))
         k = max(huber_m, 2.0 * scale_r) if it > 1 else 10 * huber_m
         weights = np.minimum(1.0, k / np.maximum(np.abs(res), 1e-12))     # Huber weights
-        jf = jac[:, free]
-        step_f = np.linalg.solve(jf.T @ (jf * weights[:, None]), -jf.T @ (weights * res))
-        step = np.zeros(6)
-        step[free] = step_f
-        r_m = Rotation.from_rotvec(step[:3]).as_matrix() @ r_m
-        lever = lever + step[3:]
-        if np.max(np.abs(step)) < tol:
+        if not free.any():
             converged = True
             break
-    res, jac, lab = _system(ctx, obs, r_m, lever)
-    jf = jac[:, free]
-    normal = jf.T @ (jf * weights[:, None])
-    dof = max(1, len(res) - int(free.sum()))
-    sigma0_sq = float(np.sum(weights * res**2) / dof)
-    n_inv = np.linalg.inv(normal)
-    factor = block_factors(ctx, obs, jf, res, weights, n_inv, block_s, r_m, lever)
-    root = np.sqrt(factor)
-    # Formal covariance σ0² N⁻¹, inflated by the block-sandwich factors, + reference planes.
-    cov_f = sigma0_sq * n_inv * np.outer(root, root) + \
-        _reference_cov(ctx, obs, r_m, lever, free, weights, n_inv) + \
-        ins_covariance(ctx, obs, r_m, lever, jf, weights, n_inv, np.asarray(ins_sigma_rad),
-                       ins_tau_s)
-    cov_d = np.zeros((6, 6))
-    cov_d[np.ix_(free, free)] = cov_f
-    # Propagate δ -> Euler angles (roll, pitch, yaw).
-    t = np.eye(6)
-    t[:3, :3] = euler_jacobian(r_m)
-    cov = t @ cov_d @ t.T
+        jf = jac[:, free]
+        step_f = np.linalg.solve(jf.T @ (jf * weights[:, None]), -jf.T @ (weights * res))
+        theta[free] += step_f
+        if np.max(np.abs(step_f)) < tol:
+            converged = True
+            break
+    return theta, weights, it, converged
+
+
+def adjust(ctx: GeorefContext, obs: dict[str, tuple[np.ndarray, PlaneFit]], r_m0: np.ndarray,
+           lever0: np.ndarray, *, huber_m: float = 0.03, max_iter: int = 30,
+           tol: float = 1e-9, cond_max: float = 1e10, fix: dict | tuple = (),
+           cancel=None, block_s: float = 2.0,
+           ins_sigma_rad: tuple[float, float, float] = (0.0, 0.0, 0.0),
+           ins_tau_s: float = 1.0, refs: dict | None = None,
+           build_sigma: tuple[float, float] = (0.0, 0.0),
+           coarse: np.ndarray | None = None,
+           coarse_sigma: tuple[float, float] | None = None,
+           covariance: bool = True) -> JointFit:
+    """Gauss-Newton / IRLS solution from the start values (r_m0, lever0).
+
+    *fix* names parameters (of NAMES; a dict maps them to the reason) held at their start
+    values. A parameter whose column of the scaled normal matrix is (nearly) in its null
+    space is held too. *block_s* (s) is the ping-time block of the cluster-robust variance
+    factor (module docstring). *ins_sigma_rad* (roll, pitch, heading 1-σ, rad) and
+    *ins_tau_s* (s) describe the INS attitude accuracy propagated by
+    :func:`~.ins_cov.ins_covariance` (zero: not added). *refs* (face -> ``twins.Reference``)
+    and *build_sigma* (σ_t m, σ_ω rad) propagate the build tolerance of the twins.
+    *coarse* (6: Euler rad, lever m) and *coarse_sigma* (σ rad, σ m: the accuracy of the
+    coarse setup): a free parameter whose σ from the data exceeds its coarse σ is not
+    determined by the data; it is reset to its coarse value and held, and the coarse error
+    of every held parameter is propagated into the σ of the others. With
+    ``covariance=False`` only the solution is computed.
+    """
+    theta = np.array([*boresight_angles(r_m0), *np.asarray(lever0, float)])
+    n_obs = sum(len(i) for i, _ in obs.values())
+    if n_obs < 6:
+        raise ValueError("fewer than 6 multibeam points on reference planes")
+    undetermined = dict(fix) if isinstance(fix, dict) else \
+        {n: "held by the caller" for n in fix}
+    free = np.array([n not in undetermined for n in NAMES])
+    # Observability: scaled normal matrix at the start; null directions are held.
+    _, jac, _ = _system(ctx, obs, r_m0, theta[3:], theta[:3])
+    while free.any():
+        js = jac[:, free] / np.maximum(np.linalg.norm(jac[:, free], axis=0), 1e-300)
+        w, v = np.linalg.eigh(js.T @ js)
+        if w[0] >= w[-1] / cond_max:
+            break
+        k = np.flatnonzero(free)[np.argmax(np.abs(v[:, 0]))]
+        free[k] = False
+        undetermined[NAMES[k]] = ("the pass geometry does not change any point-to-plane "
+                                  "distance with it (singular normal matrix)")
+    c_sig = None if coarse_sigma is None else np.array([coarse_sigma[0]] * 3 +
+                                                       [coarse_sigma[1]] * 3)
+    if coarse is not None:
+        for k in np.flatnonzero(~free):
+            theta[k] = coarse[k]
+    while True:
+        theta, weights, it, converged = _gauss_newton(ctx, obs, theta, free, huber_m,
+                                                      max_iter, tol, cancel)
+        r_m, lever = boresight_matrix(*theta[:3]), theta[3:].copy()
+        res, jac, lab = _system(ctx, obs, r_m, lever, theta[:3])
+        if not covariance:
+            cov = np.full((6, 6), np.nan)
+            factor = np.ones(int(free.sum()))
+            break
+        jf = jac[:, free]
+        normal = jf.T @ (jf * weights[:, None])
+        dof = max(1, len(res) - int(free.sum()))
+        sigma0_sq = float(np.sum(weights * res**2) / dof)
+        n_inv = np.linalg.inv(normal)
+        factor = block_factors(ctx, obs, jf, res, weights, n_inv, block_s, r_m, lever)
+        root = np.sqrt(factor)
+        # Formal σ0² N⁻¹, inflated by the block-sandwich factors, + reference planes, build
+        # tolerance and INS accuracy.
+        cov_f = sigma0_sq * n_inv * np.outer(root, root) + \
+            _reference_cov(ctx, obs, r_m, lever, theta[:3], free, weights, n_inv, refs,
+                           build_sigma) + \
+            ins_covariance(ctx, obs, r_m, lever, jf, weights, n_inv,
+                           np.asarray(ins_sigma_rad), ins_tau_s)
+        held = ~free
+        if c_sig is not None and held.any():
+            # A held parameter keeps its coarse error e_c: the free ones move by
+            # -N_ff⁻¹ N_fc e_c.
+            jh = jac[:, held]
+            k_mat = n_inv @ (jf.T @ (jh * weights[:, None]))
+            cov_f = cov_f + k_mat @ np.diag(c_sig[held] ** 2) @ k_mat.T
+        sig = np.sqrt(np.clip(np.diag(cov_f), 0, None))
+        if c_sig is not None and coarse is not None:
+            ratio = sig / c_sig[free]
+            if ratio.max() > 1.0 and free.sum() > 1:
+                k = np.flatnonzero(free)[int(np.argmax(ratio))]
+                unit, scale = ("°", np.degrees(1.0)) if k < 3 else (" m", 1.0)
+                undetermined[NAMES[k]] = (
+                    f"σ from the data ({sig[np.argmax(ratio)] * scale:.3g}{unit}) exceeds the "
+                    f"accuracy of the coarse value ({c_sig[k] * scale:.3g}{unit})")
+                free[k] = False
+                theta[k] = coarse[k]
+                continue
+        cov = np.full((6, 6), np.nan)
+        cov[np.ix_(free, free)] = cov_f
+        break
     rms = {str(n): float(np.sqrt(np.mean(res[lab == n] ** 2))) for n in obs}
-    vf = np.ones(6)
+    vf = np.full(6, np.nan)
     vf[free] = factor
-    return JointFit(r_m, lever, cov, float(np.sqrt(sigma0_sq)), len(res), it, converged,
-                    fixed, rms, vf)
+    s0 = float(np.sqrt(np.sum(weights * res**2) / max(1, len(res) - int(free.sum()))))
+    fixed = tuple(n for n, f in zip(NAMES, free, strict=True) if not f)
+    return JointFit(r_m, lever, cov, s0, len(res), it, converged, fixed, rms, vf,
+                    {n: undetermined[n] for n in fixed})
 
 
 def correlation(cov: np.ndarray) -> np.ndarray:
-    """Correlation matrix of a covariance (zero rows stay zero)."""
-    s = np.sqrt(np.clip(np.diag(cov), 0, None))
+    """Correlation matrix of a covariance (zero or NaN rows give 0; diagonal 1)."""
+    d = np.diag(cov)
+    s = np.sqrt(np.where(np.isfinite(d) & (d > 0), d, 0.0))
     denom = np.outer(s, s)
     with np.errstate(invalid="ignore", divide="ignore"):
         c = np.where(denom > 0, cov / denom, 0.0)
-    return c
+    return np.nan_to_num(c)

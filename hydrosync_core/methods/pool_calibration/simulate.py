@@ -212,10 +212,7 @@ def _outward(faces: list[DesignFace]) -> dict[str, np.ndarray]:
     out = {}
     for f in faces:
         group = [g.centroid for g in faces if body[g.name] == body[f.name]]
-        if len(group) > 1:
-            away = f.centroid - np.mean(group, axis=0)
-        else:
-            away = centre - f.centroid
+        away = f.centroid - np.mean(group, axis=0) if len(group) > 1 else centre - f.centroid
         out[f.name] = f.normal if f.normal @ away > 0 else -f.normal
     return out
 

@@ -16,12 +16,12 @@ import json
 import threading
 
 import pytest
+from example_plugin import example_discovered
 
 from hydrosync_core.errors import Cancelled
 from hydrosync_core.plugins import discover, load_object
 from hydrosync_core.plugins.registry import Discovered
 from hydrosync_core.project import Project
-from example_plugin import example_discovered
 
 BUILT_IN_PREFIXES = ("plugins.", "hydrosync_core.", "hydrosync_gui.", "hydrosync_heave_stats")
 FOUND = discover() + [example_discovered()]

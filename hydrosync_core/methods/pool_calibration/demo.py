@@ -11,12 +11,16 @@ from __future__ import annotations
 import numpy as np
 
 from hydrosync_core.methods.pool_calibration.simulate import PoolPassConfig, simulate_pool_pass
+from hydrosync_core.methods.pool_calibration.simulate_target import build_target
 from hydrosync_core.progress import report
 from hydrosync_core.project.vessel import set_sensor
 
-#: Two passes at 4 and 6 m with a multibeam at 256 beams and 20 Hz along the patent target.
-DEMO_CONFIG = PoolPassConfig(target_kind="patent", ranges_m=(4.0, 6.0), headings_deg=(3.0, -3.0),
-                             ping_rate_hz=20.0)
+#: Three passes at 4, 5.5 and 7 m (headings +3°, -3°, 0°), a multibeam at 256 beams and
+#: 20 Hz, along a patent target with three block pairs on each side of the wall.
+DEMO_CONFIG = PoolPassConfig(
+    target_kind="patent", ranges_m=(4.0, 5.5, 7.0), headings_deg=(3.0, -3.0, 0.0),
+    ping_rate_hz=20.0,
+    target=build_target(kind="patent", blocks_per_side=3, block_depth=1.2, block_length=1.3))
 
 
 def fill_demo(project, seed: int = 0, progress=None,

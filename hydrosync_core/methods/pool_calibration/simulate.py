@@ -115,12 +115,12 @@ def random_config(rng: np.random.Generator, kind: str | None = None,
         lever_error_m=tuple(float(v) for v in rng.uniform(-0.15, 0.15, 3)),
         ranges_m=tuple(float(r) for r in ranges),
         headings_deg=tuple(float(h) for h in rng.uniform(-6.0, 6.0, n)),
-        speed_m_s=float(rng.uniform(0.6, 1.5)),
+        speed_m_s=float(rng.uniform(0.4, 1.0)),
         roll_amp_deg=float(rng.uniform(0.3, 3.0)), pitch_amp_deg=float(rng.uniform(0.2, 1.5)),
         heading_amp_deg=float(rng.uniform(0.2, 2.0)),
         roll_period_s=float(rng.uniform(3.0, 9.0)), pitch_period_s=float(rng.uniform(2.5, 7.0)),
         sway_m=float(rng.uniform(0.0, 0.15)), heave_m=float(rng.uniform(0.0, 0.08)),
-        ping_rate_hz=float(rng.uniform(8.0, 20.0)), beams=int(rng.integers(128, 401)),
+        ping_rate_hz=float(rng.uniform(15.0, 40.0)), beams=int(rng.integers(256, 513)),
         swath_deg=float(rng.uniform(110.0, 160.0)),
         range_noise_m=float(rng.uniform(0.005, 0.015)),
         angle_noise_deg=float(rng.uniform(0.01, 0.05)),
@@ -160,18 +160,20 @@ def _gauss_markov(n: int, cfg: PoolPassConfig, rng: np.random.Generator) -> np.n
 
 
 def _trajectory(t: np.ndarray, t0: float, rng_x: float, heading: float, y0: float,
-                cfg: PoolPassConfig, phase: float) -> tuple[np.ndarray, np.ndarray]:
+                cfg: PoolPassConfig, phase: float,
+                water: float = 0.0) -> tuple[np.ndarray, np.ndarray]:
     """INS position (ENU, m) and attitude (deg) of one pass at times *t* (s).
 
     The track has heading *heading* (deg from north) and passes at *rng_x* m west of the
-    wall abeam of the target centre (y = 0); it starts at y = *y0*.
+    wall abeam of the target centre (y = 0); it starts at y = *y0*; the INS rides
+    ``ins_height_m`` above the water level *water*.
     """
     s = t - t0
     h = np.deg2rad(heading)
     along = y0 / np.cos(h) + cfg.speed_m_s * s
     e = -rng_x + along * np.sin(h) + cfg.sway_m * np.sin(2 * np.pi * s / 15.0 + phase)
     n = along * np.cos(h)
-    u = cfg.ins_height_m + cfg.heave_m * np.sin(2 * np.pi * s / 3.1 + phase)
+    u = water + cfg.ins_height_m + cfg.heave_m * np.sin(2 * np.pi * s / 3.1 + phase)
     return np.column_stack([e, n, u]), _attitude_deg(t, phase, cfg, heading)
 
 
@@ -360,7 +362,7 @@ def simulate_pool_pass(config: PoolPassConfig | None = None, seed: int = 0) -> d
             dropout = (mid, mid + cfg.ins_dropout_s)
             t_i = t_i[(t_i < dropout[0]) | (t_i > dropout[1])]
         for tt, pl, al in ((t_i, ins_p, ins_a), (t_p, ping_p, ping_a)):
-            p, a = _trajectory(tt, t0, rx, heading, y0, cfg, phase)
+            p, a = _trajectory(tt, t0, rx, heading, y0, cfg, phase, water)
             pl.append(p)
             al.append(a)
         ins_t.append(t_i)

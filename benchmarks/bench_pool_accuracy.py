@@ -1,21 +1,26 @@
-"""Accuracy of the pool calibration over simulated passes: seed method vs joint adjustment.
+"""Accuracy of the pool calibration over randomised passes: patent method vs joint adjustment.
 
-Each run simulates a full calibration data set (3 passes at 4, 5.5 and 7 m, 256 beams at
-15 Hz, 1 cm range and 0.03° beam-angle noise, 1 % multibeam outliers, 3 mm laser noise
-with clutter) with random boresight errors (uniform ±1°, both signs) and lever-arm errors
-(uniform ±8 cm) on each of the six parameters, then runs segmentation, the seed (patent)
-iteration + lever-arm steps, and the joint least-squares adjustment.
+Every run draws a whole data set at random (``simulate.random_config``): the target kind —
+the patent's (above-water blocks seen only by the laser scanner, congruent below-water twins
+seen only by the multibeam at design heights, only the wall crossing the water), faces
+crossing the water, or both mixed — the number and size of the blocks, their spacing,
+which side's first block is lower and by how much, wall height, water level, as-built
+errors of the below-water blocks within the build tolerance (±2 mm, ±0.01°), pass ranges
+and headings, vessel speed and attitude dynamics, beam count and opening angle, laser
+density and noise, stray returns, INS attitude noise and the coarse errors (±2°, ±0.15 m).
+The multibeam sees what the geometry lets it see (first hit, blocks occlude each other,
+grazing returns fade out). The adjustment is given the simulated INS accuracy and the
+build tolerance.
 
 Per run: rotation error = angle of R_est·R_trueᵀ (deg), lever error = |Δl| (mm), and the
-joint's normalised errors (estimate - truth) / σ. Summary per parameter (Monte-Carlo over
-the runs): bias (mean error), scatter (sample SD), RMS error, mean reported 1-σ and the
-RMS of error/σ, which must be ≈ 1 for an honest σ (with n runs its own spread is about
-1/√(2n)). The seed method reports no σ. ``--ins-noise-deg`` adds Gauss-Markov INS
-attitude errors (τ = 1 s) to roll, pitch and heading; ``--ins-sigma-deg`` is the INS
-accuracy given to the adjustment (default: the simulated one; 0 to see the σ without it,
-with only the ping-block inflation).
-Run: ``.venv/bin/python benchmarks/bench_pool_accuracy.py [--runs 12] [--ins-noise-deg 0]
-[--ins-sigma-deg X]``.
+joint's normalised errors (estimate − truth)/σ. Summary per group (two-pass and one-pass,
+both kinds): max and RMS of the rotation and lever-arm errors for the patent method and
+the joint adjustment side by side, RMS and max of |error/σ| per parameter (joint; only
+where determined), and how often each parameter was declared undetermined (coarse value
+kept) or flagged (σ above the warning threshold).
+
+Run: ``.venv/bin/python benchmarks/bench_pool_accuracy.py [--runs 40] [--seed 2026]``
+(about 10 min on 2 cores); ``--runs 8`` for a quick look.
 """
 
 from __future__ import annotations
@@ -28,17 +33,23 @@ from scipy.spatial.transform import Rotation
 
 from hydrosync_core.methods.pool_calibration import georef
 from hydrosync_core.methods.pool_calibration.api import calibrate
-from hydrosync_core.methods.pool_calibration.simulate import PoolPassConfig, simulate_pool_pass
+from hydrosync_core.methods.pool_calibration.params import PoolParams
+from hydrosync_core.methods.pool_calibration.simulate import random_config, simulate_pool_pass
 
 PARAMS = ("roll", "pitch", "yaw", "lever_x", "lever_y", "lever_z")
-UNITS = ("deg", "deg", "deg", "mm", "mm", "mm")
+ROT_MAX_DEG, LEVER_MAX_MM = 0.02, 2.0
+#: (target kind, passes) of the runs, cycled: two-pass runs on every kind, one-pass runs.
+PLAN = (("patent", 2), ("crossing", 2), ("patent", 1), ("mixed", 2), ("crossing", 1),
+        ("patent", 2), ("crossing", 2), ("patent", 1), ("mixed", 1), ("patent", 2))
 
 
 def _vector(sol: dict, key: str = "") -> np.ndarray:
     """(roll, pitch, yaw) deg and lever (x, y, z) mm of a solution (or its σ with key)."""
     b = sol["sigma_boresight_deg" if key else "boresight_deg"]
     la = sol["sigma_lever_arm_m" if key else "lever_arm_m"]
-    return np.array([b["roll"], b["pitch"], b["yaw"]] + [1000 * la[k] for k in "xyz"])
+    v = [b[k] for k in ("roll", "pitch", "yaw")] + [None if la[k] is None else 1000 * la[k]
+                                                    for k in "xyz"]
+    return np.array([np.nan if x is None else x for x in v], dtype=float)
 
 
 def _rotation_error(sol: dict, truth: dict) -> float:
@@ -48,69 +59,126 @@ def _rotation_error(sol: dict, truth: dict) -> float:
     return float(np.degrees(Rotation.from_matrix(r_est @ r_tru.T).magnitude()))
 
 
-def _summary(label: str, err: np.ndarray, sig: np.ndarray | None) -> None:
-    print(f"{label}")
-    print(f"  {'parameter':<10} {'unit':>4} {'bias':>9} {'SD':>9} {'RMS err':>9} "
-          f"{'mean σ':>9} {'RMS e/σ':>8} {'max|e/σ|':>8}")
-    for k, (name, unit) in enumerate(zip(PARAMS, UNITS, strict=True)):
-        e = err[:, k]
-        line = (f"  {name:<10} {unit:>4} {e.mean():+9.4f} {e.std(ddof=1):9.4f} "
-                f"{np.sqrt(np.mean(e**2)):9.4f}")
-        if sig is None:
-            line += f" {'—':>9} {'—':>8} {'—':>8}"
+def _one(run: int, kind: str, passes: int, rng: np.random.Generator,
+         build: tuple[float, float]) -> dict:
+    cfg = random_config(rng, kind, passes, build_tol_m=build[0], build_tol_deg=build[1])
+    params = PoolParams(ins_sigma_deg=(cfg.ins_attitude_noise_deg,) * 3,
+                        ins_tau_s=cfg.ins_noise_tau_s, build_tol_m=cfg.build_tol_m,
+                        build_tol_deg=cfg.build_tol_deg)
+    sim = simulate_pool_pass(cfg, seed=1000 + run)
+    t0 = time.perf_counter()
+    res = calibrate(sim["lidar"], sim["mbes"], sim["ins"], sim["setup"], sim["target"], params)
+    d = res.to_dict()
+    truth = _vector(sim["truth"])
+    out = {"kind": kind, "passes": passes, "seconds": time.perf_counter() - t0,
+           "soundings": len(sim["mbes"]["time"]), "undetermined": {}, "flagged": {}}
+    for key in ("seed", "joint"):
+        sol = d[key]
+        if sol is None:
+            continue
+        e = _vector(sol) - truth
+        out[key] = {"err": e, "rot": _rotation_error(sol, sim["truth"]),
+                    "lever": float(np.linalg.norm(e[3:]))}
+    out["sigma"] = _vector(d["joint"], "sigma")
+    out["undetermined"] = {"seed": set(res.seed.undetermined),
+                           "joint": set(res.joint.undetermined if res.joint else PARAMS)}
+    out["flagged"] = set(res.flagged)
+    return out
+
+
+def _fmt_set(names) -> str:
+    return ",".join(sorted(names, key=PARAMS.index)) or "-"
+
+
+def _group(label: str, runs: list[dict]) -> None:
+    if not runs:
+        return
+    print(f"\n{label}: {len(runs)} runs")
+    print(f"  {'':<28} {'patent method':>22} {'joint adjustment':>22}")
+    for what, unit in (("rot", "deg"), ("lever", "mm")):
+        for stat in ("max", "RMS"):
+            cells = []
+            for key in ("seed", "joint"):
+                v = np.array([r[key][what] for r in runs if key in r])
+                cells.append(v.max() if stat == "max" else np.sqrt(np.mean(v**2)))
+            name = "rotation error" if what == "rot" else "lever-arm error"
+            print(f"  {stat + ' ' + name + ' [' + unit + ']':<28} {cells[0]:>22.4f} "
+                  f"{cells[1]:>22.4f}")
+    print(f"  {'parameter':<10} {'RMS e/σ':>8} {'max|e/σ|':>9} {'RMS err':>10} "
+          f"{'mean σ':>10} {'undet. patent':>12} {'undet. joint':>13} {'flagged':>8}")
+    for k, name in enumerate(PARAMS):
+        z = np.array([r["joint"]["err"][k] / r["sigma"][k] for r in runs
+                      if name not in r["undetermined"]["joint"]])
+        e = np.array([r["joint"]["err"][k] for r in runs
+                      if name not in r["undetermined"]["joint"]])
+        s = np.array([r["sigma"][k] for r in runs if name not in r["undetermined"]["joint"]])
+        unit = "°" if k < 3 else "mm"
+        u_seed = sum(name in r["undetermined"]["seed"] for r in runs)
+        u_joint = sum(name in r["undetermined"]["joint"] for r in runs)
+        flag = sum(name in r["flagged"] for r in runs)
+        if len(z):
+            stats = (f"{np.sqrt(np.mean(z**2)):8.2f} {np.abs(z).max():9.2f} "
+                     f"{np.sqrt(np.mean(e**2)):8.4f}{unit:<2}{s.mean():8.4f}{unit:<2}")
         else:
-            z = e / sig[:, k]
-            line += (f" {sig[:, k].mean():9.4f} {np.sqrt(np.mean(z**2)):8.2f} "
-                     f"{np.abs(z).max():8.2f}")
-        print(line)
+            stats = f"{'—':>8} {'—':>9} {'—':>10} {'—':>10}"
+        print(f"  {name:<10} {stats} {u_seed:>12d} {u_joint:>13d} {flag:>8d}")
 
 
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--runs", type=int, default=12)
-    parser.add_argument("--ins-noise-deg", type=float, default=0.0)
-    parser.add_argument("--ins-sigma-deg", type=float, default=None)
+    parser.add_argument("--runs", type=int, default=40)
+    parser.add_argument("--seed", type=int, default=2026)
+    parser.add_argument("--build-tol", type=float, nargs=2, default=(0.002, 0.01),
+                        metavar=("M", "DEG"), help="build tolerance of the below-water "
+                        "blocks, simulated (uniform within ±) and given to the adjustment")
     args = parser.parse_args()
-    ins_sigma = args.ins_noise_deg if args.ins_sigma_deg is None else args.ins_sigma_deg
-    params = {"ins_sigma_roll_deg": ins_sigma, "ins_sigma_pitch_deg": ins_sigma,
-              "ins_sigma_heading_deg": ins_sigma, "ins_tau_s": 1.0}
-    print(f"simulated INS attitude noise {args.ins_noise_deg}° (τ = 1 s); INS σ given to "
-          f"the adjustment {ins_sigma}°")
-    rng = np.random.default_rng(2026)
-    err = {"seed": [], "joint": []}
-    sig, rot = [], {"seed": [], "joint": []}
-    print("pool calibration accuracy (per run: rotation error deg, |Δlever| mm; joint "
-          "normalised errors (est - true)/σ for roll pitch yaw x y z)")
-    print(f"{'run':>3} {'seed rot':>9} {'seed lev':>9} | {'joint rot':>9} {'joint lev':>9} | "
-          f"{'normalised joint errors':<41} {'s':>5}")
+    print(f"build tolerance ±{1000 * args.build_tol[0]:g} mm, ±{args.build_tol[1]:g}° "
+          "(simulated as-built errors uniform within it; the same given to the adjustment)")
+    rng = np.random.default_rng(args.seed)
+    print("pool calibration accuracy over randomised passes (rotation error deg, |Δlever| "
+          "mm; joint normalised errors (est − true)/σ for roll pitch yaw x y z)")
+    print(f"{'run':>3} {'kind':<8} {'p':>1} {'patent rot':>10} {'lev':>7} | {'joint rot':>9} "
+          f"{'lev':>6} | {'normalised joint errors':<41} | undetermined / flagged  {'s':>5}")
+    runs = []
     for run in range(args.runs):
-        ang = rng.uniform(-1.0, 1.0, 3)
-        lev = rng.uniform(-0.08, 0.08, 3)
-        cfg = PoolPassConfig(boresight_error_deg=tuple(ang), lever_error_m=tuple(lev),
-                             ins_attitude_noise_deg=args.ins_noise_deg)
-        sim = simulate_pool_pass(cfg, seed=100 + run)
-        t0 = time.perf_counter()
-        res = calibrate(sim["lidar"], sim["mbes"], sim["ins"], sim["setup"], sim["target"],
-                        params)
-        dt = time.perf_counter() - t0
-        d = res.to_dict()
-        truth = _vector(sim["truth"])
-        line = f"{run:>3}"
-        for key in ("seed", "joint"):
-            e = _vector(d[key]) - truth
-            err[key].append(e)
-            rot[key].append(_rotation_error(d[key], sim["truth"]))
-            line += f" {rot[key][-1]:9.4f} {np.linalg.norm(e[3:]):9.2f} |"
-        s = _vector(d["joint"], "sigma")
-        sig.append(s)
-        line += " " + " ".join(f"{v:+6.2f}" for v in err["joint"][-1] / s) + f" {dt:5.1f}"
-        print(line, flush=True)
-    print()
-    _summary(f"seed method ({args.runs} runs; no σ reported)", np.array(err["seed"]), None)
-    _summary(f"joint adjustment ({args.runs} runs)", np.array(err["joint"]), np.array(sig))
-    for key in ("seed", "joint"):
-        r = np.array(rot[key])
-        print(f"{key:>5}: rotation error mean {r.mean():.4f}° max {r.max():.4f}°")
+        kind, passes = PLAN[run % len(PLAN)]
+        r = _one(run, kind, passes, rng, tuple(args.build_tol))
+        runs.append(r)
+        z = r["joint"]["err"] / r["sigma"]
+        print(f"{run:>3} {kind:<8} {passes:>1} {r['seed']['rot']:10.4f} "
+              f"{r['seed']['lever']:7.2f} | {r['joint']['rot']:9.4f} {r['joint']['lever']:6.2f} "
+              f"| {' '.join('   nan' if not np.isfinite(v) else f'{v:+6.2f}' for v in z)} | "
+              f"{_fmt_set(r['undetermined']['joint'])} / {_fmt_set(r['flagged'])} "
+              f"{r['seconds']:5.1f}", flush=True)
+    two = [r for r in runs if r["passes"] == 2]
+    one = [r for r in runs if r["passes"] == 1]
+    _group("two-pass runs (all kinds)", two)
+    for kind in ("patent", "crossing", "mixed"):
+        _group(f"two-pass runs, {kind} target", [r for r in two if r["kind"] == kind])
+    _group("one-pass runs (all kinds)", one)
+    print("\ncriteria (issue #10):")
+    ok_rot = all(r["joint"]["rot"] <= ROT_MAX_DEG for r in two)
+    ok_lev = all(r["joint"]["lever"] <= LEVER_MAX_MM for r in two)
+    print(f"  two-pass: joint rotation error <= {ROT_MAX_DEG}° in every run: {ok_rot} "
+          f"({sum(r['joint']['rot'] <= ROT_MAX_DEG for r in two)}/{len(two)})")
+    print(f"  two-pass: joint lever-arm error <= {LEVER_MAX_MM} mm in every run: {ok_lev} "
+          f"({sum(r['joint']['lever'] <= LEVER_MAX_MM for r in two)}/{len(two)})")
+    zs = np.array([r["joint"]["err"] / r["sigma"] for r in two])
+    rms = np.sqrt(np.nanmean(zs**2, axis=0))
+    print(f"  two-pass: RMS e/σ per parameter {np.round(rms, 2).tolist()} in [0.7, 1.3]: "
+          f"{bool(np.all((rms >= 0.7) & (rms <= 1.3)))}; max |e/σ| "
+          f"{np.nanmax(np.abs(zs)):.2f} <= 4: {bool(np.nanmax(np.abs(zs)) <= 4)}")
+    declared = 0
+    for r in one:
+        e = r["joint"]["err"]
+        bad = {n for k, n in enumerate(PARAMS)
+               if abs(e[k]) > (ROT_MAX_DEG if k < 3 else LEVER_MAX_MM)}
+        meets = r["joint"]["rot"] <= ROT_MAX_DEG and r["joint"]["lever"] <= LEVER_MAX_MM
+        said = bad <= (r["undetermined"]["joint"] | r["flagged"])
+        declared += bool(meets or said)
+    print(f"  one-pass: meets the targets or declares (undetermined / flagged) every "
+          f"parameter off by more than {ROT_MAX_DEG}° / {LEVER_MAX_MM} mm: "
+          f"{declared}/{len(one)}")
 
 
 if __name__ == "__main__":

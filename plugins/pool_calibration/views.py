@@ -20,12 +20,22 @@ FACE_COLUMNS = {
     "rms_mbes_m": ("RMS MBES", "mm", 1000, "{:.2f}"),
     "normal_angle_deg": ("Normal Δ", "°", 1, "{:.3f}"),
     "used_for": ("Used for", "", 1, None),
+    "reference": ("Reference", "", 1, None),
+    "twin_de_m": ("Twin ΔE", "m", 1, "{:.3f}"), "twin_dn_m": ("Twin ΔN", "m", 1, "{:.3f}"),
+    "twin_du_m": ("Twin ΔU", "m", 1, "{:.3f}"),
 }
+TEXT_COLUMNS = ("face", "role", "water", "used_for", "reference")
 FACE_TIPS = {"RMS laser": "RMS distance of the face's laser points to their fitted plane",
              "RMS MBES": "RMS distance of the face's soundings to their fitted plane "
                          "(final values)",
              "Normal Δ": "angle between the laser and multibeam plane normals (final values)",
-             "Used for": "parameters this face determines"}
+             "Used for": "parameters this face carries in the joint adjustment (σ grows by "
+                         "more than 10 % without it)",
+             "Reference": "plane the soundings are compared with: 'own' = the face's own "
+                          "laser plane (it crosses the water), else the above-water twin "
+                          "whose laser plane is moved by the design translation",
+             "Twin ΔE": "design translation twin -> face, east", "Twin ΔN": "… north",
+             "Twin ΔU": "… up (the design height difference of the patent's step 4.2)"}
 
 #: Iteration table: stored column -> (header, unit, format).
 ITERATION_COLUMNS = {
@@ -90,7 +100,7 @@ class FaceTable(ColumnsTable):
                 values = np.asarray(faces[key])
                 cols[header] = values * scale if scale != 1 else values
             else:  # e.g. after Segment alone: same columns, blank until a run
-                cols[header] = np.full(n, "") if key == "used_for" else np.full(n, np.nan)
+                cols[header] = np.full(n, "") if key in TEXT_COLUMNS else np.full(n, np.nan)
             units[header], formats[header] = unit, fmt
         self.set_columns(cols, units, {k: v for k, v in formats.items() if v})
 
@@ -150,7 +160,11 @@ class ValuesTable(QTableWidget):
             seed = (result.get("seed") or {}).get(group, {}).get(key)
             coarse = (result.get("coarse") or {}).get(group, {}).get(key)
             delta = None if final is None or coarse is None else final - coarse
-            texts = (_fmt(final, digits), _fmt(sigma, digits), _fmt(seed, digits),
+            name = key if unit == "°" else f"lever_{key}"
+            undetermined = (result.get("undetermined") or {}).get(name)
+            flagged = (result.get("flagged") or {}).get(name)
+            texts = (_fmt(final, digits), "undetermined" if undetermined else
+                     _fmt(sigma, digits) + (" ⚑" if flagged else ""), _fmt(seed, digits),
                      _fmt(coarse, digits), _fmt(delta, digits, sign=True))
             for col, text in enumerate(texts):
                 item = QTableWidgetItem(text)
@@ -159,6 +173,10 @@ class ValuesTable(QTableWidget):
                     font = item.font()
                     font.setBold(True)
                     item.setFont(font)
+                if col == 1 and (undetermined or flagged):
+                    item.setForeground(QColor("#b00020"))
+                    item.setToolTip(f"not determined by the data: {undetermined}; the coarse "
+                                    "value is kept" if undetermined else flagged)
                 self.setItem(row, col, item)
 
     def clear_values(self) -> None:

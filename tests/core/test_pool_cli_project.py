@@ -17,7 +17,8 @@ from hydrosync_core.methods.pool_calibration.simulate import (
 )
 from hydrosync_core.project import Project
 
-SMALL = PoolPassConfig(beams=128, ping_rate_hz=8.0, laser_density_per_m2=800.0)
+SMALL = PoolPassConfig(beams=128, ping_rate_hz=8.0, laser_density_per_m2=800.0,
+                       target_kind="crossing")
 
 
 @pytest.fixture(scope="module")
@@ -117,3 +118,31 @@ def test_cli_ins_accuracy_widens_sigma_and_is_checked(files, tmp_path, capsys):
     bad = tmp_path / "bad.json"
     assert main(_args(paths, bad) + ["--ins-sigma", "-1", "0", "0"]) == 2
     assert "--ins-sigma" in capsys.readouterr().err and not bad.exists()
+
+
+def test_cli_exit_3_names_undetermined_parameters(tmp_path, capsys):
+    """A patent target whose design lacks the block tops: nothing determines the vertical
+    lever arm. The CLI finishes, writes the JSON (coarse value kept, σ null, the reason)
+    and exits 3 with one line naming the parameter; --help documents the code."""
+    sim = simulate_pool_pass(PoolPassConfig(beams=128, ping_rate_hz=8.0,
+                                            laser_density_per_m2=800.0), seed=3)
+    sim["target"] = dict(sim["target"], faces=[f for f in sim["target"]["faces"]
+                                               if not f["name"].endswith("_top")])
+    paths = write_pool_files(sim, tmp_path / "in")
+    out = tmp_path / "result.json"
+    capsys.readouterr()
+    assert main(_args(paths, out) + ["--build-tol-m", "0.001", "--build-tol-deg", "0.005"]) == 3
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "lever_z" in err[0] and "not determined" in err[0]
+    doc = json.loads(out.read_text())
+    assert "horizontal face" in doc["undetermined"]["lever_z"]
+    assert doc["lever_arm_m"]["z"] == pytest.approx(sim["setup"]["lever_arm_m"]["z"])
+    assert doc["joint"]["sigma_lever_arm_m"]["z"] is None
+    assert doc["build_tolerance"] == {"translation_m": 0.001, "rotation_deg": 0.005}
+    faces = {f["face"]: f for f in doc["faces"]}
+    assert faces["N1_dn_oblique"]["reference"] == "N1_up_oblique"
+    with pytest.raises(SystemExit):
+        main(["pool-calibrate", "--help"])
+    text = capsys.readouterr().out
+    assert "3 finished, but some parameters are not determined" in " ".join(text.split())
+    assert "--build-tol-m" in text and "--coarse-tol-deg" in text

@@ -18,6 +18,7 @@ import numpy as np
 
 from hydrosync_core.errors import InputError
 from hydrosync_core.methods.pool_calibration import georef
+from hydrosync_core.methods.pool_calibration.align import coarse_align
 from hydrosync_core.methods.pool_calibration.design import DesignFace, design_faces
 from hydrosync_core.methods.pool_calibration.params import PoolParams
 from hydrosync_core.methods.pool_calibration.planes import PlaneFit, fit_plane
@@ -27,6 +28,12 @@ from hydrosync_core.methods.pool_calibration.segment import (
     bbox_mask,
     segment_cloud,
     voxel_downsample,
+)
+from hydrosync_core.methods.pool_calibration.twins import (
+    Reference,
+    Twin,
+    pair_twins,
+    reference_planes,
 )
 from hydrosync_core.progress import check_cancel, report, sub_progress
 
@@ -48,6 +55,12 @@ class Segmentation:
     coarse: dict
     params: PoolParams
     warnings: list[str] = field(default_factory=list)
+    #: Below-water face -> its above-water twin; face -> reference plane (:mod:`.twins`).
+    twins: dict[str, Twin] = field(default_factory=dict)
+    refs: dict[str, Reference] = field(default_factory=dict)
+    #: Coarse setup aligned by the staged segmentation (:mod:`.align`); selects the points.
+    r_align: np.ndarray | None = None
+    lever_align: np.ndarray | None = None
 
 
 def as_params(params: PoolParams | Mapping | None) -> PoolParams:
@@ -86,16 +99,20 @@ def segment(lidar_enu, mbes: dict, ins: dict, setup: dict, target: dict,
                   min_points=10, max_points=p.max_points_per_face, cancel=cancel)
     # Laser: crop to the design box, voxel-downsample very large clouds, segment.
     report(progress, 0.0, f"cropping {len(lidar)} laser points")
-    lidar = lidar[bbox_mask(lidar, faces, p.crop_tol_m)]
+    lidar = lidar[bbox_mask(lidar, faces, p.laser_tol_m)]
     if len(lidar) > p.laser_voxel_above_points and p.laser_voxel_m > 0:
         lidar = voxel_downsample(lidar, p.laser_voxel_m)
     check_cancel(cancel)
-    lseg = segment_cloud(lidar, faces, water, "above", tol=p.crop_tol_m,
+    lseg = segment_cloud(lidar, faces, water, "above", tol=p.laser_tol_m,
                          ransac_m=p.ransac_laser_m, dbscan_eps=p.dbscan_laser_m,
-                         progress=sub_progress(progress, 0.05, 0.6), **seg_kw)
+                         progress=sub_progress(progress, 0.05, 0.5), **seg_kw)
     lpts = {n: lidar[s.indices] for n, s in lseg.items() if s.n >= p.min_points}
     planes = {n: fit_plane(v, roles[n].normal) for n, v in lpts.items()}
-    # Multibeam: georeference with the coarse setup, segment below water.
+    # Reference plane of each face: its own laser plane (crossing the water) or its
+    # above-water twin's, moved by the design translation (below water).
+    twins = pair_twins(faces, roles)
+    refs = reference_planes(faces, roles, planes, twins)
+    # Multibeam: georeference with the coarse setup, align in stages, segment below water.
     b, la = setup["boresight_deg"], setup["lever_arm_m"]
     r_m0 = georef.boresight_matrix(*np.deg2rad([b["roll"], b["pitch"], b["yaw"]]))
     lever0 = np.array([la["x"], la["y"], la["z"]], dtype=float)
@@ -104,21 +121,34 @@ def segment(lidar_enu, mbes: dict, ins: dict, setup: dict, target: dict,
         warnings.append(f"{ctx.dropped_pings} multibeam pings ({ctx.dropped_soundings} "
                         "soundings) fall in INS gaps or outside the INS span: dropped, "
                         "not interpolated")
-    pts = georef.georeference(ctx, r_m0, lever0)
-    # Coarse georeference: points may be off by crop_tol, so the polygons are shrunk by as
-    # much (the pool floor at a face's foot must not leak into the face).
-    mseg = segment_cloud(pts, faces, water, "below", tol=p.crop_tol_m,
-                         ransac_m=p.ransac_mbes_m, dbscan_eps=p.dbscan_mbes_m,
-                         progress=sub_progress(progress, 0.6, 1.0),
-                         **{**seg_kw, "margin": max(p.face_margin_m, p.crop_tol_m)})
+    if not refs:
+        raise InputError("target", "no design face has a reference plane: no face crossing "
+                         "the water and no below-water face with an above-water twin has "
+                         f"enough laser points (min {p.min_points}); check the frames "
+                         "and the target design")
+    tol = p.crop_tol_m
+    align = coarse_align(ctx, faces, roles, refs, water, r_m0, lever0,
+                         tolerances=(tol, tol / 2, tol / 4), water_margin=p.water_margin_m,
+                         dbscan_eps=p.dbscan_mbes_m, min_points=p.min_points,
+                         max_points=p.max_points_per_face, huber_m=p.huber_m,
+                         progress=sub_progress(progress, 0.5, 0.85), cancel=cancel)
+    # Faces as found around the aligned setup (what Segment shows; the solution re-selects
+    # the points with the tight tolerances).
+    pts = georef.georeference(ctx, align.r_m, align.lever)
+    mseg = segment_cloud(pts, faces, water, "below", tol=tol / 4,
+                         ransac_m=max(p.refine_ransac_m, tol / 16),
+                         dbscan_eps=p.dbscan_mbes_m,
+                         progress=sub_progress(progress, 0.85, 1.0),
+                         **{**seg_kw, "margin": max(p.face_margin_m, tol / 4)})
     mfaces = {n: s.indices for n, s in mseg.items()}
-    usable = [n for n in planes if len(mfaces.get(n, ())) >= p.min_points]
+    usable = [n for n in refs if len(mfaces.get(n, ())) >= p.min_points]
     if not usable:
-        raise InputError("target", "no design face has enough points in both the laser and "
-                         f"the multibeam cloud (min {p.min_points}): check the frames, "
-                         "the target design and the coarse setup")
+        raise InputError("target", "no design face with a reference plane has enough "
+                         f"multibeam points (min {p.min_points}): check the frames, the "
+                         "target design and the coarse setup")
     return Segmentation({f.name: f for f in faces}, roles, water, lpts, planes, lseg, ctx,
-                        mfaces, r_m0, lever0, setup, p, warnings)
+                        mfaces, r_m0, lever0, setup, p, warnings, twins, refs, align.r_m,
+                        align.lever)
 
 
 def calibrate(lidar_enu, mbes: dict, ins: dict, setup: dict, target: dict,

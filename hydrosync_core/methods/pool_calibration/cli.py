@@ -33,6 +33,24 @@ def _summary(result) -> str:
     return text + "".join(f"\nwarning: {w}" for w in result.warnings)
 
 
+EPILOG = ("exit codes: 0 success; 2 bad input (one line on stderr naming the file and what "
+          "is wrong); 3 finished, but some parameters are not determined by the data (one "
+          "line on stderr naming them; in the JSON under 'undetermined' with the reason; "
+          "their coarse values are kept); 130 interrupted; 1 anything else.")
+
+
+def _exit_code(result) -> int:
+    """3 with one line on stderr naming the undetermined parameters, else 0."""
+    import sys
+
+    if not result.undetermined:
+        return 0
+    names = ", ".join(result.undetermined)
+    print(f"pool-calibrate: not determined by the data (coarse values kept): {names}",
+          file=sys.stderr)
+    return 3
+
+
 def cmd_pool(args: argparse.Namespace) -> int:
     from hydrosync_core.cli.terminal import TerminalProgress
 
@@ -57,7 +75,7 @@ def cmd_pool(args: argparse.Namespace) -> int:
             project.save()
             out.publish()
         print(_summary(result))
-        return 0
+        return _exit_code(result)
     missing = [f"--{n}" for n in ("lidar", "mbes", "ins", "setup", "target", "json")
                if not getattr(args, n)]
     if missing:
@@ -78,7 +96,7 @@ def cmd_pool(args: argparse.Namespace) -> int:
         out.write_json(args.json, result.to_dict())
         out.publish()
     print(_summary(result))
-    return 0
+    return _exit_code(result)
 
 
 def register(sub: argparse._SubParsersAction) -> None:
@@ -87,7 +105,7 @@ def register(sub: argparse._SubParsersAction) -> None:
         help="multibeam boresight and lever arm from a pool target",
         description="Pool calibration (patent CN 105425246 B): the multibeam boresight and "
         "lever arm relative to the INS, against laser-scanned target faces. Give the five files "
-        "and --json, or a project file holding raw/pool/*.")
+        "and --json, or a project file holding raw/pool/*.", epilog=EPILOG)
     p.add_argument("project", nargs="?", help="project file (.h5) holding raw/pool/*")
     p.add_argument("--lidar", help="laser points x,y,z (CSV/PLY/LAS/LAZ, target ENU)")
     p.add_argument("--mbes", help="multibeam soundings CSV time,x,y,z (sensor frame)")

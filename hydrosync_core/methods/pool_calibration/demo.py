@@ -1,12 +1,26 @@
-"""Demo data for the Pool Calibration plugin: a simulated pass written into a project."""
+"""Demo data for the Pool Calibration plugin: a simulated pass written into a project.
+
+The demo target is the patent's own kind (CN 105425246 B, step 1): a central wall crossing
+the water and triangular blocks on both sides, each existing as an above-water block (seen
+by the laser scanner) and a below-water twin of the same shape and orientation at design
+heights (seen by the multibeam).
+"""
 
 from __future__ import annotations
 
 import numpy as np
 
 from hydrosync_core.methods.pool_calibration.simulate import PoolPassConfig, simulate_pool_pass
+from hydrosync_core.methods.pool_calibration.simulate_target import build_target
 from hydrosync_core.progress import report
 from hydrosync_core.project.vessel import set_sensor
+
+#: Three passes at 4, 5.5 and 7 m (headings +3°, -3°, 0°), a multibeam at 256 beams and
+#: 20 Hz, along a patent target with three block pairs on each side of the wall.
+DEMO_CONFIG = PoolPassConfig(
+    target_kind="patent", ranges_m=(4.0, 5.5, 7.0), headings_deg=(3.0, -3.0, 0.0),
+    ping_rate_hz=20.0,
+    target=build_target(kind="patent", blocks_per_side=3, block_depth=1.2, block_length=1.3))
 
 
 def fill_demo(project, seed: int = 0, progress=None,
@@ -16,7 +30,7 @@ def fill_demo(project, seed: int = 0, progress=None,
     *config* (optional) overrides the simulation settings (tests use smaller data sets).
     """
     report(progress, 0.0, "simulating a pool calibration pass")
-    sim = simulate_pool_pass(config, seed=seed)
+    sim = simulate_pool_pass(config or DEMO_CONFIG, seed=seed)
     project.put("raw/pool/lidar", sim["lidar"],
                 attrs={"frame": "target ENU", "units": "m", "source": "simulated"})
     project.put_table("raw/pool/mbes", {k: np.asarray(v) for k, v in sim["mbes"].items()},
@@ -31,4 +45,4 @@ def fill_demo(project, seed: int = 0, progress=None,
     set_sensor(project, "multibeam", [la["x"], la["y"], la["z"]], angles_deg=b,
                note="coarse values (installation drawing)")
     report(progress, 1.0, "pool demo data written")
-    return sim["truth"]
+    return {k: sim["truth"][k] for k in ("boresight_deg", "lever_arm_m")}

@@ -1,69 +1,67 @@
 """Joint least-squares adjustment of the boresight angles and lever arm (beyond the seed).
 
-Unknowns: a small rotation δ (rad, about the body FRD axes, applied as
-``R_m <- Rot(δ)·R_m``) and a lever-arm change Δl (m, body FRD). Observations: the
-signed distances of the multibeam points of each face to that face's reference plane
-(the laser plane of the same face, or for a below-water horizontal face its design plane
-raised by the as-built height offset measured by the laser on the above-water tops,
-i.e. the seed's design height difference of step 4.2)::
+Unknowns: the boresight Euler angles θ = (roll, pitch, yaw) of ``R_m = Rz·Ry·Rx`` (rad; an
+undetermined angle is then held exactly at its coarse value) and the lever arm l (m, body
+FRD); plus, for every below-water body whose faces are compared with their above-water
+twin, its as-built displacement (δt m, δω rad about the body's centroid q) with the build
+tolerance as prior. Observations: the signed distances of the multibeam points of each face
+to that face's reference plane (:mod:`.twins`: its own laser plane, or its twin's moved by
+the design translation)::
 
-    r_i = n_k · p_i - d_k,   p_i = o + A_i (R_m x_i + l)            (A_i = C·R_b)
-    ∂r_i/∂Δl = a_i = A_iᵀ n_k,   ∂r_i/∂δ = (R_m x_i) × a_i
+    r_i = n_k · p_i - d_k + [-n_k, n_k × (p_i - q)] (δt, δω),   p_i = o + A_i (R_m x_i + l)
+    ∂r_i/∂l = a_i = A_iᵀ n_k,   ∂r_i/∂θ_j = ((R_m x_i) × a_i) · ω_j     (A_i = C·R_b)
+
+with ω_roll = Rz·Ry·e_x, ω_pitch = Rz·e_y, ω_yaw = e_z (∂R_m/∂θ_j = [ω_j]× R_m). The
+displacements' prior ``diag(σ_t² I, σ_ω² I)`` (σ = tol/√3, a rectangular tolerance) is a
+stochastic constraint: ``σ0² C⁻¹`` added to their block of the normal matrix. So the
+blocks' offsets weigh only as much as the build allows (block tops at different depths do
+not pull roll and pitch) and ``σ0² [N_aug⁻¹]_θθ`` carries the build tolerance.
 
 Gauss-Newton with Huber iteratively reweighted least squares (outliers left by the
-segmentation get small weights). Covariance ``σ0² (JᵀWJ)⁻¹`` with ``σ0²`` the weighted
-residual variance, plus the part propagated from the reference planes' own fit
-uncertainty (laser TLS planes; the as-built height offset of the design planes). σ and
-correlations are reported for the (roll, pitch, yaw) Euler angles of the boresight
-(through the numeric Jacobian of the Euler angles with respect to δ) and the three
-lever-arm components. A parameter whose column of the normal matrix is (nearly) in its
-null space, or that the caller names in ``fix``, is held and reported as undetermined.
+segmentation get small weights). Covariance ``σ0² [N_aug⁻¹]_θθ``, plus the part propagated
+from the laser reference planes' own fit uncertainty (faces sharing a laser plane — a
+crossing face and the twins moved from it — share its error), plus the INS accuracy.
 
-Honest σ under correlated errors. ``σ0² (JᵀWJ)⁻¹`` assumes independent soundings; real
+Undetermined parameters. A parameter whose column of the normal matrix is (nearly) in its
+null space, that the caller names in ``fix`` (with a reason), or whose σ from the data
+exceeds the accuracy of the coarse setup, is held at its coarse value and reported as
+undetermined with the reason; the coarse error of every held parameter is propagated into
+the σ of the free ones.
+
+Honest σ under correlated errors. ``σ0² N⁻¹`` assumes independent soundings; real
 errors are shared by the soundings of one ping and by neighbouring pings (INS attitude
 and position noise, sound speed, refraction), and then it is optimistic. So the formal
 covariance is checked against the block (cluster-robust) sandwich estimator
 ``N⁻¹ (B/(B-1) Σ_b g_b g_bᵀ) N⁻¹`` with ``N = JᵀWJ`` and ``g_b = Σ_{i∈b} w_i r̃_i J_i`` the
 score summed over a block ``b`` of consecutive pings (``block_s`` seconds of ping time,
 default 2 s; one ping when 0). r̃ are the residuals less, per face, their weighted fit by
-a plane error (two tilts and an offset): that pattern is the reference plane's own error,
-already propagated by the reference-plane term, and would otherwise be counted twice
-(it alone gave factors of 3-5 on yaw and lever x on error-free INS data). For independent
-soundings sandwich and formal agree; for errors correlated within a block the sandwich
-grows with the block's effective sample size. Each free parameter's variance is
-multiplied by ``F_k = max(1, [sandwich]_kk / [σ̃0² N⁻¹]_kk)`` (``JointFit.variance_factor``,
-δ axes; rows and columns scaled by √F_k so correlations keep the formal structure), never
-reduced. The reference-plane term is added after.
+a plane error (two tilts and an offset): that pattern is the reference plane's own error
+(or its build displacement), already in the covariance, and would otherwise be counted
+twice. Each free parameter's data variance is multiplied by
+``F_k = max(1, [sandwich]_kk / [σ̃0² N⁻¹]_kk)`` (``JointFit.variance_factor``), never
+reduced. The sandwich is itself a noisy estimate when few blocks see the faces that carry a
+parameter (yaw, lever x on a short pass). The INS attitude accuracy is an input
+(``ins_sigma_rad``, ``ins_tau_s``), propagated a priori by :mod:`.ins_cov` (zero by
+default: exact INS), since the residuals cannot reveal the part of an INS error that the
+boresight absorbs.
 
-Monte-Carlo (``benchmarks/bench_pool_accuracy.py``, 16-24 simulated passes, exact INS):
-the normalised errors (estimate - truth) / σ have an RMS of 0.65-1.1 per parameter (lever
-z is conservative: its σ0 is pooled over faces while the below-water top it rests on is
-less noisy). Limits: the check cannot see errors that the parameters absorb (e.g. the
-mean INS roll error over the pass is indistinguishable from boresight roll) nor
-correlation longer than a block; with simulated INS attitude errors (0.01°, Gauss-Markov
-τ = 1 s) the RMS of error/σ improves from up to 3.5 (formal) to 1.0-1.9 only, because
-yaw and lever x rest on the few seconds in which the oblique faces are in view (few
-informative blocks). Hence the INS attitude accuracy is an input (``ins_sigma_rad``,
-``ins_tau_s``; pool params ``ins_sigma_roll_deg`` ... ``ins_tau_s``), propagated a priori
-by :mod:`.ins_cov` and added to the covariance (zero by default: exact INS).
-
-A former bias of up to ±0.017° in roll (≈5σ, different on every run: the demo's −44.187°
-± 0.003° against −44.200°) came from the segmentation, not from this model: the final
-face points were the inliers of a ±3 cm band around open3d's (multi-threaded, hence not
-repeatable) RANSAC plane, and a slightly tilted RANSAC plane cut the noise asymmetrically
-at one end of the wall. The final selection is now a symmetric ±k·σ band around the
-face's own least-squares plane (``segment.band_refit``, ``refine_band_sigma`` = 4).
+A former bias of up to ±0.017° in roll came from the segmentation (a RANSAC band cut
+asymmetrically), not from this model: the final selection is a symmetric ±k·σ band around
+the face's own least-squares plane (``segment.band_refit``, ``refine_band_sigma`` = 4).
 """
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
-from scipy.spatial.transform import Rotation
 
 from hydrosync_core.methods.pool_calibration.block_sigma import block_factors
-from hydrosync_core.methods.pool_calibration.georef import GeorefContext, boresight_angles
+from hydrosync_core.methods.pool_calibration.georef import (
+    GeorefContext,
+    boresight_angles,
+    boresight_matrix,
+)
 from hydrosync_core.methods.pool_calibration.ins_cov import ins_covariance
 from hydrosync_core.methods.pool_calibration.planes import PlaneFit
 from hydrosync_core.progress import check_cancel
@@ -73,7 +71,8 @@ NAMES = ("roll", "pitch", "yaw", "lever_x", "lever_y", "lever_z")
 
 @dataclass(frozen=True)
 class JointFit:
-    """Joint solution: boresight matrix, lever (body FRD, m), covariance of NAMES order."""
+    """Joint solution: boresight matrix, lever (body FRD, m), covariance of NAMES order
+    (Euler angles rad, lever m; rows/columns of undetermined parameters NaN)."""
 
     r_m: np.ndarray
     lever: np.ndarray
@@ -85,10 +84,26 @@ class JointFit:
     fixed: tuple[str, ...]
     residual_rms: dict[str, float]
     variance_factor: np.ndarray | None = None
+    #: Parameters not determined by the data -> the reason (held at their start value).
+    undetermined: dict[str, str] = field(default_factory=dict)
 
 
-def _system(ctx: GeorefContext, obs: dict[str, tuple[np.ndarray, PlaneFit]], r_m, lever):
-    """Residuals (m), Jacobian (n, 6) and face labels of all observations."""
+def _axes(theta: np.ndarray) -> np.ndarray:
+    """Columns ω_roll, ω_pitch, ω_yaw (body FRD) with ∂R_m/∂θ_k = [ω_k]× R_m for
+    R_m = Rz(yaw)·Ry(pitch)·Rx(roll)."""
+    _, pitch, yaw = theta
+    cy, sy, cp, sp = np.cos(yaw), np.sin(yaw), np.cos(pitch), np.sin(pitch)
+    return np.array([[cy * cp, -sy, 0.0], [sy * cp, cy, 0.0], [-sp, 0.0, 1.0]])
+
+
+def _system(ctx: GeorefContext, obs: dict[str, tuple[np.ndarray, PlaneFit]], r_m, lever,
+            theta=None):
+    """Residuals (m), Jacobian (n, 6) and face labels of all observations.
+
+    Columns: Euler angles (roll, pitch, yaw) of R_m (rad) when *theta* is given, else small
+    rotations about the body axes; then the lever arm (m).
+    """
+    w = np.eye(3) if theta is None else _axes(theta)
     res, jac, lab = [], [], []
     for name, (idx, plane) in obs.items():
         p = ctx.ping[idx]
@@ -96,38 +111,92 @@ def _system(ctx: GeorefContext, obs: dict[str, tuple[np.ndarray, PlaneFit]], r_m
         a = np.einsum("nji,j->ni", ctx.rot[p], plane.normal)      # A_iᵀ n
         pts = ctx.origin[p] + np.einsum("nij,nj->ni", ctx.rot[p], y + lever)
         res.append(pts @ plane.normal - plane.d)
-        jac.append(np.hstack([np.cross(y, a), a]))
+        jac.append(np.hstack([np.cross(y, a) @ w, a]))
         lab.append(np.full(len(idx), name, dtype=object))
     return np.concatenate(res), np.vstack(jac), np.concatenate(lab)
 
 
-def _reference_cov(ctx, obs, r_m, lever, free, weights, n_inv) -> np.ndarray:
-    """Covariance added by the reference planes' own uncertainty (free parameters).
+def _points(ctx, idx, r_m, lever):
+    p = ctx.ping[idx]
+    return ctx.origin[p] + np.einsum("nij,nj->ni", ctx.rot[p], ctx.x_m[idx] @ r_m.T + lever)
+
+
+def _build_groups(obs, refs, build_sigma) -> tuple[dict, np.ndarray]:
+    """Build-error groups (below-water body, twin body) -> index, and the prior σ (6,)."""
+    sig = np.array([build_sigma[0]] * 3 + [build_sigma[1]] * 3, dtype=float)
+    if refs is None or not np.any(sig > 0):
+        return {}, sig
+    groups: dict = {}
+    for name in obs:
+        ref = refs.get(name)
+        if ref is not None and ref.group is not None and ref.group not in groups:
+            groups[ref.group] = len(groups)
+    return groups, sig
+
+
+def _build_columns(ctx, obs, refs, groups, sig, r_m, lever) -> np.ndarray:
+    """(n, 6G) derivatives of the residuals w.r.t. each group's as-built displacement.
+
+    The faces of one below-water body share its rigid error relative to the twin body,
+    translation δt and rotation δω about the body's centroid q: the residual of a point p of
+    a face with normal n changes by ``[-n, n × (p - q)] (δt, δω)``. Columns whose prior σ is
+    zero are left at zero.
+    """
+    n_obs = sum(len(i) for i, _ in obs.values())
+    out = np.zeros((n_obs, 6 * len(groups)))
+    start = 0
+    for name, (idx, plane) in obs.items():
+        ref = refs.get(name) if refs else None
+        sl = slice(start, start + len(idx))
+        start += len(idx)
+        if ref is None or ref.group not in groups:
+            continue
+        g = groups[ref.group]
+        pts = _points(ctx, idx, r_m, lever)
+        n = plane.normal
+        block = np.hstack([-np.tile(n, (len(idx), 1)), np.cross(n, pts - ref.pivot)])
+        out[sl, 6 * g:6 * g + 6] = block * (sig > 0)
+    return out
+
+
+def _reference_cov(ctx, obs, r_m, lever, jac_aug, weights, g_theta, refs=None) -> np.ndarray:
+    """Covariance of the free parameters added by the laser reference planes' own fit.
 
     A plane perturbed by tilts (α, β) about its in-plane axes and an offset γ changes the
     residuals by ``B = [a1·(p - c), a2·(p - c), -1]``; the solution moves by
-    ``-N⁻¹ JᵀW B (α, β, γ)``, so each face adds ``M C_plane Mᵀ`` with ``M = N⁻¹ JᵀW B``.
+    ``-G JᵀW B (α, β, γ)`` with ``G`` the parameters' rows of the inverse (augmented) normal
+    matrix. Faces whose reference is the same laser plane (a face crossing the water, the
+    twins moved from it) share (α, β, γ): their ``M = G JᵀW B`` are summed per laser plane
+    before ``M C_plane Mᵀ`` (c is the moved centroid: a translated copy keeps the tilt about
+    its own centroid).
     """
-    out = np.zeros((int(free.sum()),) * 2)
+    k = g_theta.shape[0]
+    per_src: dict[str, tuple[np.ndarray, np.ndarray]] = {}
     start = 0
-    for _name, (idx, plane) in obs.items():
-        sub = {_name: (idx, plane)}
-        _, jac, _ = _system(ctx, sub, r_m, lever)
-        w = weights[start:start + len(idx)]
+    for name, (idx, plane) in obs.items():
+        sl = slice(start, start + len(idx))
         start += len(idx)
         if plane.axes is None:
             continue
-        p = ctx.ping[idx]
-        pts = ctx.origin[p] + np.einsum("nij,nj->ni", ctx.rot[p], ctx.x_m[idx] @ r_m.T + lever)
-        rel = pts - plane.centroid
-        b = np.column_stack([rel @ plane.axes[:, 1], rel @ plane.axes[:, 2], -np.ones(len(idx))])
-        m = n_inv @ (jac[:, free].T @ (b * w[:, None]))
-        out += m @ plane.covariance() @ m.T
+        jw = jac_aug[sl] * weights[sl, None]
+        rel = _points(ctx, idx, r_m, lever) - plane.centroid
+        b = np.column_stack([rel @ plane.axes[:, 1], rel @ plane.axes[:, 2],
+                             -np.ones(len(idx))])
+        ref = refs.get(name) if refs else None
+        src = ref.source if ref is not None else name
+        m = g_theta @ (jw.T @ b)
+        old = per_src.get(src)
+        per_src[src] = (m if old is None else old[0] + m, plane.covariance())
+    out = np.zeros((k, k))
+    for m, c in per_src.values():
+        out += m @ c @ m.T
     return out
 
 
 def euler_jacobian(r_m: np.ndarray, h: float = 1e-7) -> np.ndarray:
     """d(roll, pitch, yaw)/dδ at δ = 0 for ``R = Rot(δ)·r_m`` (3, 3), numeric."""
+    from scipy.spatial.transform import Rotation
+
     base = np.array(boresight_angles(r_m))
     out = np.zeros((3, 3))
     for k in range(3):
@@ -138,80 +207,173 @@ def euler_jacobian(r_m: np.ndarray, h: float = 1e-7) -> np.ndarray:
     return out
 
 
-def adjust(ctx: GeorefContext, obs: dict[str, tuple[np.ndarray, PlaneFit]], r_m0: np.ndarray,
-           lever0: np.ndarray, *, huber_m: float = 0.03, max_iter: int = 30,
-           tol: float = 1e-9, cond_max: float = 1e10, fix: tuple[str, ...] = (),
-           cancel=None, block_s: float = 2.0,
-           ins_sigma_rad: tuple[float, float, float] = (0.0, 0.0, 0.0),
-           ins_tau_s: float = 1.0) -> JointFit:
-    """Gauss-Newton / IRLS solution from the start values (r_m0, lever0).
+def _augmented(jf, bcols, weights, sigma0_sq, prior_sig):
+    """Normal matrix of (free parameters, build displacements) with the build prior."""
+    a = np.hstack([jf, bcols])
+    normal = a.T @ (a * weights[:, None])
+    if bcols.shape[1]:
+        k = jf.shape[1]
+        prior = np.tile(prior_sig, bcols.shape[1] // 6)
+        diag = np.where(prior > 0, sigma0_sq / np.maximum(prior, 1e-300) ** 2, 1.0)
+        normal[k:, k:] += np.diag(diag)
+    return a, normal
 
-    *fix* names parameters (of NAMES) held at their start values. *block_s* (s) is the
-    ping-time block of the cluster-robust variance factor (see the module docstring).
-    *ins_sigma_rad* (roll, pitch, heading 1-σ, rad) and *ins_tau_s* (s) describe the INS
-    attitude accuracy propagated by :func:`~.ins_cov.ins_covariance` (zero: not added).
-    """
-    r_m, lever = r_m0.copy(), np.asarray(lever0, float).copy()
-    n_obs = sum(len(i) for i, _ in obs.values())
-    if n_obs < 6:
-        raise ValueError("fewer than 6 multibeam points on reference planes")
-    # Observability: scaled normal matrix at the start; weak directions are fixed.
-    _, jac, _ = _system(ctx, obs, r_m, lever)
-    scale = np.linalg.norm(jac, axis=0)
-    scale[scale == 0] = 1.0
-    js = jac / scale
-    w, v = np.linalg.eigh(js.T @ js)
-    free = np.array([n not in fix for n in NAMES])
-    for k in np.flatnonzero(w < w.max() / cond_max):
-        free[np.argmax(np.abs(v[:, k]))] = False
-    fixed = tuple(n for n, f in zip(NAMES, free, strict=True) if not f)
-    weights = None
-    converged, it = False, 0
+
+def _gauss_newton(ctx, obs, theta, free, huber_m, max_iter, tol, cancel, refs=None,
+                  groups=None, prior_sig=None):
+    """IRLS Gauss-Newton on the free parameters and the build displacements (with their
+    prior); returns theta, weights, iterations, converged, the displacements and σ0²."""
+    theta = theta.copy()
+    groups = groups or {}
+    nb = 6 * len(groups)
+    disp = np.zeros(nb)
+    weights, converged, it, sigma0_sq = None, False, 0, 1.0
     for it in range(1, max_iter + 1):
         check_cancel(cancel)
-        res, jac, _ = _system(ctx, obs, r_m, lever)
+        r_m = boresight_matrix(*theta[:3])
+        res, jac, _ = _system(ctx, obs, r_m, theta[3:], theta[:3])
+        bcols = _build_columns(ctx, obs, refs, groups, prior_sig, r_m, theta[3:]) \
+            if nb else np.zeros((len(res), 0))
+        res = res + bcols @ disp
         scale_r = 1.4826 * np.median(np.abs(res - np.median(res)))
         k = max(huber_m, 2.0 * scale_r) if it > 1 else 10 * huber_m
         weights = np.minimum(1.0, k / np.maximum(np.abs(res), 1e-12))     # Huber weights
-        jf = jac[:, free]
-        step_f = np.linalg.solve(jf.T @ (jf * weights[:, None]), -jf.T @ (weights * res))
-        step = np.zeros(6)
-        step[free] = step_f
-        r_m = Rotation.from_rotvec(step[:3]).as_matrix() @ r_m
-        lever = lever + step[3:]
+        sigma0_sq = max(float(np.sum(weights * res**2) / max(1, len(res) - free.sum())),
+                        1e-12)
+        if not free.any() and not nb:
+            converged = True
+            break
+        a, normal = _augmented(jac[:, free], bcols, weights, sigma0_sq, prior_sig)
+        rhs = -a.T @ (weights * res)
+        if nb:
+            # The prior pulls the displacements towards zero.
+            prior = np.tile(prior_sig, len(groups))
+            rhs[-nb:] -= np.where(prior > 0, sigma0_sq / np.maximum(prior, 1e-300) ** 2,
+                                  0.0) * disp
+        step = np.linalg.solve(normal, rhs)
+        theta[free] += step[:int(free.sum())]
+        disp += step[int(free.sum()):]
         if np.max(np.abs(step)) < tol:
             converged = True
             break
-    res, jac, lab = _system(ctx, obs, r_m, lever)
-    jf = jac[:, free]
-    normal = jf.T @ (jf * weights[:, None])
-    dof = max(1, len(res) - int(free.sum()))
-    sigma0_sq = float(np.sum(weights * res**2) / dof)
-    n_inv = np.linalg.inv(normal)
-    factor = block_factors(ctx, obs, jf, res, weights, n_inv, block_s, r_m, lever)
-    root = np.sqrt(factor)
-    # Formal covariance σ0² N⁻¹, inflated by the block-sandwich factors, + reference planes.
-    cov_f = sigma0_sq * n_inv * np.outer(root, root) + \
-        _reference_cov(ctx, obs, r_m, lever, free, weights, n_inv) + \
-        ins_covariance(ctx, obs, r_m, lever, jf, weights, n_inv, np.asarray(ins_sigma_rad),
-                       ins_tau_s)
-    cov_d = np.zeros((6, 6))
-    cov_d[np.ix_(free, free)] = cov_f
-    # Propagate δ -> Euler angles (roll, pitch, yaw).
-    t = np.eye(6)
-    t[:3, :3] = euler_jacobian(r_m)
-    cov = t @ cov_d @ t.T
+    return theta, weights, it, converged, disp, sigma0_sq
+
+
+def adjust(ctx: GeorefContext, obs: dict[str, tuple[np.ndarray, PlaneFit]], r_m0: np.ndarray,
+           lever0: np.ndarray, *, huber_m: float = 0.03, max_iter: int = 30,
+           tol: float = 1e-9, cond_max: float = 1e10, fix: dict | tuple = (),
+           cancel=None, block_s: float = 2.0,
+           ins_sigma_rad: tuple[float, float, float] = (0.0, 0.0, 0.0),
+           ins_tau_s: float = 1.0, refs: dict | None = None,
+           build_sigma: tuple[float, float] = (0.0, 0.0),
+           coarse: np.ndarray | None = None,
+           coarse_sigma: tuple[float, float] | None = None,
+           covariance: bool = True) -> JointFit:
+    """Gauss-Newton / IRLS solution from the start values (r_m0, lever0).
+
+    *fix* names parameters (of NAMES; a dict maps them to the reason) held at their start
+    values. A parameter whose column of the scaled normal matrix is (nearly) in its null
+    space is held too. *block_s* (s) is the ping-time block of the cluster-robust variance
+    factor (module docstring). *ins_sigma_rad* (roll, pitch, heading 1-σ, rad) and
+    *ins_tau_s* (s) describe the INS attitude accuracy propagated by
+    :func:`~.ins_cov.ins_covariance` (zero: not added). *refs* (face -> ``twins.Reference``)
+    and *build_sigma* (σ_t m, σ_ω rad) propagate the build tolerance of the twins.
+    *coarse* (6: Euler rad, lever m) and *coarse_sigma* (σ rad, σ m: the accuracy of the
+    coarse setup): a free parameter whose σ from the data exceeds its coarse σ is not
+    determined by the data; it is reset to its coarse value and held, and the coarse error
+    of every held parameter is propagated into the σ of the others. With
+    ``covariance=False`` only the solution is computed.
+    """
+    theta = np.array([*boresight_angles(r_m0), *np.asarray(lever0, float)])
+    n_obs = sum(len(i) for i, _ in obs.values())
+    if n_obs < 6:
+        raise ValueError("fewer than 6 multibeam points on reference planes")
+    undetermined = dict(fix) if isinstance(fix, dict) else \
+        {n: "held by the caller" for n in fix}
+    free = np.array([n not in undetermined for n in NAMES])
+    # Observability: scaled normal matrix at the start; null directions are held.
+    _, jac, _ = _system(ctx, obs, r_m0, theta[3:], theta[:3])
+    while free.any():
+        js = jac[:, free] / np.maximum(np.linalg.norm(jac[:, free], axis=0), 1e-300)
+        w, v = np.linalg.eigh(js.T @ js)
+        if w[0] >= w[-1] / cond_max:
+            break
+        k = np.flatnonzero(free)[np.argmax(np.abs(v[:, 0]))]
+        free[k] = False
+        undetermined[NAMES[k]] = ("the pass geometry does not change any point-to-plane "
+                                  "distance with it (singular normal matrix)")
+    c_sig = None if coarse_sigma is None else np.array([coarse_sigma[0]] * 3 +
+                                                       [coarse_sigma[1]] * 3)
+    if coarse is not None:
+        for k in np.flatnonzero(~free):
+            theta[k] = coarse[k]
+    groups, prior_sig = _build_groups(obs, refs, build_sigma)
+    while True:
+        theta, weights, it, converged, disp, sigma0_sq = _gauss_newton(
+            ctx, obs, theta, free, huber_m, max_iter, tol, cancel, refs, groups, prior_sig)
+        r_m, lever = boresight_matrix(*theta[:3]), theta[3:].copy()
+        res, jac, lab = _system(ctx, obs, r_m, lever, theta[:3])
+        bcols = _build_columns(ctx, obs, refs, groups, prior_sig, r_m, lever) \
+            if groups else np.zeros((len(res), 0))
+        res = res + bcols @ disp
+        if not covariance:
+            cov = np.full((6, 6), np.nan)
+            factor = np.ones(int(free.sum()))
+            break
+        jf = jac[:, free]
+        kf = int(free.sum())
+        normal = jf.T @ (jf * weights[:, None])
+        n_inv = np.linalg.inv(normal)
+        # Augmented system (free parameters + as-built displacements with their prior):
+        # σ0² [N_aug⁻¹]_θθ holds the data noise and the build tolerance.
+        a_aug, n_aug = _augmented(jf, bcols, weights, sigma0_sq, prior_sig)
+        n_aug_inv = np.linalg.inv(n_aug)
+        g_theta = n_aug_inv[:kf]
+        factor = block_factors(ctx, obs, jf, res, weights, n_inv, block_s, r_m, lever)
+        root = np.sqrt(factor)
+        # Formal σ0² N_aug⁻¹; its data part σ0² N⁻¹ inflated by the block-sandwich factors;
+        # + laser reference planes and INS accuracy.
+        cov_f = sigma0_sq * n_aug_inv[:kf, :kf] + \
+            sigma0_sq * n_inv * (np.outer(root, root) - 1.0) + \
+            _reference_cov(ctx, obs, r_m, lever, a_aug, weights, g_theta, refs) + \
+            ins_covariance(ctx, obs, r_m, lever, a_aug, weights, n_aug_inv,
+                           np.asarray(ins_sigma_rad), ins_tau_s)[:kf, :kf]
+        held = ~free
+        if c_sig is not None and held.any():
+            # A held parameter keeps its coarse error e_c: the free ones move by
+            # -[N_aug⁻¹ A_augᵀ W J_held]_θ e_c.
+            jh = jac[:, held]
+            k_mat = g_theta @ (a_aug.T @ (jh * weights[:, None]))
+            cov_f = cov_f + k_mat @ np.diag(c_sig[held] ** 2) @ k_mat.T
+        sig = np.sqrt(np.clip(np.diag(cov_f), 0, None))
+        if c_sig is not None and coarse is not None:
+            ratio = sig / c_sig[free]
+            if ratio.max() > 1.0 and free.sum() > 1:
+                k = np.flatnonzero(free)[int(np.argmax(ratio))]
+                unit, scale = ("°", np.degrees(1.0)) if k < 3 else (" m", 1.0)
+                undetermined[NAMES[k]] = (
+                    f"σ from the data ({sig[np.argmax(ratio)] * scale:.3g}{unit}) exceeds the "
+                    f"accuracy of the coarse value ({c_sig[k] * scale:.3g}{unit})")
+                free[k] = False
+                theta[k] = coarse[k]
+                continue
+        cov = np.full((6, 6), np.nan)
+        cov[np.ix_(free, free)] = cov_f
+        break
     rms = {str(n): float(np.sqrt(np.mean(res[lab == n] ** 2))) for n in obs}
-    vf = np.ones(6)
+    vf = np.full(6, np.nan)
     vf[free] = factor
-    return JointFit(r_m, lever, cov, float(np.sqrt(sigma0_sq)), len(res), it, converged,
-                    fixed, rms, vf)
+    s0 = float(np.sqrt(np.sum(weights * res**2) / max(1, len(res) - int(free.sum()))))
+    fixed = tuple(n for n, f in zip(NAMES, free, strict=True) if not f)
+    return JointFit(r_m, lever, cov, s0, len(res), it, converged, fixed, rms, vf,
+                    {n: undetermined[n] for n in fixed})
 
 
 def correlation(cov: np.ndarray) -> np.ndarray:
-    """Correlation matrix of a covariance (zero rows stay zero)."""
-    s = np.sqrt(np.clip(np.diag(cov), 0, None))
+    """Correlation matrix of a covariance (zero or NaN rows give 0; diagonal 1)."""
+    d = np.diag(cov)
+    s = np.sqrt(np.where(np.isfinite(d) & (d > 0), d, 0.0))
     denom = np.outer(s, s)
     with np.errstate(invalid="ignore", divide="ignore"):
         c = np.where(denom > 0, cov / denom, 0.0)
-    return c
+    return np.nan_to_num(c)

@@ -43,10 +43,32 @@ class PoolParams(Params):
         1.0, label="INS error correlation time", unit="s", minimum=0.0, min_exclusive=True,
         maximum=3600.0, cli="--ins-tau", decimals=2,
         help="Gauss–Markov correlation time of the INS attitude errors")
+    build_tol_m: float = param(
+        0.002, label="Build tolerance (position)", unit="m", minimum=0.0, maximum=1.0,
+        decimals=4, step=0.0005,
+        help="how well a below-water block is placed relative to its above-water twin "
+             "(± per axis, half-width; σ = tol/√3): the design translation between twins is "
+             "known only to this, and it is propagated into the σ of the result")
+    build_tol_deg: float = param(
+        0.01, label="Build tolerance (orientation)", unit="°", minimum=0.0, maximum=10.0,
+        decimals=4, step=0.005,
+        help="how well a below-water block is oriented relative to its above-water twin "
+             "(± per axis, half-width; σ = tol/√3), propagated into the σ of the result")
+    coarse_tol_deg: float = param(
+        2.0, label="Coarse setup accuracy (angles)", unit="°", minimum=0.0,
+        min_exclusive=True, maximum=90.0, decimals=2, group=SOLVE,
+        help="± accuracy of the coarse boresight (installation drawing); an angle the data "
+             "determine no better than this is undetermined and keeps its coarse value")
+    coarse_tol_m: float = param(
+        0.15, label="Coarse setup accuracy (lever arm)", unit="m", minimum=0.0,
+        min_exclusive=True, maximum=100.0, decimals=3, group=SOLVE,
+        help="± accuracy of the coarse lever arm; a component the data determine no better "
+             "than this is undetermined and keeps its coarse value")
     crop_tol_m: float = param(
-        0.3, label="Crop tolerance", unit="m", minimum=0.01, maximum=5.0, group=SEG,
-        help="how far from the design faces points are kept; at least the error of the "
-             "coarse setup at the target")
+        0.6, label="Crop tolerance", unit="m", minimum=0.01, maximum=5.0, group=SEG,
+        help="how far from the design faces soundings are first looked for (halved twice "
+             "while the coarse setup is aligned); at least the error of the coarse setup "
+             "at the target")
     min_points: int = param(
         30, label="Min points per face", minimum=3, maximum=1_000_000, group=SEG,
         help="faces with fewer points in either cloud are not used")
@@ -84,6 +106,9 @@ class PoolParams(Params):
     max_corr: float = param(
         0.9, label="Warn above |correlation|", minimum=0.0, maximum=1.0, group=SOLVE,
         advanced=True, help="pairs of parameters more correlated than this are flagged")
+    laser_tol_m: float = param(
+        0.3, label="Laser crop tolerance", unit="m", minimum=0.01, maximum=5.0, group=SEG,
+        advanced=True, help="how far from the design faces laser points are kept")
     refine_tol_m: float = param(
         0.1, label="Re-crop tolerance", unit="m", minimum=0.001, maximum=5.0, group=SEG,
         advanced=True, help="crop tolerance around the faces once the first solution is known")

@@ -12,11 +12,17 @@ and ``raw/pool/target`` (JSON), runs :func:`~.api.calibrate` and REPLACES
     ``roll_deg, pitch_deg, yaw_deg`` (final boresight), ``lever_x_m, lever_y_m,
     lever_z_m`` (final lever arm, body FRD), ``sigma_roll_deg, sigma_pitch_deg,
     sigma_yaw_deg, sigma_lever_x_m, sigma_lever_y_m, sigma_lever_z_m`` (joint 1-σ, NaN
-    when no joint solution), ``warnings`` (JSON list of strings), ``dropped_pings``.
+    when no joint solution or when the parameter is undetermined), ``warnings`` (JSON list
+    of strings), ``dropped_pings``, ``undetermined`` (JSON object: parameter -> reason;
+    such a parameter's final value is the coarse one), ``flagged`` (JSON object: parameter
+    -> message, σ above ``max_sigma_deg``/``max_sigma_m``).
 ``results/pool_calibration/result`` group whose JSON (get_json) is ``PoolResult.to_dict()``.
 ``results/pool_calibration/faces`` table: face (str), role (str), water (str),
     points_laser, points_mbes (int), rms_laser_m, rms_mbes_m, normal_angle_deg (float,
-    NaN when a sensor has no plane), used_for (str, comma-separated parameters).
+    NaN when a sensor has no plane), used_for (str, comma-separated parameters the face
+    carries in the joint adjustment), reference (str: "own" = its own laser plane, the
+    name of its above-water twin, or ""), twin_de_m, twin_dn_m, twin_du_m (float, the
+    design translation twin -> face, ENU; NaN without reference).
 ``results/pool_calibration/iterations`` table: iteration, round (int), d_roll_deg,
     d_pitch_deg, d_yaw_deg, roll_deg, pitch_deg, yaw_deg, max_normal_angle_deg.
 ``results/pool_calibration/plan`` arrays for a plan view (ENU, m; at most
@@ -125,7 +131,8 @@ def store(project, seg, result, p: PoolParams) -> None:
         **{f"{k}_deg": float(v) for k, v in result.boresight_deg.items()},
         **{f"lever_{k}_m": float(v) for k, v in result.lever_arm_m.items()},
         **{k: float(v) for k, v in sig.items()},
-        warnings=json.dumps(result.warnings), dropped_pings=int(result.dropped_pings))
+        warnings=json.dumps(result.warnings), dropped_pings=int(result.dropped_pings),
+        undetermined=json.dumps(result.undetermined), flagged=json.dumps(result.flagged))
     rows = result.faces
     project.put_table(f"{RESULT}/faces", {
         "face": np.array([r.face for r in rows], dtype=str),
@@ -136,7 +143,10 @@ def store(project, seg, result, p: PoolParams) -> None:
         "rms_laser_m": np.array([r.rms_laser_m for r in rows]),
         "rms_mbes_m": np.array([r.rms_mbes_m for r in rows]),
         "normal_angle_deg": np.array([r.normal_angle_deg for r in rows]),
-        "used_for": np.array([r.used_for for r in rows], dtype=str)})
+        "used_for": np.array([r.used_for for r in rows], dtype=str),
+        "reference": np.array([r.reference for r in rows], dtype=str),
+        **{f"twin_d{a}_m": np.array([r.design_offset_m[k] for r in rows], dtype=float)
+           for k, a in enumerate("enu")}})
     cols = ("iteration", "round", "d_roll_deg", "d_pitch_deg", "d_yaw_deg", "roll_deg",
             "pitch_deg", "yaw_deg", "max_normal_angle_deg")
     project.put_table(f"{RESULT}/iterations", {

@@ -87,6 +87,7 @@ def section(project, ctx: ReportContext) -> list[Flowable]:
     for text in json.loads(attrs.get("warnings") or "[]"):
         out.append(ctx.warning(text))
     out += _face_table(project, ctx, res)
+    out += _twin_table(project, ctx)
     out += _joint_tables(ctx, res)
     out += plan_figures(project, ctx)
     out += _iterations(project, ctx)
@@ -98,33 +99,74 @@ def _parameter_table(ctx, attrs, res) -> list[Flowable]:
     coarse = res.get("coarse", {})
     seed = res.get("seed") or {}
     joint = res.get("joint") or {}
-    rows = []
-    for key, label, unit in ANGLES + LEVERS:
+    undetermined = res.get("undetermined") or {}
+    flagged = res.get("flagged") or {}
+    rows, style = [], []
+    for i, (key, label, unit) in enumerate(ANGLES + LEVERS):
         group, sig_group = (("boresight_deg", "sigma_boresight_deg") if unit == "\u00b0"
                             else ("lever_arm_m", "sigma_lever_arm_m"))
         dec = ANGLE_DECIMALS if unit == "\u00b0" else LEVER_DECIMALS
         final_key = f"{key}_deg" if unit == "\u00b0" else f"lever_{key}_m"
+        name = key if unit == "\u00b0" else f"lever_{key}"
         c = coarse.get(group, {}).get(key)
         final = attrs.get(final_key)
+        status = ("undetermined (coarse kept)" if name in undetermined else
+                  "\u03c3 above threshold" if name in flagged else "determined")
+        if name in undetermined or name in flagged:
+            style.append(("TEXTCOLOR", (6, i + 1), (6, i + 1), BAD_TEXT))
         rows.append([
             f"{label} [{unit}]", fmt(c, dec), fmt(seed.get(group, {}).get(key), dec),
             fmt_pm(joint.get(group, {}).get(key), joint.get(sig_group, {}).get(key), dec),
             fmt(final, dec),
-            fmt(None if c is None or final is None else final - c, dec)])
+            fmt(None if c is None or final is None else final - c, dec), status])
     method = str(attrs.get("method", "?"))
-    return ctx.table(
+    out = ctx.table(
         ["Parameter", "Coarse (setup)", "Patent method", "Joint adjustment \u00b1 1\u03c3",
-         f"Final ({method})", "Correction (final \u2212 coarse)"], rows,
-        col_widths=[0.22, 0.13, 0.13, 0.2, 0.15, 0.17],
+         f"Final ({method})", "Correction (final \u2212 coarse)", "Status"], rows,
+        col_widths=[0.18, 0.11, 0.11, 0.18, 0.12, 0.13, 0.17], extra_style=style,
         caption="Boresight angles and lever arm: the coarse values of the installation "
         "drawing, the patent method's and the joint adjustment's solutions, and the final "
-        "values to enter in the acquisition software.")
+        "values to enter in the acquisition software. An undetermined parameter keeps its "
+        "coarse value (no \u03c3); a parameter whose \u03c3 exceeds the warning threshold is "
+        "flagged.")
+    return out
+
+
+def _twin_table(project, ctx) -> list[Flowable]:
+    """Below-water faces compared with their above-water twin's laser plane, moved."""
+    if not project.exists(f"{RESULT}/faces"):
+        return []
+    t = project.get_table(f"{RESULT}/faces")
+    if "reference" not in t:
+        return []
+    rows = []
+    for i, name in enumerate(t["face"]):
+        ref = str(t["reference"][i])
+        if not ref or int(t["points_mbes"][i]) == 0:
+            continue
+        offs = [float(t[f"twin_d{a}_m"][i]) for a in "enu"]
+        rows.append([str(name), "own laser plane (crosses the water)" if ref == "own" else ref,
+                     *(fmt(v, 3) for v in offs),
+                     str(t["used_for"][i]).replace(",", ", ") or "\u2014"])
+    if not rows:
+        return []
+    return [ctx.heading("Reference planes", 2)] + ctx.table(
+        ["Face (multibeam)", "Reference (laser)", "\u0394E [m]", "\u0394N [m]", "\u0394U [m]",
+         "Carries"], rows, col_widths=[0.2, 0.27, 0.09, 0.09, 0.09, 0.26], numeric_from=2,
+        left_columns=[5], font_size=7.5,
+        caption="Reference plane of each face the multibeam sees: a face that crosses the "
+        "water is compared with its own laser plane; a below-water face with the laser plane "
+        "of its above-water twin (same shape and orientation, from the design) moved by the "
+        "design translation \u0394 (known to the build tolerance, propagated into \u03c3). "
+        "'Carries': parameters whose \u03c3 grows by more than 10 % without the face.")
 
 
 def _sigma_model(joint: dict, params: PoolParams) -> str:
     """How the joint σ were obtained, so the reader knows what they cover."""
-    factors = joint.get("variance_factor") or {}
-    text = "point-to-plane fit incl. laser-plane errors"
+    factors = {k: v for k, v in (joint.get("variance_factor") or {}).items() if v is not None}
+    text = ("point-to-plane fit incl. laser-plane errors; build tolerance of the twins "
+            f"\u00b1{1000 * params.build_tol_m:g} mm / \u00b1{params.build_tol_deg:g}\u00b0 "
+            "(rectangular, \u03c3 = tol/\u221a3); coarse error of undetermined parameters")
     if factors:
         largest = max(factors, key=lambda k: float(factors[k] or 1.0))
         text += (f"; ping-block variance factors 1.00–{float(factors[largest] or 1.0):.2f}"

@@ -22,6 +22,11 @@ class FaceRow:
     rms_mbes_m: float
     normal_angle_deg: float
     used_for: str
+    #: Reference plane: "own" (crossing face: its own laser plane), the above-water twin's
+    #: name (its laser plane moved by the design translation), or "" (none).
+    reference: str = ""
+    #: Design translation twin -> face (ENU, m); zeros for "own", NaN without reference.
+    design_offset_m: tuple = (float("nan"),) * 3
 
 
 @dataclass(frozen=True)
@@ -55,6 +60,8 @@ class JointSolution:
     #: Variance factor (>= 1) applied to each parameter's formal variance by the ping-block
     #: sandwich check (angles: about the body axes), see ``joint.py``.
     variance_factor: dict = field(default_factory=dict)
+    #: Undetermined parameter -> reason (held at its coarse value, σ NaN).
+    undetermined_reasons: dict = field(default_factory=dict)
 
 
 @dataclass(frozen=True)
@@ -75,6 +82,13 @@ class PoolResult:
     warnings: list[str] = field(default_factory=list)
     dropped_pings: int = 0
     dropped_soundings: int = 0
+    #: Parameters of the final solution not determined by the data -> reason; their final
+    #: value is the coarse one and their σ is NaN (CLI exit code 3).
+    undetermined: dict = field(default_factory=dict)
+    #: Parameters whose σ exceeds the warning threshold -> message.
+    flagged: dict = field(default_factory=dict)
+    #: Build tolerance of the twins used in the σ (half-widths, m and deg).
+    build_tolerance: dict = field(default_factory=dict)
 
     def to_dict(self) -> dict:
         """JSON-ready dict (NaN -> null)."""

@@ -2,8 +2,10 @@
 
 Frames: plane normals in target ENU; corrections are small rotations about the body
 axes (FRD) of the multibeam mounting. Each iteration re-georeferences the multibeam
-face points, fits their planes (TLS) and compares the normals with the laser planes of
-the same faces:
+face points, fits their planes (TLS) and compares the normals with their reference
+planes (:mod:`.twins`): the laser plane of the same face when it crosses the water, or
+the laser plane of its above-water twin (same shape and orientation, step 3.3) when it lies
+below water — a translation does not change a normal:
 
 * roll  (about body x): the wall P2 normal against the laser's, seen along the roll axis;
 * pitch (about body y): P4 = P1 × P2 (P1 an oblique face, P2 the wall), seen along the
@@ -114,7 +116,10 @@ def iterate_angles(ctx: GeorefContext, faces: dict[str, np.ndarray], roles: dict
                    laser: dict[str, PlaneFit], r_m0: np.ndarray, lever: np.ndarray, *,
                    tol_deg: float = 1e-4, max_iter: int = 20, min_points: int = 30,
                    progress=None, cancel=None) -> SeedAngles:
-    """Iterate steps 3.3-3.6 until the corrections fall below *tol_deg*."""
+    """Iterate steps 3.3-3.6 until the corrections fall below *tol_deg*.
+
+    *laser* holds the reference plane of each face (own laser plane or moved twin plane).
+    """
     mp = mbes_planes(ctx, faces, roles, r_m0, lever, min_points)
     both = [n for n in mp if n in laser]
     walls = [n for n in both if roles[n].role == "wall"]

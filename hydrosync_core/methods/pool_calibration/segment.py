@@ -37,6 +37,13 @@ class FaceSegment:
         return len(self.indices)
 
 
+def inradius(face: DesignFace) -> float:
+    """2·area / perimeter of the face polygon (m): its inradius for a triangle."""
+    perimeter = float(np.sum(np.linalg.norm(np.diff(face.poly2d, axis=0, append=face.poly2d[:1]),
+                                            axis=1)))
+    return 2.0 * face.area / perimeter
+
+
 def bbox_mask(points: np.ndarray, faces: list[DesignFace], pad: float) -> np.ndarray:
     """Points inside the design's bounding box grown by *pad* m."""
     corners = np.concatenate([f.corners for f in faces])
@@ -45,25 +52,38 @@ def bbox_mask(points: np.ndarray, faces: list[DesignFace], pad: float) -> np.nda
 
 
 def _ransac_dbscan(pts: np.ndarray, thresh: float, eps: float, min_points: int,
-                   normal: np.ndarray, max_angle_deg: float) -> np.ndarray:
-    """Indices into *pts* of the RANSAC plane inliers' largest DBSCAN cluster."""
+                   normal: np.ndarray, max_angle_deg: float, attempts: int = 4) -> np.ndarray:
+    """Indices into *pts* of the RANSAC plane inliers' largest DBSCAN cluster.
+
+    A RANSAC plane far from the design orientation is clutter, not the face (a neighbour
+    face or the pool floor that dominates a wide crop): its inliers are set aside and
+    RANSAC is run again on the rest, up to *attempts* times.
+    """
     import open3d as o3d
 
     if len(pts) < max(3, min_points):
         return np.arange(0)
     o3d.utility.random.seed(0)
-    cloud = o3d.geometry.PointCloud(o3d.utility.Vector3dVector(pts))
-    model, inliers = cloud.segment_plane(distance_threshold=thresh, ransac_n=3,
-                                         num_iterations=300)
-    inliers = np.asarray(inliers, dtype=np.int64)
-    n_fit = np.asarray(model[:3]) / np.linalg.norm(model[:3])
-    # A RANSAC plane far from the design orientation is clutter, not the face.
-    if np.degrees(np.arccos(min(1.0, abs(n_fit @ normal)))) > max_angle_deg:
+    left = np.arange(len(pts))
+    inliers = None
+    for _ in range(attempts):
+        if len(left) < max(3, min_points):
+            return np.arange(0)
+        cloud = o3d.geometry.PointCloud(o3d.utility.Vector3dVector(pts[left]))
+        model, found = cloud.segment_plane(distance_threshold=thresh, ransac_n=3,
+                                           num_iterations=300)
+        found = np.asarray(found, dtype=np.int64)
+        n_fit = np.asarray(model[:3]) / np.linalg.norm(model[:3])
+        if np.degrees(np.arccos(min(1.0, abs(n_fit @ normal)))) <= max_angle_deg:
+            inliers = left[found]
+            break
+        left = np.delete(left, found)
+    if inliers is None:
         return np.arange(0)
     if len(inliers) < min_points:
         return inliers
-    sub = cloud.select_by_index(inliers.tolist())
-    labels = np.asarray(sub.cluster_dbscan(eps=eps, min_points=min_points))
+    cloud = o3d.geometry.PointCloud(o3d.utility.Vector3dVector(pts[inliers]))
+    labels = np.asarray(cloud.cluster_dbscan(eps=eps, min_points=min_points))
     if (labels >= 0).sum() == 0:
         return np.arange(0)
     biggest = np.bincount(labels[labels >= 0]).argmax()
@@ -110,7 +130,8 @@ def segment_cloud(points: np.ndarray, faces: list[DesignFace], water_level: floa
                   cancel=None) -> dict[str, FaceSegment]:
     """Segment *points* (N, 3, target ENU, m) into *faces*.
 
-    *side* is ``"above"`` (laser) or ``"below"`` (multibeam). With ``band_sigma > 0`` the
+    *side* is ``"above"`` (laser) or ``"below"`` (multibeam). The polygon shrink *margin*
+    is capped at half the face's inradius, so small faces keep a core. With ``band_sigma > 0`` the
     RANSAC/DBSCAN selection is replaced by the symmetric band of :func:`band_refit`
     (±band_sigma robust σ about the face's own TLS plane, within the crop). Returns a
     :class:`FaceSegment` per face name (possibly empty).
@@ -128,7 +149,7 @@ def segment_cloud(points: np.ndarray, faces: list[DesignFace], water_level: floa
         check_cancel(cancel)
         near = np.abs(pts @ face.normal - face.d) < tol
         idx = np.flatnonzero(near)
-        idx = idx[inside_polygon(face, pts[idx], margin)]
+        idx = idx[inside_polygon(face, pts[idx], min(margin, 0.5 * inradius(face)))]
         cropped = len(idx)
         if len(idx) > max_points:
             idx = np.sort(rng.choice(idx, max_points, replace=False))

@@ -2,6 +2,20 @@
 
 Runs on a :class:`~.api.Segmentation` (inputs as documented in :mod:`.api`); the result
 is a :class:`~.result.PoolResult`.
+
+Every face the multibeam sees is compared with its reference plane (:mod:`.twins`): its
+own laser plane when it crosses the water, its above-water twin's laser plane moved by
+the design translation when it lies below water. The multibeam points of each face are
+those within a refined band around the aligned setup (:mod:`.align`), the same for both
+solutions; the joint adjustment is repeated once on the points re-selected around its own
+solution.
+
+Undetermined parameters (never a value fitted from insufficient geometry): a parameter
+that no face can determine (lever_z without a below-water block top with a twin, a
+singular normal matrix) or whose σ from the data exceeds the accuracy of the coarse setup
+keeps its coarse value, gets a NaN σ and a named reason (``PoolResult.undetermined``);
+the coarse error of such a parameter is propagated into the σ of the others. A parameter
+whose σ exceeds ``max_sigma_deg``/``max_sigma_m`` is flagged (``PoolResult.flagged``).
 """
 
 from __future__ import annotations
@@ -9,10 +23,11 @@ from __future__ import annotations
 import numpy as np
 
 from hydrosync_core.methods.pool_calibration import georef
+from hydrosync_core.methods.pool_calibration.align import structural_fix
 from hydrosync_core.methods.pool_calibration.joint import NAMES, adjust, correlation
 from hydrosync_core.methods.pool_calibration.lever_arm import lever_offsets
 from hydrosync_core.methods.pool_calibration.params import PoolParams
-from hydrosync_core.methods.pool_calibration.planes import PlaneFit, angle_deg, fit_plane
+from hydrosync_core.methods.pool_calibration.planes import angle_deg, fit_plane
 from hydrosync_core.methods.pool_calibration.result import (
     FaceRow,
     JointSolution,
@@ -34,53 +49,27 @@ def _lever(v) -> dict:
     return {k: float(x) for k, x in zip("xyz", v, strict=True)}
 
 
-def _height_offset(seg, laser_pts_ok) -> tuple[float, float] | None:
-    """As-built height offset (m) of the above-water horizontal faces: mean laser height
-    minus design height, point-weighted, and its variance; None without such a face."""
-    above = [n for n, r in seg.roles.items() if r.role == "horizontal" and r.water == "above"
-             and n in laser_pts_ok]
-    if not above:
-        return None
-    dz = np.concatenate([laser_pts_ok[n][:, 2] - seg.design[n].centroid[2] for n in above])
-    return float(dz.mean()), float(dz.var() / len(dz))
-
-
 def _joint_obs(seg, mfaces, min_points):
-    """Reference plane per face: its laser plane, or for a below-water horizontal face the
-    design plane raised by the as-built height offset measured on the laser tops."""
-    obs = {}
-    off = _height_offset(seg, {n: seg.laser_points[n] for n in seg.laser_planes})
-    for name, idx in mfaces.items():
-        if len(idx) < min_points:
-            continue
-        role = seg.roles[name]
-        below_h = role.role == "horizontal" and role.water == "below"
-        if name in seg.laser_planes and not below_h:
-            obs[name] = (idx, seg.laser_planes[name])
-        elif below_h and off is not None:
-            d = seg.design[name]
-            n = role.normal
-            # Design height difference (step 4.2): horizontal plane z = z_design + offset.
-            c = d.centroid + np.array([0.0, 0.0, off[0]])
-            axes = np.column_stack([n, np.cross(n, [1.0, 0, 0]), np.cross(n, [0, 1.0, 0])])
-            obs[name] = (idx, PlaneFit(n, float(n @ c), c, 0.0, len(idx), 0.0, axes, None,
-                                       np.diag([0.0, 0.0, off[1]])))
-    return obs
+    """Reference plane per face: its own laser plane or its twin's, moved (seg.refs)."""
+    return {name: (idx, seg.refs[name].plane) for name, idx in mfaces.items()
+            if len(idx) >= min_points and name in seg.refs}
 
 
-def _joint_warnings(cov, corr, fixed, p) -> list[str]:
-    out = []
-    sig = np.sqrt(np.clip(np.diag(cov), 0, None))
+def _flags(cov, fixed, p) -> dict[str, str]:
+    out = {}
+    sig = np.sqrt(np.clip(np.nan_to_num(np.diag(cov)), 0, None))
     for k, name in enumerate(NAMES):
         if name in fixed:
-            out.append(f"joint adjustment: {name} cannot be determined from this pass "
-                       "geometry (kept at the seed value)")
             continue
         s, lim, unit = (np.degrees(sig[k]), p.max_sigma_deg, "°") if k < 3 else \
             (sig[k], p.max_sigma_m, " m")
         if s > lim:
-            out.append(f"joint adjustment: {name} poorly determined (σ = {s:.4g}{unit} > "
-                       f"{lim}{unit})")
+            out[name] = f"σ = {s:.4g}{unit} exceeds {lim:g}{unit}: poorly determined"
+    return out
+
+
+def _corr_warnings(corr, p) -> list[str]:
+    out = []
     for i in range(6):
         for j in range(i + 1, 6):
             if abs(corr[i, j]) > p.max_corr:
@@ -100,6 +89,34 @@ def _resegment(seg, p, r_m, lever, cancel) -> dict[str, np.ndarray]:
     return {n: s.indices for n, s in mseg.items()}
 
 
+def face_usage(ctx, obs, fit, min_gain: float = 0.1) -> dict[str, list[str]]:
+    """Parameters each face carries: those whose variance grows by more than *min_gain*
+    (or that become undetermined) when the face is left out of the normal matrix."""
+    from hydrosync_core.methods.pool_calibration.joint import _system
+
+    theta = np.array([*georef.boresight_angles(fit.r_m), *fit.lever])
+    free = np.array([n not in fit.fixed for n in NAMES])
+    if not free.any():
+        return {}
+    parts = {}
+    for name, ob in obs.items():
+        _, jac, _ = _system(ctx, {name: ob}, fit.r_m, fit.lever, theta[:3])
+        jf = jac[:, free]
+        parts[name] = jf.T @ jf
+    total = sum(parts.values())
+    base = np.diag(np.linalg.pinv(total))
+    out = {}
+    for name, part in parts.items():
+        rest = total - part
+        w = np.linalg.eigvalsh(rest)
+        singular = w[0] <= w[-1] * 1e-12
+        var = np.full(len(base), np.inf) if singular else np.diag(np.linalg.inv(rest))
+        names = [n for n, f in zip(NAMES, free, strict=True) if f]
+        out[name] = [n for n, v, b in zip(names, var, base, strict=True)
+                     if not np.isfinite(v) or v > (1 + min_gain) * b]
+    return out
+
+
 def solve(seg, params: PoolParams | None = None, progress=None, cancel=None) -> PoolResult:
     """Run steps 3 and 4 of the patent and the joint adjustment on a segmentation.
 
@@ -109,18 +126,19 @@ def solve(seg, params: PoolParams | None = None, progress=None, cancel=None) -> 
     p = seg.params if params is None else params
     warnings = list(seg.warnings)
     mp = p.min_points
-    # Seed steps 3 then 4, alternated: the angles are first found with the coarse lever
-    # arm, whose error (through the varying attitude) slightly bends small faces, so the
-    # angle iteration is repeated with the corrected lever arm until both settle.
+    refs = {n: r.plane for n, r in seg.refs.items()}
+    r_a = seg.r_align if seg.r_align is not None else seg.r_m0
+    l_a = seg.lever_align if seg.lever_align is not None else seg.lever0
+    report(progress, 0.0, "selecting the multibeam face points around the aligned setup")
+    mfaces = _resegment(seg, p, r_a, l_a, cancel)
+    # Seed steps 3 then 4, alternated, from the coarse values: the angles are first found
+    # with the coarse lever arm, whose error (through the varying attitude) slightly bends
+    # small faces, so the angle iteration is repeated with the corrected lever arm until
+    # both settle.
     lever, r_m, table, total_it = seg.lever0.copy(), seg.r_m0.copy(), [], 0
-    mfaces = seg.mbes_faces
     for rnd in range(1, p.max_rounds + 1):
         check_cancel(cancel)
-        if rnd == 2:
-            # Coarse-setup crops are wide; re-crop tightly around the first solution (once,
-            # so that later rounds work on a fixed point set and can converge).
-            mfaces = _resegment(seg, p, r_m, lever, cancel)
-        angles = iterate_angles(seg.ctx, mfaces, seg.roles, seg.laser_planes, r_m,
+        angles = iterate_angles(seg.ctx, mfaces, seg.roles, refs, r_m,
                                 lever, tol_deg=p.tol_deg, max_iter=p.max_iter,
                                 min_points=mp,
                                 progress=sub_progress(progress, 0.4 * (rnd - 1) / p.max_rounds,
@@ -129,7 +147,7 @@ def solve(seg, params: PoolParams | None = None, progress=None, cancel=None) -> 
         table += [dict(row, iteration=total_it + row["iteration"], round=rnd)
                   for row in angles.table]
         total_it += angles.iterations
-        lev = lever_offsets(seg.ctx, mfaces, seg.roles, seg.design, seg.laser_planes,
+        lev = lever_offsets(seg.ctx, mfaces, seg.roles, seg.design, refs,
                             seg.laser_points, angles.r_m, lever, min_points=mp)
         d_angle = np.degrees(np.linalg.norm(
             georef.boresight_angles(angles.r_m.T @ r_m)))
@@ -142,61 +160,86 @@ def solve(seg, params: PoolParams | None = None, progress=None, cancel=None) -> 
         warnings.append(f"seed method did not converge (last round: angle iteration "
                         f"{'converged' if angles.converged else 'not converged'}, lever-arm "
                         f"change {d_lever * 1000:.2f} mm)")
-    for name in angles.undetermined:
-        warnings.append(f"seed method: {name} cannot be determined (no "
-                        f"{'/'.join(PARAMETER_ROLES[name])} face seen by both sensors); "
-                        "kept at the coarse value")
-    for name in lev.undetermined:
-        warnings.append(f"seed method: {name} cannot be determined; kept at the coarse value")
+    seed_reasons = {name: f"no {'/'.join(PARAMETER_ROLES[name])} face with a reference "
+                          "plane seen by the multibeam" for name in angles.undetermined}
+    seed_reasons.update(lev.reasons or {})
+    for name, why in seed_reasons.items():
+        warnings.append(f"seed method: {name} cannot be determined ({why}); kept at the "
+                        "coarse value")
     seed = SeedSolution(_angles(r_m), _lever(lever), total_it, seed_converged,
-                        [float(v) for v in lev.shift_xyz_m],
-                        list(angles.undetermined + lev.undetermined))
-    report(progress, 0.5, "re-segmenting the multibeam cloud with the seed solution")
-    mfaces = _resegment(seg, p, r_m, lever, cancel)
-    obs = _joint_obs(seg, mfaces, mp)
+                        [float(v) for v in lev.shift_xyz_m], list(seed_reasons))
+    # Joint adjustment from the aligned setup (independent of the seed's outcome); held
+    # parameters at their coarse values.
+    report(progress, 0.5, "joint adjustment")
+    theta_c = np.array([*georef.boresight_angles(seg.r_m0), *seg.lever0])
+    c_sig = (np.deg2rad(p.coarse_tol_deg) / np.sqrt(3), p.coarse_tol_m / np.sqrt(3))
+    b_sig = (p.build_tol_m / np.sqrt(3), np.deg2rad(p.build_tol_deg) / np.sqrt(3))
+    ins_sig = tuple(float(v) for v in np.deg2rad(p.ins_sigma_deg))
+    kw = dict(huber_m=p.huber_m, cancel=cancel, block_s=p.sigma_block_s,
+              ins_sigma_rad=ins_sig, ins_tau_s=p.ins_tau_s, refs=seg.refs,
+              build_sigma=b_sig, coarse=theta_c, coarse_sigma=c_sig)
     joint, r_final, l_final, method = None, r_m, lever, "seed"
+    fit, obs = None, {}
     try:
-        # Without a horizontal face the vertical offset rests only on the vessel's roll
-        # and pitch motion: fixed rather than reported as a weak, possibly wrong number.
-        has_h = any(seg.roles[n].role == "horizontal" for n in obs)
-        fit = adjust(seg.ctx, obs, r_m, lever, huber_m=p.huber_m, cancel=cancel,
-                     fix=() if has_h else ("lever_z",),
-                     block_s=p.sigma_block_s,
-                     ins_sigma_rad=tuple(np.deg2rad(p.ins_sigma_deg)),
-                     ins_tau_s=p.ins_tau_s)
+        obs = _joint_obs(seg, mfaces, mp)
+        first = adjust(seg.ctx, obs, r_a, l_a, fix=structural_fix(seg.roles, obs),
+                       covariance=False, **{k: v for k, v in kw.items()
+                                            if k in ("huber_m", "cancel")})
+        # The final point selection around the joint solution itself, then the final fit.
+        mfaces = _resegment(seg, p, first.r_m, first.lever, cancel)
+        obs = _joint_obs(seg, mfaces, mp)
+        fit = adjust(seg.ctx, obs, first.r_m, first.lever,
+                     fix=structural_fix(seg.roles, obs), **kw)
     except (ValueError, np.linalg.LinAlgError) as exc:
         warnings.append(f"joint adjustment failed ({exc}); the seed solution is reported")
         fit = None
+    flagged: dict[str, str] = {}
+    undetermined = dict(seed_reasons)
+    usage: dict[str, list[str]] = {}
     if fit is not None:
         corr = correlation(fit.covariance)
-        sig = np.sqrt(np.clip(np.diag(fit.covariance), 0, None))
-        warnings += _joint_warnings(fit.covariance, corr, fit.fixed, p)
+        sig = np.sqrt(np.diag(fit.covariance))
+        flagged = _flags(fit.covariance, fit.fixed, p)
+        warnings += _corr_warnings(corr, p)
         joint = JointSolution(
             _angles(fit.r_m), _lever(fit.lever),
             dict(zip(("roll", "pitch", "yaw"), map(float, np.degrees(sig[:3])), strict=True)),
             _lever(sig[3:]), list(NAMES), corr.tolist(), fit.sigma0_m, fit.n_obs,
             fit.iterations, fit.converged, list(fit.fixed), fit.residual_rms,
-            dict(zip(NAMES, map(float, fit.variance_factor), strict=True)))
+            dict(zip(NAMES, map(float, fit.variance_factor), strict=True)),
+            dict(fit.undetermined))
+        usage = face_usage(seg.ctx, obs, fit)
         if p.final == "joint" and fit.converged:
             r_final, l_final, method = fit.r_m, fit.lever, "joint"
+            undetermined = dict(fit.undetermined)
+    for name, why in (undetermined.items() if method == "joint" else ()):
+        warnings.append(f"joint adjustment: {name} cannot be determined ({why}); kept at "
+                        "the coarse value")
+    for name, why in flagged.items():
+        warnings.append(f"joint adjustment: {name} {why}")
     report(progress, 0.9, "face table")
     final_pts = georef.georeference(seg.ctx, r_final, l_final)
     rows = []
-    used = {n: [k for k, roles in PARAMETER_ROLES.items() if seg.roles[n].role in roles]
-            for n in seg.design}
     for name, role in seg.roles.items():
         lp = seg.laser_planes.get(name)
+        ref = seg.refs.get(name)
         idx = mfaces.get(name, np.arange(0))
         mpl = fit_plane(final_pts[idx], role.normal) if len(idx) >= 3 else None
         rows.append(FaceRow(
             name, role.role, role.water, int(lp.n) if lp else 0, int(len(idx)),
             float(lp.rms) if lp else float("nan"), float(mpl.rms) if mpl else float("nan"),
-            angle_deg(lp.normal, mpl.normal) if lp and mpl else float("nan"),
-            ",".join(used[name]) if name in obs else ""))
+            angle_deg(ref.plane.normal, mpl.normal) if ref and mpl else float("nan"),
+            ",".join(usage.get(name, [])) if name in obs else "",
+            ("own" if ref.kind == "own" else ref.source) if ref else "",
+            tuple(float(v) for v in ref.translation) if ref else (float("nan"),) * 3))
     converged = bool(seed_converged and (joint is None or joint.converged))
     message = (f"seed: {total_it} angle iterations in {rnd} rounds "
                f"({'converged' if seed_converged else 'not converged'}); final = {method}")
+    if undetermined:
+        message += f"; undetermined: {', '.join(undetermined)}"
     report(progress, 1.0, "pool calibration done")
     return PoolResult(_angles(r_final), _lever(l_final), total_it, converged, message,
                       method, seg.coarse, seed, joint, rows, table, warnings,
-                      seg.ctx.dropped_pings, seg.ctx.dropped_soundings)
+                      seg.ctx.dropped_pings, seg.ctx.dropped_soundings, undetermined,
+                      flagged, {"translation_m": p.build_tol_m,
+                                "rotation_deg": p.build_tol_deg})

@@ -124,7 +124,8 @@ def test_demo_results_shown(panel, demo, qtbot):
     # Face table: one row per stored face, every cell equal to the stored value.
     faces = project.get_table(f"{RESULT}/faces")
     model = panel.face_table.model()
-    assert model.rowCount() == len(faces["face"]) == 17
+    # The demo target is the patent's: wall + 4 blocks above water + 4 twins below.
+    assert model.rowCount() == len(faces["face"]) == 33
     headers = [model.headerData(c, Qt.Orientation.Horizontal)
                for c in range(model.columnCount())]
     for col, key in enumerate(FACE_COLUMNS):
@@ -140,6 +141,14 @@ def test_demo_results_shown(panel, demo, qtbot):
                 assert text == ""
             else:
                 assert float(text) / scale == pytest.approx(stored, abs=0.006 / scale)
+    # Every below-water face seen by the multibeam names its above-water twin and the
+    # design translation (the design height difference of the patent's step 4.2).
+    names = [str(n) for n in faces["face"]]
+    ref_col = list(FACE_COLUMNS).index("reference")
+    row = names.index("N1_dn_top")
+    assert model.text(row, ref_col) == "N1_up_top"
+    assert float(model.text(row, ref_col + 3)) == pytest.approx(faces["twin_du_m"][row])
+    assert model.text(names.index("wall"), ref_col) == "own"
     # Iteration table and convergence curves hold the stored iterations.
     iters = project.get_table(f"{RESULT}/iterations")
     assert panel.iteration_table.model().rowCount() == len(iters["iteration"]) > 3
@@ -161,8 +170,8 @@ def test_demo_results_shown(panel, demo, qtbot):
     for row, (_label, key, group, unit) in enumerate(VALUE_ROWS):
         attr = f"{key}_deg" if unit == "°" else f"lever_{key}_m"
         assert float(panel.values.value(row, 0)) == pytest.approx(attrs[attr], abs=5e-5)
-        assert float(panel.values.value(row, 1)) == pytest.approx(attrs[f"sigma_{attr}"],
-                                                                  abs=5e-5)
+        sigma_text = panel.values.value(row, 1).rstrip(" ⚑")
+        assert float(sigma_text) == pytest.approx(attrs[f"sigma_{attr}"], abs=5e-5)
         assert float(panel.values.value(row, 2)) == pytest.approx(result["seed"][group][key],
                                                                   abs=5e-5)
         coarse = result["coarse"][group][key]
@@ -287,7 +296,7 @@ def test_segment_then_run_in_worker(panel, demo, qtbot, tmp_path):
         assert panel.values.value(row, 0) == panel.values.value(row, 2)
         assert float(panel.values.value(row, 0)) == pytest.approx(result["seed"][group][key],
                                                                   abs=5e-5)
-    assert panel.face_table.model().rowCount() == 17
+    assert panel.face_table.model().rowCount() == 33
     assert panel.after_radio.isEnabled()
     assert any(s.startswith("Pool calibration: ") for s in statuses)
 
@@ -306,7 +315,7 @@ def test_cancel_right_after_start_keeps_project(panel, demo, qtbot, tmp_path):
     assert not modified
     assert _same(before, _snapshot(project))
     assert panel.run_button.isEnabled() and panel.segment_button.isEnabled()
-    assert panel.face_table.model().rowCount() == 17  # still showing the stored run
+    assert panel.face_table.model().rowCount() == 33  # still showing the stored run
 
 
 @pytest.mark.gl
@@ -324,3 +333,19 @@ def test_gl_view_toggle(panel, demo):
     panel.before_radio.setChecked(True)
     np.testing.assert_allclose(view.mbes_item.pos,
                                project.get(f"{RESULT}/plan/mbes_before_xyz"), atol=1e-4)
+
+
+def test_values_table_marks_undetermined_and_flagged(panel, demo):
+    project, _truth = demo
+    attrs = dict(project.attrs(RESULT))
+    result = dict(project.get_json(f"{RESULT}/result"))
+    result["undetermined"] = {"lever_z": "no horizontal face"}
+    result["flagged"] = {"pitch": "σ = 0.03° exceeds 0.02°"}
+    attrs["sigma_lever_z_m"] = float("nan")
+    panel.values.fill(attrs, result)
+    rows = [key for _label, key, _g, _u in VALUE_ROWS]
+    assert panel.values.value(rows.index("z"), 1) == "undetermined"
+    assert "no horizontal face" in panel.values.item(rows.index("z"), 1).toolTip()
+    assert panel.values.value(rows.index("pitch"), 1).endswith("⚑")
+    assert "exceeds" in panel.values.item(rows.index("pitch"), 1).toolTip()
+    assert not panel.values.value(rows.index("roll"), 1).endswith("⚑")

@@ -27,6 +27,7 @@ from PySide6.QtWidgets import (
 )
 
 from hydrosync_core.project import NodeInfo, Project, schema
+from hydrosync_core.timespan import table_span
 
 COLUMNS = ("Name", "Kind / shape", "dtype", "Size")
 PATH_ROLE = Qt.ItemDataRole.UserRole
@@ -211,7 +212,15 @@ class ProjectBrowser(QWidget):
             columns = item.childCount()
             rows = item.child(0).text(1) if columns else "0"
             item.setText(1, f"table {rows} × {columns}")
-            item.setToolTip(1, f"{rows} rows, {columns} columns")
+            tip = f"{rows} rows, {columns} columns"
+            path = item.data(0, PATH_ROLE)
+            span = table_span(self.project, path) if str(path).startswith("raw/") else None
+            if span is not None:
+                # The time scale of each data set, so line windows can be checked against it.
+                tip += f"\ntime {span.text()}"
+                item.setData(0, DETAIL_ROLE, f"time {span.text()}\n\n"
+                             + str(item.data(0, DETAIL_ROLE) or ""))
+            item.setToolTip(1, tip)
 
     @Slot(QTreeWidgetItem, QTreeWidgetItem)
     def _on_current_changed(self, current: QTreeWidgetItem | None, _previous) -> None:

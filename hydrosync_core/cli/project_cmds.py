@@ -9,6 +9,7 @@ from hydrosync_core.errors import InputError
 from hydrosync_core.importers.kinds import import_file, kinds
 from hydrosync_core.plugins.spec import DataKind
 from hydrosync_core.project import Project
+from hydrosync_core.timespan import table_span
 
 
 def _open_project(path: str, readonly: bool = False) -> Project:
@@ -30,7 +31,7 @@ def cmd_import(args: argparse.Namespace) -> int:
     path = Path(args.project)
     project = _open_project(path) if path.exists() else Project.create(path)
     table = kinds()
-    chosen = [(kind, getattr(args, kind)) for kind in table if getattr(args, kind, None)]
+    chosen = [(kind, file) for kind in table for file in getattr(args, kind, None) or ()]
     if not chosen:
         raise InputError(None, "nothing to import: give at least one --KIND FILE")
     # Read everything first so one bad file leaves the project untouched.
@@ -66,7 +67,9 @@ def cmd_info(args: argparse.Namespace) -> int:
             depth = info.path.count("/")
             label = info.path.rsplit("/", 1)[-1]
             if info.kind == "group":
-                print(f"  {'  ' * depth}{label}/  ({_human(info.nbytes)})")
+                span = table_span(project, info.path) if info.path.startswith("raw/") else None
+                print(f"  {'  ' * depth}{label}/  ({_human(info.nbytes)})"
+                      + (f"  time {span.text()}" if span is not None else ""))
             else:
                 shape = "x".join(str(n) for n in info.shape) or "scalar"
                 print(f"  {'  ' * depth}{label}  {shape} {info.dtype}")
@@ -163,12 +166,20 @@ def register(sub: argparse._SubParsersAction) -> None:
     p.add_argument("project", help="project file (.h5)")
     for name, kind in kinds().items():
         flags = [f"--{name}"] + ([f"--{name.replace('_', '-')}"] if "_" in name else [])
-        p.add_argument(*flags, dest=name, metavar="FILE", help=kind.description)
+        p.add_argument(*flags, dest=name, metavar="FILE", action="append",
+                       help=kind.description + " (repeatable where the kind collects several "
+                       "files, e.g. one .pos per antenna)")
     p.add_argument(
         "--heave-positive", choices=("up", "down"), default=None,
         help="direction of positive heave in the --attitude CSV (formats.md: up) or the "
         "--attitude_log file (required for PSXN,23; TSS1 and PASHR are up; Seapath PSXN,23 is "
         "documented positive down); stored heave is always positive up",
+    )
+    p.add_argument(
+        "--empty-geoid", choices=("zero", "skip"), default=None, dest="empty_geoid",
+        help="GGA sentences of a --gnss-log with an empty geoid separation: 'zero' keeps them "
+        "with the separation taken as 0 (heights then above the geoid, not ellipsoidal; the "
+        "import warns), 'skip' drops them (default zero)",
     )
     p.set_defaults(func=cmd_import)
 

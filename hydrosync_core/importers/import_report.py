@@ -62,3 +62,14 @@ class ImportReport:
             f"{self.lines} lines" + (f"; set aside: {skipped}" if skipped else "")
             + (f"; warnings: {' / '.join(self.warnings)}" if self.warnings else "")
         )
+
+
+def stored_warnings(project, path: str) -> list[str]:
+    """The warnings of the import that wrote *path* (empty if none or not an import)."""
+    if not project.exists(path):
+        return []
+    try:
+        report = json.loads(project.attrs(path).get("import_report") or "{}")
+    except (TypeError, ValueError):
+        return []
+    return [str(w) for w in report.get("warnings") or ()]

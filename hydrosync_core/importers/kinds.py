@@ -8,8 +8,11 @@ through a reader named by dotted path, imported only when a file is read.
 
 from __future__ import annotations
 
+import hashlib
+import json
 import logging
 import os
+from datetime import UTC, datetime
 from pathlib import Path
 from typing import Any
 
@@ -88,8 +91,16 @@ def import_file(project: Project, kind: str, path: str | os.PathLike, **options:
     path = Path(path)
     reader = load_object(spec.reader)
     if spec.store == "custom":
-        return reader(project, spec.target, path, **given)
+        message = reader(project, spec.target, path, **given)
+        record_import(project, spec.target, path, kind, given)
+        return message
     data = reader(path, **given)
+    message = _store(project, spec, path, data, given)
+    record_import(project, spec.target, path, kind, given)
+    return message
+
+
+def _store(project: Project, spec: DataKind, path: Path, data, given: dict) -> str:
     recorded = {f"{k}_in_file": v for k, v in given.items()}
     if spec.store == "table":
         project.put_table(spec.target, data, source=str(path), **recorded)
@@ -102,4 +113,35 @@ def import_file(project: Project, kind: str, path: str | os.PathLike, **options:
         project.put_json(spec.target, data)
         project.set_attrs(spec.target, source=str(path), **recorded)
         return _summary(path, spec.target, None, "")
-    raise ValueError(f"import kind '{kind}' has an unknown store '{spec.store}'")
+    raise ValueError(f"import kind '{spec.name}' has an unknown store '{spec.store}'")
+
+
+def file_sha256(path: Path) -> str:
+    digest = hashlib.sha256()
+    with open(path, "rb") as handle:
+        for block in iter(lambda: handle.read(1 << 20), b""):
+            digest.update(block)
+    return digest.hexdigest()
+
+
+def record_import(project: Project, target: str, path: Path, kind: str, options: dict) -> None:
+    """Add the imported file to the ``imports`` list (JSON) of *target*.
+
+    Each entry: ``file`` (name), ``path``, ``size_bytes``, ``sha256``, ``kind``,
+    ``options`` and ``imported_utc`` — what the report's data-sources table shows. A
+    target replaced by the import starts a new list; one that collects several files (an
+    antenna per file) keeps one entry per file name.
+    """
+    try:
+        size, sha = path.stat().st_size, file_sha256(path)
+    except OSError:  # a reader given a stream or a file gone since: record what is known
+        size, sha = None, None
+    entry = {"file": path.name, "path": str(path), "size_bytes": size,
+             "sha256": sha, "kind": kind, "options": dict(options),
+             "imported_utc": datetime.now(UTC).isoformat(timespec="seconds")}
+    try:
+        entries = json.loads(project.attrs(target).get("imports", "[]"))
+    except (TypeError, ValueError):
+        entries = []
+    entries = [e for e in entries if e.get("file") != path.name] + [entry]
+    project.set_attrs(target, imports=json.dumps(entries))

@@ -179,7 +179,8 @@ def parse_gga(
         if n:
             warnings.append(
                 f"{n} GGA epochs have an empty geoid separation: height = altitude "
-                f"(separation taken as 0; use empty_geoid='skip' to drop them)"
+                "(separation taken as 0, so those heights are above the geoid, not "
+                "ellipsoidal; import with --empty-geoid skip to drop them)"
             )
         sep = np.where(sep_empty, 0.0, sep)
     # Ellipsoidal height h = H (altitude above geoid) + N (geoid separation).

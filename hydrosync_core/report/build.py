@@ -31,6 +31,7 @@ from hydrosync_core.report.cover import (
     module_status,
     results_path,
 )
+from hydrosync_core.report.sources import section as sources_section
 from hydrosync_core.report.template import NumberedCanvas, ReportDocTemplate
 
 log = logging.getLogger(__name__)
@@ -143,6 +144,14 @@ def build_report(project, pdf_path: str | os.PathLike, progress=None, cancel=Non
                     "OUT OF DATE: these results no longer match the project \u2014 "
                     + "; ".join(status.stale) + ". Run the analysis again before signing.")]
             story += section
+        story.append(PageBreak())
+        try:
+            story += sources_section(project, ctx)
+        except Exception as exc:  # a damaged raw group must not sink the report
+            reason = failure_reason(exc)
+            problems.append(f"data-sources appendix could not be produced: {reason}")
+            story += [ctx.heading("Appendix: data sources"),
+                      ctx.warning(f"The data-sources appendix could not be produced: {reason}.")]
         check_cancel(cancel)
         report(progress, 0.75, "laying out pages")
         canvas = type("ReportCanvas", (NumberedCanvas,), {

@@ -26,7 +26,8 @@ SPEC = PluginSpec(
         DataKind("lines", "survey lines CSV (name, start, end)", "raw/lines",
                  f"{READERS}.survey_csv:read_lines_csv"),
         DataKind("gnss_log", "NMEA GNSS log (GGA / PTNL,GGK [+GST, ZDA]; logger time tags "
-                 "allowed)", "raw/gnss", f"{READERS}.log_import:store_gnss_log", "custom"),
+                 "allowed)", "raw/gnss", f"{READERS}.log_import:store_gnss_log", "custom",
+                 options=("empty_geoid",)),
         DataKind("attitude_log", "NMEA motion log (PASHR / PSXN,23 / TSS1; see "
                  "--heave-positive)", "raw/attitude",
                  f"{READERS}.log_import:store_attitude_log", "custom",

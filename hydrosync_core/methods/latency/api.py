@@ -24,6 +24,7 @@ from hydrosync_core.methods.latency.params import LatencyParams
 from hydrosync_core.methods.latency.quality import sigma0
 from hydrosync_core.methods.latency.result import LatencyResult, LineResult
 from hydrosync_core.progress import check_cancel, report
+from hydrosync_core.timespan import span_of
 
 
 def _column(table: Mapping, name: str, source: str) -> np.ndarray:
@@ -49,6 +50,11 @@ def _check_inputs(gnss: Mapping, attitude: Mapping, lever_arm) -> tuple:
         raise InputError(None, "lever arm must be three finite numbers (x y z, m)",
                          field="lever_arm")
     return t_g, hgt, att, arm
+
+
+def _span_text(times: np.ndarray) -> str:
+    span = span_of(times)
+    return span.text() if span is not None else "nothing"
 
 
 def _joint_peak(curves: np.ndarray, weights: np.ndarray, dts: np.ndarray) -> float:
@@ -103,7 +109,9 @@ def estimate_latency(
         peaks.append(scan_line(line, t_att, h_att, dts))
     if not any(line.usable for line in prepared):
         raise InputError("lines", f"no line has {p.min_epochs} or more GNSS epochs with attitude "
-                         "data (check the line times and the time scales of the files)")
+                         "data: lines span " + _span_text(np.r_[starts, ends])
+                         + ", GNSS " + _span_text(t_g) + ", attitude " + _span_text(t_att)
+                         + " (lines must be on the loggers' time scale)")
 
     r_max = np.array([pk.r_max for pk in peaks])
     lat = np.array([pk.latency_s for pk in peaks])

@@ -28,6 +28,7 @@ Stored layout (stable; the PDF report section reads it) — ``/results/latency``
 
 from __future__ import annotations
 
+import dataclasses
 import json
 from collections.abc import Mapping
 from datetime import UTC, datetime
@@ -35,6 +36,7 @@ from datetime import UTC, datetime
 import numpy as np
 
 from hydrosync_core import __version__
+from hydrosync_core.importers.import_report import stored_warnings
 from hydrosync_core.methods.latency import VERSION
 from hydrosync_core.methods.latency.api import estimate_latency, synchronise
 from hydrosync_core.methods.latency.combine import combine
@@ -84,6 +86,12 @@ def run(project: Project, params: LatencyParams | Mapping | None = None, progres
     arm = project_lever_arm(project, p)
     gnss, attitude, lines = read_inputs(project)
     result = estimate_latency(gnss, attitude, lines, arm, p, sub_progress(progress, 0, 0.9), cancel)
+    # Import warnings change what the numbers mean (e.g. heights above the geoid): they
+    # travel with the result.
+    carried = tuple(f"/{path} import: {w}" for path in ("raw/gnss", "raw/attitude")
+                    for w in stored_warnings(project, path))
+    if carried:
+        result = dataclasses.replace(result, warnings=carried + tuple(result.warnings))
     sync = (synchronise(gnss, attitude, arm, result.latency_s) if result.converged else None)
     store(project, result, sync, p)
     record(project, RESULT, ("raw/gnss", "raw/attitude", "raw/lines"), p,

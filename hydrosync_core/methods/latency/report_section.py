@@ -83,6 +83,10 @@ def summary(project) -> list[tuple[str, str]]:
         after = np.nanmedian(np.asarray(table["sigma0_after_m"], float)[used])
         rows.append(("\u03c3\u2080 before \u2192 after (median of used lines)",
                      f"{fmt(before, SIGMA0_DECIMALS)} \u2192 {fmt(after, SIGMA0_DECIMALS)} m"))
+    # Import warnings change what the numbers mean: on the summary, not only in the section.
+    for warning in _json_attr(attrs, "warnings", []):
+        if str(warning).startswith("/raw/"):
+            rows.append(("Caveat", str(warning)))
     return rows
 
 

@@ -275,3 +275,43 @@ def test_fuzz_laz():
         _import("lidar", ".laz", content)
 
     check()
+
+
+# ------------------------------------------------------------ RTKLIB .pos (gnss_attitude)
+POS_HEADER = ["% program   : RTKLIB ver.2.4.3",
+              "% ref pos   : 35.0 139.0 50.0",
+              "%  GPST                  latitude(deg) longitude(deg)  height(m)   Q  ns   "
+              "sdn(m)   sde(m)   sdu(m)  sdne(m)  sdeu(m)  sdun(m) age(s)  ratio",
+              "%  GPST          e-baseline(m)  n-baseline(m)  u-baseline(m)   Q  ns   sde(m)   "
+              "sdn(m)   sdu(m)  sden(m)  sdnu(m)  sdue(m) age(s)  ratio",
+              "%  GPST       x-ecef(m)      y-ecef(m)      z-ecef(m)   Q  ns   sdx(m)   "
+              "sdy(m)   sdz(m)  sdxy(m)  sdyz(m)  sdzx(m) age(s)  ratio",
+              "% garbage legend (deg)"]
+pos_time = st.one_of(
+    st.builds(lambda w, t: f"{w} {t:.3f}", st.integers(-5, 5000), st.floats(-10, 7e5)),
+    st.builds(lambda d, s: f"2023/01/{d:02d} 10:00:{s:06.3f}", st.integers(0, 40),
+              st.floats(0, 70)),
+    st.sampled_from(["2023/13/45 99:99:99", "x y", "1e308 1e308", "2100 604799.999"]))
+pos_value = st.one_of(st.floats(-1e7, 1e7).map(lambda v: f"{v:.4f}"), cell,
+                      st.sampled_from(["35 10 5.5", "-139 0 0", "1", "5", "7", "9"]))
+pos_row = st.builds(lambda t, vals: t + " " + " ".join(vals), pos_time,
+                    st.lists(pos_value, min_size=0, max_size=17))
+
+
+def test_fuzz_rtklib_pos():
+    from hydrosync_core.importers.rtklib_pos import read_pos
+
+    @_settings(40)
+    @given(st.lists(st.sampled_from(POS_HEADER), max_size=3), st.lists(pos_row, max_size=12))
+    def check(header, rows):
+        with tempfile.TemporaryDirectory(prefix="hydrosync-fuzz-") as folder:
+            path = Path(folder) / "A1.pos"
+            path.write_bytes(_encode("\n".join(header + rows)))
+            try:
+                read_pos(path)
+            except InputError as exc:
+                line = exc.one_line()
+                assert "\n" not in line and len(line) <= LINE_LIMIT, line
+        _FAULTS.record("fuzzed importer: rtklib .pos", True)
+
+    check()

@@ -94,3 +94,17 @@ def test_ins_and_mbes_ranges(tmp_path):
     mbes.write_text("time,x,y,z\n0,1,2,3\n0,1,2,3\n1,1,2,1e300\n")
     with pytest.raises(InputError, match="line 4|:4:"):
         read_mbes_csv(mbes)
+
+
+def test_rtklib_pos_with_a_huge_token_quotes_little(tmp_path, faults):
+    from hydrosync_core.importers.rtklib_pos import read_pos
+
+    path = tmp_path / "A1.pos"
+    big = "7" * 200_000
+    path.write_text(f"% legend\n{big} x 1 2 3 4 5\n2000 1.0 {big}.5 1 2 3 4 5\n")
+    with pytest.raises(InputError) as caught:
+        read_pos(path)
+    line = caught.value.one_line()
+    ok = len(line) <= 400 and "7" * 121 not in line
+    faults.record("hostile file: rtklib .pos", ok, line[:200])
+    assert ok, line[:200]

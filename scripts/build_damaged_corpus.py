@@ -193,6 +193,8 @@ CASES: tuple[Case, ...] = (
          _drop_column("raw/pool/mbes", "x", keep_listing=True)),
     Case("results-2d-column", "report", "", _without_pool(_two_d(
         "results/latency/lines/latency_s"))),
+    Case("report-vessel-json-invalid", "report", "",
+         _without_pool(_json("vessel", "{'sensors': ["))),
     Case("results-columns-name-missing", "report", "",
          _drop_column("results/pool_calibration/faces", "rms_mbes_m", keep_listing=True)),
 )

@@ -33,7 +33,12 @@ def cmd_report(args: argparse.Namespace) -> int:
             from hydrosync_core.plugins import plugin_specs
             from hydrosync_core.provenance import stale_results
 
-            stale = stale_results(project, plugin_specs())
+            try:
+                stale = stale_results(project, plugin_specs())
+            except InputError as exc:  # damaged project: the report says what it can
+                stale = {}
+                problems.append(f"whether the results are up to date could not be checked: "
+                                f"{exc.message}")
             for plugin_id, reasons in stale.items():
                 print(f"hydrosync report: warning: {plugin_id} results are out of date: "
                       + "; ".join(reasons), file=sys.stderr)

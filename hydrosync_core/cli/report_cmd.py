@@ -51,9 +51,8 @@ def cmd_report(args: argparse.Namespace) -> int:
             finally:
                 progress.done()
         if problems and args.strict:
-            raise InputError(args.project, f"{len(problems)} part(s) of the report could not "
-                             f"be produced ({'; '.join(problems)}); no report written "
-                             "(--strict)")
+            raise InputError(args.project, f"no report written (--strict): {len(problems)} "
+                             f"part(s) could not be produced: {'; '.join(problems)}")
         outputs.publish()
     for problem in problems:
         print(f"hydrosync report: warning: {args.project}: {problem}", file=sys.stderr)

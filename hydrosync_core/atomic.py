@@ -132,10 +132,17 @@ def _umask() -> int:
     return mask
 
 
+def _access(path: Path, mode: int) -> bool:
+    """``os.access`` for the effective user (the one that will write), where supported."""
+    if os.access in os.supports_effective_ids:
+        return os.access(path, mode, effective_ids=True)
+    return os.access(path, mode)
+
+
 def _may_write(info: os.stat_result, path: Path) -> bool:
     if os.name == "posix" and os.geteuid() == 0:
         return bool(info.st_mode & 0o222)  # root too respects a file marked read-only
-    return os.access(path, os.W_OK)
+    return _access(path, os.W_OK)
 
 
 def _owner_name(uid: int) -> str:
@@ -162,7 +169,7 @@ def write_problem(path: str | os.PathLike) -> str | None:
         return f"{folder} is not a folder"
     if path.is_dir():
         return "it is a folder, not a file"
-    if not os.access(folder, os.W_OK | os.X_OK):
+    if not _access(folder, os.W_OK | os.X_OK):
         return f"its folder {folder} cannot be written (permissions or read-only disk)"
     if path.exists():
         info = path.stat()

@@ -59,7 +59,11 @@ def install() -> Callable[[], None]:
 
     def hook(info) -> None:
         if info.exc_type is not None and issubclass(info.exc_type, KeyboardInterrupt):
-            _thread.interrupt_main(signal.SIGINT)  # raised again in ordinary code
+            # Deliver it again a moment later, from another thread, so that it is raised
+            # in ordinary code rather than here (where it would be lost once more).
+            timer = threading.Timer(0.01, _thread.interrupt_main, (signal.SIGINT,))
+            timer.daemon = True
+            timer.start()
             return
         previous_hook(info)
 

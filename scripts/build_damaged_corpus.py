@@ -135,6 +135,14 @@ def _flip_chunk(path: str) -> Callable:
     return damage
 
 
+def _without_pool(damage: Callable) -> Callable:
+    """*damage*, with the pool results removed (a shorter report to build)."""
+    def both(f):
+        damage(f)
+        del f["results/pool_calibration"]
+    return both
+
+
 def _duplicate_line(f: h5py.File) -> None:
     table = "raw/lines"
     names = f[f"{table}/name"].asstr()[()]
@@ -183,7 +191,10 @@ CASES: tuple[Case, ...] = (
     Case("broken-chunk-lidar", "pool-calibrate", "raw/pool/", _flip_chunk("raw/pool/lidar")),
     Case("mbes-column-missing-dataset", "pool-calibrate", "raw/pool/mbes/x",
          _drop_column("raw/pool/mbes", "x", keep_listing=True)),
-    Case("results-2d-column", "report", "", _two_d("results/latency/lines/latency_s")),
+    Case("results-2d-column", "report", "", _without_pool(_two_d(
+        "results/latency/lines/latency_s"))),
+    Case("report-vessel-json-invalid", "report", "",
+         _without_pool(_json("vessel", "{'sensors': ["))),
     Case("results-columns-name-missing", "report", "",
          _drop_column("results/pool_calibration/faces", "rms_mbes_m", keep_listing=True)),
 )

@@ -14,6 +14,8 @@ from pathlib import Path
 
 from hydrosync_core.cli.terminal import TerminalProgress
 from hydrosync_core.demo import (
+    DEMO_PROJECT,
+    DEMO_REPORT,
     DEMO_SEED,
     Stage,
     StageListener,
@@ -51,11 +53,18 @@ class _PrintingListener(StageListener):
 
 
 def cmd_demo(args: argparse.Namespace) -> int:
+    from hydrosync_core.atomic import check_writable
+    from hydrosync_core.errors import InputError
+
     out = Path(args.out)
     if out.exists() and not out.is_dir():
-        from hydrosync_core.errors import InputError
-
         raise InputError(str(out), "--out must be a folder")
+    try:  # outputs checked before any work
+        out.mkdir(parents=True, exist_ok=True)
+    except OSError as exc:
+        raise InputError(str(out), f"--out folder cannot be created ({exc.strerror})") from None
+    for name in (DEMO_PROJECT, DEMO_REPORT):
+        check_writable(out / name, "--out")
     t0 = time.perf_counter()
     outcome = build_demo(out, seed=args.seed, listener=_PrintingListener())
     elapsed = time.perf_counter() - t0

@@ -88,9 +88,13 @@ def _print_results_status(project: Project) -> None:
     print("results:")
     for spec in specs:
         path = f"results/{spec.id}"
-        reasons = stale_reasons(project, path)
-        when = (read_record(project, path) or {}).get("run_utc") or \
-            project.attrs(path).get("run_utc", "?")
+        try:
+            reasons = stale_reasons(project, path)
+            when = (read_record(project, path) or {}).get("run_utc") or \
+                project.attrs(path).get("run_utc", "?")
+        except InputError as exc:  # a damaged project: info still lists what it holds
+            print(f"  {spec.id}: status cannot be checked: {exc.message}")
+            continue
         state = f"{OUT_OF_DATE.upper()}: " + "; ".join(reasons) if reasons else "up to date"
         print(f"  {spec.id}: {state} (computed {when})")
 

@@ -33,7 +33,12 @@ def cmd_report(args: argparse.Namespace) -> int:
             from hydrosync_core.plugins import plugin_specs
             from hydrosync_core.provenance import stale_results
 
-            stale = stale_results(project, plugin_specs())
+            try:
+                stale = stale_results(project, plugin_specs())
+            except InputError as exc:  # damaged project: the report says what it can
+                stale = {}
+                problems.append(f"whether the results are up to date could not be checked: "
+                                f"{exc.message}")
             for plugin_id, reasons in stale.items():
                 print(f"hydrosync report: warning: {plugin_id} results are out of date: "
                       + "; ".join(reasons), file=sys.stderr)
@@ -46,9 +51,8 @@ def cmd_report(args: argparse.Namespace) -> int:
             finally:
                 progress.done()
         if problems and args.strict:
-            raise InputError(args.project, f"{len(problems)} part(s) of the report could not "
-                             f"be produced ({'; '.join(problems)}); no report written "
-                             "(--strict)")
+            raise InputError(args.project, f"no report written (--strict): {len(problems)} "
+                             f"part(s) could not be produced: {'; '.join(problems)}")
         outputs.publish()
     for problem in problems:
         print(f"hydrosync report: warning: {args.project}: {problem}", file=sys.stderr)

@@ -363,6 +363,10 @@ def _read_ply(path: Path) -> np.ndarray:
         raise InputError(str(path), "PLY has no vertex element first")
     _, count, props = elements[0]
     names = [p[0] for p in props]
+    twice = sorted({n for n in names if n != "list" and names.count(n) > 1})
+    if twice:
+        raise InputError(str(path), f"PLY vertex property {quote(twice[0], 30)} is declared "
+                         "more than once")
     if "list" in names or not {"x", "y", "z"} <= set(names):
         raise InputError(str(path), f"PLY vertex needs scalar x, y, z (has "
                          f"{quote(', '.join(names), 80)})")

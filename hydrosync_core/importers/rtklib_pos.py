@@ -43,7 +43,7 @@ from pathlib import Path
 
 import numpy as np
 
-from hydrosync_core.errors import InputError
+from hydrosync_core.errors import InputError, quote
 from hydrosync_core.geodesy import ecef_to_geodetic, ecef_to_ned_matrix, geodetic_to_ecef
 
 GPS_EPOCH = datetime(1980, 1, 6)
@@ -176,14 +176,15 @@ def _time_of(path: str, number: int, t0: str, t1: str) -> tuple[int, float, str]
             h, m, s = t1.split(":")
             seconds = (day - GPS_EPOCH).total_seconds() + int(h) * 3600 + int(m) * 60 + float(s)
         except ValueError:
-            raise InputError(path, f"'{t0} {t1}' is not a yyyy/mm/dd hh:mm:ss time",
+            raise InputError(path, f"{quote(t0 + ' ' + t1)} is not a yyyy/mm/dd hh:mm:ss time",
                              line=number, field="time") from None
         week = int(seconds // WEEK_S)
         return week, seconds - week * WEEK_S, "calendar"
     try:
         week, tow = int(t0), float(t1)
     except ValueError:
-        raise InputError(path, f"'{t0} {t1}' is neither a date/time nor a GPS week and TOW",
+        raise InputError(path, f"{quote(t0 + ' ' + t1)} is neither a date/time nor a GPS "
+                         "week and TOW",
                          line=number, field="time") from None
     if not (0 <= week < 10000 and 0.0 <= tow < WEEK_S + 1.0):
         raise InputError(path, f"GPS week {week} / time of week {tow} out of range",
@@ -268,7 +269,7 @@ def read_pos(path: str | os.PathLike) -> PosData:
                 try:
                     merged.append(str(sign * (abs(float(d)) + float(m) / 60 + float(s) / 3600)))
                 except ValueError:
-                    raise InputError(name, f"'{d} {m} {s}' is not d m s", line=number,
+                    raise InputError(name, f"{quote(f'{d} {m} {s}')} is not d m s", line=number,
                                      field=names[k // 3]) from None
             data = merged + data[6:]
         for j, token in enumerate(data):

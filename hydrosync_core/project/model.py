@@ -238,12 +238,12 @@ class Project:
             raise ProjectReadOnlyError(
                 str(target), f"{target} was {self.readonly_reason or 'opened read-only'}: "
                 "save it under another name")
+        problem = write_problem(real_target(target))
+        if problem is not None:
+            raise ProjectReadOnlyError(str(target), f"{target} cannot be saved: {problem}")
         lock = self._lock if same and self._lock is not None else ProjectLock.acquire(
             real_target(target))
         try:
-            problem = write_problem(real_target(target))
-            if problem is not None:
-                raise ProjectReadOnlyError(str(target), f"{target} cannot be saved: {problem}")
             if same:
                 self._check_unchanged(target)
             self.notices += clean_stale_temporaries(real_target(target), legacy=True)

@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import logging
 import os
+import re
 from pathlib import Path
 
 from reportlab.platypus import Flowable, PageBreak
@@ -78,6 +79,9 @@ def _status_problems(project, statuses: list[ModuleStatus]) -> list[str]:
     for status in statuses:
         for quantity, value in status.rows:
             if quantity == "summary unavailable":
+                value = re.sub(r"^\w+(Error|Exception): ", "", value)
+                if project.path is not None:
+                    value = value.replace(f"{project.path}: ", "")
                 out.append(f"summary of '{status.spec.name}' could not be produced: {value}")
     try:
         from hydrosync_core.project.vessel import vessel_config

@@ -66,9 +66,12 @@ def module_status(project, spec: PluginSpec) -> ModuleStatus:
         except Exception as exc:  # a plugin's summary must not sink the whole report
             log.error("summary of %s failed: %s", spec.id, exc)
             rows = (("summary unavailable", f"{type(exc).__name__}: {exc}"),)
+    try:
+        stale = tuple(stale_reasons(project, path))
+    except InputError as exc:  # a damaged project: flag the results, the report goes on
+        stale = (f"whether they are up to date cannot be checked ({exc.message})",)
     return ModuleStatus(spec, True, "run", str(attrs.get("run_utc", "")),
-                        str(attrs.get("software_version", "")), rows,
-                        tuple(stale_reasons(project, path)))
+                        str(attrs.get("software_version", "")), rows, stale)
 
 
 def file_sha256(path: Path | None) -> str:

@@ -39,12 +39,12 @@ def pytest_terminal_summary(terminalreporter, exitstatus, config):
         return
     tr = terminalreporter
     tr.section("issue #9 fault cases")
-    tr.write_line(f"{'kind':<34} {'tried':>6} {'clean':>6} {'failed':>7}")
+    tr.write_line(f"{'kind':<46} {'tried':>6} {'clean':>6} {'failed':>7}")
     for kind in sorted(_TABLE):
         tried, clean = _TABLE[kind]
-        tr.write_line(f"{kind:<34} {tried:>6} {clean:>6} {tried - clean:>7}")
+        tr.write_line(f"{kind:<46} {tried:>6} {clean:>6} {tried - clean:>7}")
     total = [sum(v[0] for v in _TABLE.values()), sum(v[1] for v in _TABLE.values())]
-    tr.write_line(f"{'total':<34} {total[0]:>6} {total[1]:>6} {total[0] - total[1]:>7}")
+    tr.write_line(f"{'total':<46} {total[0]:>6} {total[1]:>6} {total[0] - total[1]:>7}")
     for failure in _FAILURES[:20]:
         tr.write_line(f"  failed: {failure}")
 

@@ -70,14 +70,13 @@ def test_sigint_at_random_moments(tmp_path, big_project_template, faults):
 def test_sigint_while_modules_load(tmp_path, faults):
     path = tmp_path / "P.h5"
     Project.new("x").save(path)
-    for delay in (0.06, 0.1, 0.15, 0.2):
+    rng = random.Random(5)
+    for delay in [0.06, 0.1, 0.15, 0.2] + [rng.uniform(0.04, 0.3) for _ in range(4 * SCALE - 4)]:
         before = _digest(path)
         proc = start_cli("vessel", path, "--set", "x", 1, 2, 3)
         time.sleep(delay)
         proc.send_signal(signal.SIGINT)
         problems = _check_interrupted(proc, path, "x", before)
-        if proc.returncode == 130:
-            pass
         faults.record("SIGINT while modules load", not problems, "; ".join(problems))
         assert not problems
 
@@ -123,6 +122,29 @@ def test_interrupt_right_after_the_save_says_saved(tmp_path, monkeypatch, capsys
                                  "interrupt: P.h5"]
     assert sensors(path)["gnss"]["offset_m"] == [1.0, 2.0, 3.0]
     assert temporaries(tmp_path, "P.h5") == []
+
+
+def test_interrupt_inside_a_finalizer_is_not_lost():
+    """A Ctrl-C handled inside a weakref callback would be printed and dropped by Python:
+    it is delivered again and surfaces in ordinary code."""
+    import weakref
+
+    class Thing:
+        pass
+
+    def finalizer_hit_by_ctrl_c():
+        raise KeyboardInterrupt
+
+    undo = interrupts.install()
+    try:
+        thing = Thing()
+        weakref.finalize(thing, finalizer_hit_by_ctrl_c)
+        with pytest.raises(KeyboardInterrupt):
+            del thing
+            for _ in range(200):
+                time.sleep(0.005)
+    finally:
+        undo()
 
 
 def test_main_restores_the_previous_sigint_handler(tmp_path):

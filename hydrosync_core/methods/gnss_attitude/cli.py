@@ -18,12 +18,8 @@ from pathlib import Path
 
 from hydrosync_core.errors import InputError
 from hydrosync_core.methods.gnss_attitude.params import GnssAttitudeParams
+from hydrosync_core.outputs import Outputs
 from hydrosync_core.params import add_cli_arguments, from_cli
-
-
-def _check_out(path: Path | None, option: str) -> None:
-    if path is not None and not path.parent.resolve().is_dir():
-        raise InputError(str(path), f"folder of {option} does not exist")
 
 
 def _print(sol, stats: dict, method: str) -> None:
@@ -62,8 +58,9 @@ def _run_files(args, params: GnssAttitudeParams) -> int:
                               ("--out", args.out)) if not v]
     if missing:
         raise InputError(None, f"missing option(s) {', '.join(missing)} (or give a project)")
-    _check_out(args.out, "--out")
-    _check_out(args.json, "--json")
+    out = Outputs({f"--pos {p}": p for p in args.pos} | {"--antennas": args.antennas})
+    out.plan(args.out, "--out")  # checked before any work
+    out.plan(args.json, "--json")
     antennas = read_antennas_json(args.antennas)["antennas"]
     stems = [Path(p).stem for p in args.pos]
     if len(set(stems)) != len(stems):
@@ -84,9 +81,11 @@ def _run_files(args, params: GnssAttitudeParams) -> int:
     body = [antennas[n] for n in sol.names]
     predicted = {m: predict(body, params.sigma_horizontal_m, params.sigma_vertical_m,
                             method=m).tolist() for m in ("lsq", "direct")}
-    rows = write_attitude_csv(args.out, sol, params.method)
-    if args.json is not None:
-        write_stats_json(args.json, stats_document(sol, stats, predicted, params))
+    with out:
+        rows = write_attitude_csv(out.temp(args.out), sol, params.method)
+        if args.json is not None:
+            write_stats_json(out.temp(args.json), stats_document(sol, stats, predicted, params))
+        out.publish()  # both outputs together, or none
     _print(sol, stats, params.method)
     print(f"{rows} epochs ({params.method}) written to {args.out}")
     return 0
@@ -105,8 +104,9 @@ def _run_project(args, params: GnssAttitudeParams) -> int:
 
     if args.pos or args.antennas:
         raise InputError(str(args.project), "give either a project file or --pos/--antennas")
-    _check_out(args.out, "--out")
-    _check_out(args.json, "--json")
+    out = Outputs({"project": args.project})
+    out.plan(args.out, "--out")  # checked before any work
+    out.plan(args.json, "--json")
     project = Project.open(args.project)
     progress = TerminalProgress("attitude")
     try:
@@ -117,14 +117,16 @@ def _run_project(args, params: GnssAttitudeParams) -> int:
     progress.done()
     stats = statistics(sol, params.static_start_s, params.static_end_s)
     _print(sol, stats, params.method)
-    if args.out is not None:
-        write_attitude_csv(args.out, sol, params.method)
-    if args.json is not None:
-        import json
+    with out:
+        if args.out is not None:
+            write_attitude_csv(out.temp(args.out), sol, params.method)
+        if args.json is not None:
+            import json
 
-        predicted = json.loads(project.attrs("results/gnss_attitude")["predicted_deg"])
-        write_stats_json(args.json, stats_document(sol, stats, predicted, params))
-    project.save()
+            predicted = json.loads(project.attrs("results/gnss_attitude")["predicted_deg"])
+            write_stats_json(out.temp(args.json), stats_document(sol, stats, predicted, params))
+        project.save()
+        out.publish()
     print(f"results stored in {args.project} under /results/gnss_attitude")
     return 0
 

@@ -7,6 +7,7 @@ the vessel reference point, and optionally ``angles_deg`` ``{roll, pitch, yaw}``
 from __future__ import annotations
 
 import math
+from pathlib import Path
 
 import numpy as np
 
@@ -61,5 +62,20 @@ def sensor_offset(project: Project, name: str) -> np.ndarray:
 
 
 def lever_arm(project: Project, to: str, origin: str) -> np.ndarray:
-    """Vector from sensor *origin* to sensor *to*, body frame FRD, metres, shape (3,)."""
+    """Vector from sensor *origin* to sensor *to*, body frame FRD, metres, shape (3,).
+
+    A sheet lacking either sensor raises one error naming every missing entry and the
+    ways to provide them.
+    """
+    sensors = vessel_config(project).get("sensors", {})
+    missing = [name for name in (to, origin) if name not in sensors]
+    if missing:
+        where = str(project.path or "<project>")
+        example = " ".join(f"--set {m} X Y Z" for m in missing)
+        raise InputError(
+            where, f"the vessel sheet has no {' and no '.join(repr(m) for m in missing)} "
+            f"sensor: set {'them' if len(missing) > 1 else 'it'} with 'hydrosync vessel "
+            f"{Path(where).name} {example}' (body frame, m), with Edit → Vessel offsets… in "
+            "the application, or give the lever arm directly (--lever-arm X Y Z)",
+            field="vessel/sensors")
     return sensor_offset(project, to) - sensor_offset(project, origin)

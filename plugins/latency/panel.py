@@ -191,6 +191,17 @@ class LatencyPanel(PluginPanel):
         project, params = self.project, self.params()
         if project is None or params is None:
             return
+        if params.lever_arm_m is None:
+            # Never run with a silent zero lever arm: say what is missing and how to fix it.
+            try:
+                vessel_lever_arm(project, "gnss", "motion")
+            except InputError as exc:
+                self.summary.setText(
+                    "<b>Lever arm needed</b>: " + exc.message.split(": set")[0]
+                    + ". Enter the sensors in Edit → Vessel offsets…, or tick "
+                    "<i>Lever arm</i> above and type it.")
+                self.sig_status.emit("Latency: the vessel sheet lacks the GNSS or motion sensor")
+                return
         self.run_button.setEnabled(False)
         self.start_work(lambda progress, cancel: run(project, params, progress, cancel),
                         self._on_finished, label="Latency")

@@ -46,13 +46,19 @@ class ImportDialog(QDialog):
             self.kind_box.setItemData(self.kind_box.count() - 1, f"stored in /{kind.target}",
                                       Qt.ItemDataRole.ToolTipRole)
         self.target = QLabel()
-        # Heave sign of a motion log: stated, never guessed (formats.md, "NMEA 0183").
+        # Heave sign of a motion log: stated, never guessed (docs/formats.md, NMEA 0183).
+        # The sentence found in the file preselects its documented sign; the user confirms.
         self.heave_box = QComboBox()
-        self.heave_box.addItem("as documented for the sentence", None)
+        self.heave_box.addItem("choose the heave sign…", None)
         self.heave_box.addItem("positive up", "up")
         self.heave_box.addItem("positive down", "down")
-        self.heave_box.setToolTip("Direction of positive heave in the log. TSS1 carries no "
-                                  "documented sign: choose one.")
+        self.heave_box.setToolTip("Direction of positive heave in the file. The sign documented "
+                                  "for the sentence found is preselected: confirm it or change "
+                                  "it if your sensor is configured otherwise.")
+        self.heave_box.currentIndexChanged.connect(self._on_kind)
+        self.heave_note = QLabel()
+        self.heave_note.setWordWrap(True)
+        self.heave_note.setObjectName("heave_note")
         self.heave_label = QLabel("Heave:")
         self.path_edit = QLineEdit()
         self.path_edit.setPlaceholderText("file to import")
@@ -62,6 +68,7 @@ class ImportDialog(QDialog):
         row.addWidget(self.path_edit, 1)
         row.addWidget(browse)
         self._kinds = dict(kinds)
+        self._sniffed: str | None = None
         self.buttons = QDialogButtonBox(
             QDialogButtonBox.StandardButton.Ok | QDialogButtonBox.StandardButton.Cancel
         )
@@ -72,6 +79,7 @@ class ImportDialog(QDialog):
         form.addRow("Goes to:", self.target)
         form.addRow("File:", row)
         form.addRow(self.heave_label, self.heave_box)
+        form.addRow("", self.heave_note)
         layout = QVBoxLayout(self)
         layout.addLayout(form)
         layout.addWidget(self.buttons)
@@ -103,11 +111,39 @@ class ImportDialog(QDialog):
     def _on_kind(self) -> None:
         kind = self._kinds.get(str(self.kind_box.currentData()))
         self.target.setText(f"/{kind.target}" if kind else "")
-        heave = _takes_heave(self._kinds.get(str(self.kind_box.currentData())))
-        self.heave_box.setVisible(heave)
-        self.heave_label.setVisible(heave)
+        heave = _takes_heave(kind)
+        for widget in (self.heave_box, self.heave_label, self.heave_note):
+            widget.setVisible(heave)
+        path = self.path_edit.text().strip()
+        if heave and path != self._sniffed:
+            self._sniffed = path
+            self._preselect_heave(path, kind)
         ok = self.buttons.button(QDialogButtonBox.StandardButton.Ok)
-        ok.setEnabled(bool(self.path_edit.text().strip()))
+        ok.setEnabled(bool(path) and (not heave or self.heave_box.currentData() is not None))
+
+    def _preselect_heave(self, path: str, kind) -> None:
+        """Preselect the documented heave sign of the sentence found in *path*."""
+        from hydrosync_core.importers.nmea_motion import (
+            DOCUMENTED_HEAVE,
+            documented_heave_sign,
+            sniff_motion_source,
+        )
+
+        is_log = kind is not None and kind.store == "custom"
+        source = sniff_motion_source(path) if path and is_log else None
+        sign = documented_heave_sign(source) if is_log else "up"
+        if not is_log:
+            note = ("The attitude CSV format is heave positive up; change it only if your "
+                    "file differs.")
+        elif source is None:
+            note = "No motion sentence recognised yet: choose the heave sign of your sensor."
+        else:
+            note = (f"{source} found: documented heave positive {DOCUMENTED_HEAVE[source]}. "
+                    "Press OK to confirm, or change it if your sensor is set up otherwise.")
+        self.heave_box.blockSignals(True)
+        self.heave_box.setCurrentIndex(max(self.heave_box.findData(sign), 0))
+        self.heave_box.blockSignals(False)
+        self.heave_note.setText(note)
 
     @Slot()
     def _on_browse(self) -> None:

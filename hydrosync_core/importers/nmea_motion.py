@@ -181,3 +181,31 @@ def heading_from_hdt(log: LogLines, hdt_index: np.ndarray, times: np.ndarray,
     t, h = t[order], np.unwrap(np.radians(h[order]))
     out = np.degrees(np.interp(times, t, h, left=np.nan, right=np.nan)) % 360.0
     return out
+
+
+def sniff_motion_source(path, max_bytes: int = 262_144) -> str | None:
+    """The motion sentence a log mostly holds (``PSXN,23``, ``PASHR``, ``TSS1``), from its
+    first *max_bytes*; None when none is recognised or the file cannot be read.
+
+    Cheap enough to call while the user picks a file, so the Import dialog can preselect
+    the sentence's documented heave sign for confirmation.
+    """
+    import re
+
+    try:
+        with open(path, "rb") as handle:
+            text = handle.read(max_bytes).decode("ascii", "replace")
+    except OSError:
+        return None
+    counts = {"PSXN,23": len(re.findall(r"\$[A-Z]{0,2}PSXN,23,", text)),
+              "PASHR": len(re.findall(r"\$[A-Z]{0,2}PASHR,", text)),
+              "TSS1": len(re.findall(r":[0-9A-Fa-f]{6} [ +-]\d{4}[A-Za-z ][ +-]\d{4} [ +-]\d{4}",
+                                     text))}
+    best = max(counts, key=counts.get)
+    return best if counts[best] else None
+
+
+def documented_heave_sign(source: str | None) -> str | None:
+    """``"up"``/``"down"`` as the sentence's documentation states it (None if unknown)."""
+    text = DOCUMENTED_HEAVE.get(source or "", "")
+    return text.split()[0] if text else None

@@ -257,7 +257,7 @@ def test_geometry_is_persisted(qtbot, make_window, settings):
     assert (again.width(), again.height()) == (640, 480)
 
 
-def test_import_dialog_choice_and_heave_sign(qtbot):
+def test_import_dialog_choice_and_heave_sign(qtbot, tmp_path):
     from hydrosync_core.importers.kinds import KINDS
     from hydrosync_gui.dialogs import ImportDialog
 
@@ -267,14 +267,40 @@ def test_import_dialog_choice_and_heave_sign(qtbot):
     assert not ok.isEnabled()  # no file yet
     dialog.kind_box.setCurrentIndex(dialog.kind_box.findData("attitude_log"))
     dialog.path_edit.setText(" /data/motion.log ")
-    assert ok.isEnabled() and dialog.target.text() == "/raw/attitude"
+    assert dialog.target.text() == "/raw/attitude"
     assert not dialog.heave_box.isHidden()
-    assert dialog.choice() == ("attitude_log", "/data/motion.log", {})
+    # No sentence recognised (no such file): the sign must be chosen before OK.
+    assert not ok.isEnabled() and "choose" in dialog.heave_note.text()
     dialog.heave_box.setCurrentIndex(dialog.heave_box.findData("down"))
+    assert ok.isEnabled()
     assert dialog.choice() == ("attitude_log", "/data/motion.log", {"heave_positive": "down"})
     dialog.kind_box.setCurrentIndex(dialog.kind_box.findData("gnss"))
     assert dialog.heave_box.isHidden()
     assert dialog.choice() == ("gnss", "/data/motion.log", {})
+
+
+@pytest.mark.parametrize(("sentence", "sign"), [
+    ("$PSXN,23,0.12,-0.45,123.40,0.21*00", "down"),
+    ("$PASHR,000000.00,123.40,T,0.12,-0.45,0.21,0.01,0.01,0.02,1,0*00", "up"),
+])
+def test_import_dialog_preselects_the_documented_sign(qtbot, tmp_path, sentence, sign):
+    """A Seapath PSXN,23 log gets 'positive down' preselected: one click (OK) confirms; no
+    command-line wording is shown."""
+    from hydrosync_core.importers.kinds import KINDS
+    from hydrosync_gui.dialogs import ImportDialog
+
+    log = tmp_path / "motion.log"
+    log.write_text("\n".join([sentence] * 20) + "\n")
+    dialog = ImportDialog(KINDS, str(tmp_path))
+    qtbot.addWidget(dialog)
+    dialog.kind_box.setCurrentIndex(dialog.kind_box.findData("attitude_log"))
+    dialog.path_edit.setText(str(log))
+    assert dialog.heave_box.currentData() == sign
+    assert dialog.buttons.button(dialog.buttons.StandardButton.Ok).isEnabled()
+    note = dialog.heave_note.text()
+    assert f"documented heave positive {sign}" in note and "Press OK to confirm" in note
+    assert "--" not in note and "heave_positive" not in note
+    assert dialog.choice()[2] == {"heave_positive": sign}
 
 
 def test_import_menu_passes_heave_sign_to_the_motion_log_reader(

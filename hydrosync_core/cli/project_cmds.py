@@ -102,7 +102,17 @@ def _print_results_status(project: Project) -> None:
 def cmd_vessel(args: argparse.Namespace) -> int:
     from hydrosync_core.project.vessel import set_sensor, vessel_config
 
-    project = _open_project(args.project, readonly=not args.set and args.name is None)
+    project = _open_project(args.project, readonly=not args.set and args.name is None
+                            and not args.apply)
+    if args.apply:
+        from hydrosync_core.plugins import plugin_specs
+        from hydrosync_core.plugins.spec import load_object
+
+        specs = {s.id: s for s in plugin_specs() if s.apply}
+        if args.apply not in specs:
+            raise InputError("--apply", f"'{args.apply}' has no calibration to apply (can "
+                             f"apply: {', '.join(specs) or 'none'})")
+        print("applied " + load_object(specs[args.apply].apply)(project))
     for name, *xyz in args.set or []:
         try:
             offset = [float(v) for v in xyz]
@@ -201,6 +211,10 @@ def register(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--set", nargs=4, action="append", metavar=("SENSOR", "X", "Y", "Z"),
                    help="set a sensor's offset, m (repeatable); e.g. --set gnss -1.5 2 -6")
     p.add_argument("--name", help="vessel name")
+    p.add_argument("--apply", metavar="ANALYSIS",
+                   help="write an analysis's calibrated values into the sheet, e.g. "
+                   "--apply pool_calibration (multibeam offset = ins offset + lever arm, "
+                   "angles = boresight); recorded in the project's history")
     p.set_defaults(func=cmd_vessel)
 
     p = sub.add_parser(

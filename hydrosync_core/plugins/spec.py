@@ -105,6 +105,10 @@ class PluginSpec:
         of the PDF section. Empty for a generic listing.
     order : int
         Position among the tabs and report sections (lower first).
+    apply : str
+        Dotted path of ``apply_to_vessel(project) -> str`` writing the analysis's
+        calibrated values into the vessel sheet (``hydrosync vessel P --apply <id>``);
+        empty when the analysis calibrates nothing.
     api_version : int
         The :data:`API_VERSION` the plugin was written for.
     version : str
@@ -124,6 +128,7 @@ class PluginSpec:
     demo: str = ""
     report_section: str = ""
     order: int = 100
+    apply: str = ""
     api_version: int = API_VERSION
     version: str = "1.0.0"
 

@@ -39,5 +39,6 @@ SPEC = PluginSpec(
     demo=f"{CORE}.demo:fill_demo",
     report_section=f"{CORE}.report_section:section",
     order=20,
+    apply=f"{CORE}.apply:apply_to_vessel",
     version=VERSION,
 )

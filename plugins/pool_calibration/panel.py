@@ -98,8 +98,15 @@ class PoolCalibrationPanel(PluginPanel):
         buttons.addWidget(self.segment_button)
         buttons.addWidget(self.iterate_button)
         buttons.addWidget(self.run_button)
+        self.apply_button = QPushButton("Apply to vessel sheet…")
+        self.apply_button.setObjectName("apply_to_vessel")
+        self.apply_button.setToolTip("write the final boresight and lever arm into the vessel "
+                                     "sheet's multibeam entry (recorded in the project history)")
+        self.apply_button.clicked.connect(self._on_apply)
         values_box = QGroupBox("Boresight and lever arm (body FRD)")
-        QVBoxLayout(values_box).addWidget(self.values)
+        values_layout = QVBoxLayout(values_box)
+        values_layout.addWidget(self.values)
+        values_layout.addWidget(self.apply_button)
         conv_box = QGroupBox("Convergence of the patent's angle iteration")
         cv = QVBoxLayout(conv_box)
         conv_top = QHBoxLayout()
@@ -185,6 +192,9 @@ class PoolCalibrationPanel(PluginPanel):
                         "setup, or <b>Run all</b> to calibrate.")
 
     def _enable(self, on: bool) -> None:
+        self.apply_button.setEnabled(bool(on and self.project is not None
+                                          and self.project.exists(f"{RESULT}/faces")
+                                          and not self.stale_reasons()))
         self.segment_button.setEnabled(on)
         self.iterate_button.setEnabled(on and self.segmentation is not None)
         self.run_button.setEnabled(on)
@@ -337,3 +347,25 @@ class PoolCalibrationPanel(PluginPanel):
         project = self.project
         ok = project is not None and not self.spec.missing_inputs(project)
         self._enable(ok and not self.busy)
+
+    def _on_apply(self) -> None:
+        from PySide6.QtWidgets import QMessageBox
+
+        from hydrosync_core.methods.pool_calibration.apply import apply_to_vessel
+
+        project = self.project
+        if project is None:
+            return
+        answer = QMessageBox.question(
+            self, "Apply to vessel sheet",
+            "Write the final boresight angles and lever arm into the vessel sheet's "
+            "multibeam entry? The previous entry is kept in the project history.")
+        if answer != QMessageBox.StandardButton.Yes:
+            return
+        try:
+            message = apply_to_vessel(project)
+        except InputError as exc:
+            QMessageBox.warning(self, "Not applied", exc.message)
+            return
+        self.sig_project_modified.emit()
+        self.sig_status.emit(f"Applied to the vessel sheet: {message}")

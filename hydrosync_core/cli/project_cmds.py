@@ -160,13 +160,30 @@ def cmd_run(args: argparse.Namespace) -> int:
     progress.done()
     project.save()
     changed = ", ".join(f"{k}={v}" for k, v in given.items()) or "defaults"
+    for quantity, value in _key_numbers(spec, project):
+        print(f"  {quantity:<45} {value}")
     print(f"{spec.name}: parameters {changed}; results stored in {args.project} under "
           f"/results/{spec.id}")
     return 0
 
 
+def _key_numbers(spec, project) -> list[tuple[str, str]]:
+    """The summary rows the analysis's report section offers (its key results)."""
+    if not spec.report_section:
+        return []
+    from hydrosync_core.plugins.spec import load_object
+
+    try:
+        summary = load_object(spec.report_section.partition(":")[0] + ":summary")
+    except (AttributeError, ImportError):
+        return []
+    return [(str(k), str(v)) for k, v in summary(project)]
+
+
 def register(sub: argparse._SubParsersAction) -> None:
-    p = sub.add_parser("new", help="create an empty project file")
+    p = sub.add_parser("new", help="create an empty project file",
+                       description="Create an empty project file (HDF5) with an empty vessel "
+                       "sheet; import data into it with 'hydrosync import'.")
     p.add_argument("project", help="project file to create (.h5)")
     p.add_argument("--name", help="project name (default: file stem)")
     p.add_argument("--force", action="store_true", help="overwrite an existing file")
@@ -197,7 +214,10 @@ def register(sub: argparse._SubParsersAction) -> None:
     )
     p.set_defaults(func=cmd_import)
 
-    p = sub.add_parser("info", help="list a project's contents")
+    p = sub.add_parser("info", help="list a project's contents",
+                       description="List a project's contents: every group and dataset with "
+                       "its shape, the time span of each raw data set (UTC and raw), and "
+                       "whether each stored result is up to date with its inputs.")
     p.add_argument("project", help="project file (.h5)")
     p.set_defaults(func=cmd_info)
 

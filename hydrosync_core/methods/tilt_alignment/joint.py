@@ -1,0 +1,201 @@
+"""Joint batch least-squares over the whole swing (HydroSync's addition to Li et al.).
+
+Unknowns (12): the initial attitude ``C_0`` (a small rotation δθ applied in NED,
+``C_0 ← Exp(δθ)·C_0``; heading included), the tip ``p_tip`` (NED, m), the gyro bias
+``b_g`` (rad/s, body) and the accelerometer bias ``b_a`` (m/s², body).
+
+Model: ``C_(k+1) = C_k·Exp((ω_k − b_g)·Δt_k)`` from the gyros; ``u_k = C_k·l_b`` (the pole
+vector, antenna → tip, NED); the antenna ``p = p_tip − u``.
+
+Observations:
+
+* GNSS antenna positions: ``p_j = p_tip − u(t_j)`` (σ horizontal / vertical);
+* accelerometers, as velocity increments over blocks ``[t_a, t_b]``: the tip is fixed,
+  so the antenna acceleration is ``a = −C·(α× + ω×ω×)·l_b = −d²u/dt²`` and
+  ``∫ C·(f − b_a) dt + g·e_down·(t_b − t_a) = v(t_b) − v(t_a)`` with ``v = −du/dt``
+  (trapezoid rule and central differences: exact for the discrete model). These observe
+  roll and pitch at every sample — not only at a still moment.
+
+Gauss-Newton with analytic Jacobians: a perturbation φ_k (NED) of the attitude at sample
+k is ``φ_k = δθ − M_k·δb_g`` with ``M_k = Σ_(j<k) C_(j+1)·Δt_j``; ``δu_k = φ_k × u_k``.
+The weights of the two groups are re-estimated from their residuals (variance
+components), and the covariance of the result gives σ of the tip.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from hydrosync_core.methods.tilt_alignment.geometry import E_DOWN, exp_so3, propagate, skew
+
+NPAR = 12
+TH, TIP, BG, BA = slice(0, 3), slice(3, 6), slice(6, 9), slice(9, 12)
+
+
+@dataclass
+class JointResult:
+    """Solution of :func:`joint_lsq` (NED, SI units, radians).
+
+    ``cov`` is the 12×12 covariance (δθ, tip, b_g, b_a); ``sigma_gnss_m`` and
+    ``sigma_dv_m_s`` the a-posteriori σ of one GNSS coordinate (horizontal; vertical is
+    twice) and of one velocity increment; ``rms_gnss_m`` the RMS of the GNSS residuals.
+    """
+
+    C0: np.ndarray
+    tip: np.ndarray
+    gyro_bias: np.ndarray
+    accel_bias: np.ndarray
+    cov: np.ndarray
+    C: np.ndarray
+    iterations: int
+    converged: bool
+    sigma_gnss_m: float
+    sigma_dv_m_s: float
+    rms_gnss_m: float
+    gnss_residuals: np.ndarray
+    n_blocks: int
+
+    @property
+    def tip_std(self) -> np.ndarray:
+        return np.sqrt(np.clip(np.diag(self.cov)[TIP], 0.0, None))
+
+    @property
+    def attitude_std(self) -> np.ndarray:
+        """1σ (rad) of the initial attitude about north, east and down."""
+        return np.sqrt(np.clip(np.diag(self.cov)[TH], 0.0, None))
+
+
+def _blocks(time: np.ndarray, block_s: float) -> np.ndarray:
+    """Boundary sample indices of the accelerometer blocks (interior samples only)."""
+    n = time.size
+    if n < 4 or block_s <= 0:
+        return np.zeros(0, int)
+    dt = float(np.median(np.diff(time)))
+    step = max(2, int(round(block_s / dt)))
+    return np.arange(1, n - 1, step)
+
+
+def _model(C, time, accel, gnss_t, length, tip, ba, g, bounds):
+    """Residuals (GNSS (M,3), ΔV (B,3)) and their Jacobians ((M,3,12), (B,3,12))."""
+    n = time.size
+    dt = np.diff(time)
+    u = C[:, :, 2] * length
+    # φ_k = δθ − M_k δb_g
+    M = np.zeros((n, 3, 3))
+    M[1:] = np.cumsum(C[1:] * dt[:, None, None], axis=0)
+    Phi = np.zeros((n, 3, NPAR))
+    Phi[:, :, TH] = np.eye(3)
+    Phi[:, :, BG] = -M
+    Du = -skew(u) @ Phi                                   # ∂u_k/∂x
+    # GNSS: e = p − tip + u(t_j)
+    k = np.clip(np.searchsorted(time, gnss_t, side="right") - 1, 0, n - 2)
+    f = ((gnss_t - time[k]) / dt[k])[:, None]
+    u_at = u[k] * (1 - f) + u[k + 1] * f
+    Dg = Du[k] * (1 - f)[:, :, None] + Du[k + 1] * f[:, :, None]
+    Dg[:, :, TIP] -= np.eye(3)
+    # accelerometers: e = ∫C(f − b_a)dt + g e_d Δt − (v_b − v_a)
+    y = np.einsum("kij,kj->ki", C, accel - ba)
+    Dy = -skew(y) @ Phi
+    Dy[:, :, BA] -= C
+    w = 0.5 * dt
+    cum_y = np.zeros((n, 3))
+    cum_y[1:] = np.cumsum((y[:-1] + y[1:]) * w[:, None], axis=0)
+    cum_D = np.zeros((n, 3, NPAR))
+    cum_D[1:] = np.cumsum((Dy[:-1] + Dy[1:]) * w[:, None, None], axis=0)
+    span = time[2:] - time[:-2]
+    v = np.zeros((n, 3))
+    v[1:-1] = -(u[2:] - u[:-2]) / span[:, None]
+    Dv = np.zeros((n, 3, NPAR))
+    Dv[1:-1] = -(Du[2:] - Du[:-2]) / span[:, None, None]
+    a, b = bounds[:-1], bounds[1:]
+    ea = (cum_y[b] - cum_y[a]) + g * E_DOWN * (time[b] - time[a])[:, None] - (v[b] - v[a])
+    Da = (cum_D[b] - cum_D[a]) - (Dv[b] - Dv[a])
+    return u_at, Dg, ea, Da
+
+
+def joint_lsq(time: np.ndarray, gyro: np.ndarray, accel: np.ndarray, gnss_t: np.ndarray,
+              gnss_p: np.ndarray, length: float, C0: np.ndarray, tip0: np.ndarray, *,
+              sigma_h: float, sigma_v: float, g: float, block_s: float = 0.25,
+              sigma_dv: float = 0.003, gyro_bias_sigma: float = math.radians(0.2),
+              accel_bias_sigma: float = 0.05, max_iterations: int = 20, vce_rounds: int = 2,
+              cancel_check=None) -> JointResult:
+    """Estimate initial attitude, tip and IMU biases from the whole record.
+
+    Parameters
+    ----------
+    time : (N,) IMU times (s). gyro : (N, 3) rad/s. accel : (N, 3) m/s² (body frame).
+    gnss_t : (M,) s. gnss_p : (M, 3) antenna NED (m). length : pole length (m).
+    C0 : initial attitude guess (body→NED) at ``time[0]``. tip0 : tip guess (NED, m).
+    sigma_h, sigma_v : a-priori GNSS σ (m). g : gravity (m/s²).
+    gyro_bias_sigma, accel_bias_sigma : a-priori 1σ of the biases about zero (rad/s,
+    m/s², the IMU datasheet's bias stability): a swing in one plane cannot separate the
+    accelerometer bias along the swing axis from the tilt out of that plane, so the
+    datasheet bounds it.
+    block_s : accelerometer block length (s). sigma_dv : a-priori σ of a velocity
+    increment (m/s). vce_rounds : re-weighting rounds from the residuals.
+    """
+    C0 = np.array(C0, float)
+    tip = np.array(tip0, float)
+    bg, ba = np.zeros(3), np.zeros(3)
+    bounds = _blocks(time, block_s)
+    s_g, s_a = 1.0, 1.0
+    wg = np.array([sigma_h, sigma_h, sigma_v])
+    it_total, converged = 0, False
+    C = propagate(C0, time, gyro, bg)
+    for rnd in range(vce_rounds + 1):
+        converged = False
+        for _ in range(max_iterations):
+            if cancel_check is not None:
+                cancel_check()
+            it_total += 1
+            u_at, Dg, ea, Da = _model(C, time, accel, gnss_t, length, tip, ba, g, bounds)
+            eg = gnss_p - tip + u_at
+            sg = (wg * s_g)[None, :]
+            rows = [(Dg / sg[:, :, None]).reshape(-1, NPAR)]
+            res = [(eg / sg).ravel()]
+            if len(ea):
+                rows.append((Da / (sigma_dv * s_a)).reshape(-1, NPAR))
+                res.append((ea / (sigma_dv * s_a)).ravel())
+            prior = np.zeros((6, NPAR))
+            prior[:3, BG] = np.eye(3) / gyro_bias_sigma
+            prior[3:, BA] = np.eye(3) / accel_bias_sigma
+            rows.append(prior)
+            res.append(np.concatenate([bg / gyro_bias_sigma, ba / accel_bias_sigma]))
+            A, r = np.vstack(rows), np.concatenate(res)
+            dx, *_ = np.linalg.lstsq(A, -r, rcond=None)
+            C0 = exp_so3(dx[TH]) @ C0
+            tip = tip + dx[TIP]
+            bg = bg + dx[BG]
+            ba = ba + dx[BA]
+            C = propagate(C0, time, gyro, bg)
+            if (np.linalg.norm(dx[TH]) < 1e-10 and np.linalg.norm(dx[TIP]) < 1e-8
+                    and np.linalg.norm(dx[BG]) < 1e-10):
+                converged = True
+                break
+        u_at, Dg, ea, Da = _model(C, time, accel, gnss_t, length, tip, ba, g, bounds)
+        eg = gnss_p - tip + u_at
+        n_g, n_a = eg.size, ea.size
+        red = max(n_g + n_a - NPAR, 1)
+        q_g = float(np.sum((eg / (wg * s_g)) ** 2))
+        q_a = float(np.sum((ea / (sigma_dv * s_a)) ** 2)) if n_a else 0.0
+        if rnd < vce_rounds:  # variance components, redundancy shared by group size
+            s_g *= math.sqrt(q_g / max(red * n_g / (n_g + n_a), 1.0))
+            if n_a:
+                s_a *= math.sqrt(q_a / max(red * n_a / (n_g + n_a), 1.0))
+            s_g, s_a = float(np.clip(s_g, 0.05, 50.0)), float(np.clip(s_a, 0.01, 1e3))
+    sg = (wg * s_g)[None, :]
+    rows = [(Dg / sg[:, :, None]).reshape(-1, NPAR)]
+    if len(ea):
+        rows.append((Da / (sigma_dv * s_a)).reshape(-1, NPAR))
+    prior = np.zeros((6, NPAR))
+    prior[:3, BG] = np.eye(3) / gyro_bias_sigma
+    prior[3:, BA] = np.eye(3) / accel_bias_sigma
+    A = np.vstack(rows + [prior])
+    var_factor = (q_g + q_a) / red
+    cov = np.linalg.pinv(A.T @ A) * max(var_factor, 1.0)
+    return JointResult(C0, tip, bg, ba, cov, C, it_total, converged, sigma_h * s_g,
+                       sigma_dv * s_a, float(np.sqrt(np.mean(eg ** 2))), eg,
+                       int(max(bounds.size - 1, 0)))

@@ -1,0 +1,217 @@
+"""From an IMU record and GNSS antenna positions to the tip by every method.
+
+Frames: NED (m) inside, body x forward, y right, z down along the pole towards the tip.
+:func:`solve_record` runs Li et al.'s chain — Mahony levelling, observation vectors,
+screening, BGD/SGD/MBGD, SVD — the closed-form heading-only least squares and the joint
+batch least-squares, and returns one :class:`MethodResult` per method.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from hydrosync_core.errors import InputError
+from hydrosync_core.methods.tilt_alignment import align
+from hydrosync_core.methods.tilt_alignment.align import Undetermined, Vectors
+from hydrosync_core.methods.tilt_alignment.geometry import (
+    interpolate_vectors,
+    mahony,
+    pole_vectors,
+    rz,
+    tilt_of,
+    wrap,
+    yaw_of,
+)
+from hydrosync_core.methods.tilt_alignment.joint import JointResult, joint_lsq
+from hydrosync_core.methods.tilt_alignment.params import METHODS, TiltParams
+from hydrosync_core.progress import check_cancel, report
+
+STANDARD_GRAVITY = 9.80665
+
+
+@dataclass
+class MethodResult:
+    """One method's answer (NED, m; radians).
+
+    ``psi`` is the heading misalignment (C = Rz(ψ)·C' at the start of the record), ``C0``
+    the attitude estimated at the first IMU sample, ``tip``/``tip_std`` the tip and its
+    1σ, ``history`` the gradient-descent iterates of ψ (empty for other methods).
+    ``undetermined`` holds the reason when the data do not determine the result.
+    """
+
+    name: str
+    psi: float = float("nan")
+    psi_std: float = float("nan")
+    C0: np.ndarray | None = None
+    tip: np.ndarray = field(default_factory=lambda: np.full(3, np.nan))
+    tip_std: np.ndarray = field(default_factory=lambda: np.full(3, np.nan))
+    iterations: int = 0
+    converged: bool = True
+    history: np.ndarray = field(default_factory=lambda: np.zeros(0))
+    vectors: int = 0
+    undetermined: str | None = None
+
+    @property
+    def ok(self) -> bool:
+        return self.undetermined is None
+
+
+@dataclass
+class TiltSolution:
+    """Everything :func:`solve_record` found (NED, m; radians)."""
+
+    methods: dict[str, MethodResult]
+    vectors: Vectors
+    screening: str | None            # why the vector set was refused, None when accepted
+    C_imu: np.ndarray                # (N, 3, 3) levelled IMU attitude, heading 0 at start
+    gnss_time: np.ndarray
+    gnss_ned: np.ndarray
+    epoch_tilt: np.ndarray           # (M,) rad, from the best available attitude
+    tip_window: np.ndarray           # (M,) bool, epochs of the shot (heading-only tips)
+    joint: JointResult | None
+    gravity: float
+    warnings: list[str] = field(default_factory=list)
+
+
+def _heading_only(name: str, R: np.ndarray, C_epochs: np.ndarray, C_imu0: np.ndarray,
+                  p: np.ndarray, window: np.ndarray, length: float, sigma_h: float,
+                  sigma_v: float, psi_std: float) -> MethodResult:
+    C = np.einsum("ij,kjl->kil", R, C_epochs)
+    tips = align.compensate(p, C, length)[window]
+    n = max(int(window.sum()), 1)
+    beta = float(np.mean(tilt_of(C[window])))
+    sh = math.hypot(sigma_h / math.sqrt(n), psi_std * length * math.sin(beta) / math.sqrt(2))
+    return MethodResult(name, float(wrap(yaw_of(R))), psi_std, R @ C_imu0, tips.mean(axis=0),
+                        np.array([sh, sh, sigma_v / math.sqrt(n)]))
+
+
+def solve_record(time: np.ndarray, gyro: np.ndarray, accel: np.ndarray, gnss_time: np.ndarray,
+                 gnss_ned: np.ndarray, length: float, params: TiltParams,
+                 gravity: float | None = None, progress=None, cancel=None) -> TiltSolution:
+    """Solve one record by every method.
+
+    Parameters
+    ----------
+    time : (N,) IMU times (s, increasing). gyro : (N, 3) rad/s. accel : (N, 3) m/s² — body
+    frame (x forward, y right, z down along the pole). gnss_time : (M,) s, inside the IMU
+    span. gnss_ned : (M, 3) antenna NED (m). length : antenna-to-tip distance (m).
+    gravity : m/s² (None: ``params.gravity_m_s2`` or 9.80665).
+
+    Raises
+    ------
+    InputError
+        Fewer than 5 GNSS epochs inside the IMU record.
+    """
+    p = params
+    g = gravity if gravity is not None else (p.gravity_m_s2 or STANDARD_GRAVITY)
+    inside = (gnss_time >= time[0]) & (gnss_time <= time[-1])
+    gnss_time, gnss_ned = gnss_time[inside], gnss_ned[inside]
+    if gnss_time.size < 5:
+        raise InputError(None, f"only {gnss_time.size} GNSS epochs inside the IMU record "
+                         "(at least 5 needed)", field="time")
+    check_cancel(cancel)
+    C_imu, _ = mahony(time, gyro, accel, p.level_s, p.mahony_kp, p.mahony_ki, g)
+    report(progress, 0.1, "IMU levelled (Mahony)")
+    u_imu, k, frac = interpolate_vectors(time, pole_vectors(C_imu, length), gnss_time)
+    # attitude at the epochs: the nearer sample (only used for the tilt and the tips,
+    # where 10 ms of rotation matter little); the pole vector itself is interpolated
+    C_ep = np.where((frac < 0.5)[:, None, None], C_imu[k], C_imu[np.minimum(k + 1,
+                                                                           time.size - 1)])
+    C_ep = C_ep.copy()
+    C_ep[:, :, 2] = u_imu / length
+    vec = align.observation_vectors(gnss_ned, u_imu, p.min_vector_m)
+    window = gnss_time >= gnss_time[-1] - p.tip_window_s
+    screening = None
+    try:
+        align.screen(vec, p.reject_k, math.radians(p.reject_floor_deg),
+                     math.radians(p.max_spread_deg), p.min_vectors)
+    except Undetermined as exc:
+        screening = str(exc)
+    methods: dict[str, MethodResult] = {}
+    eps = math.radians(p.stop_deg)
+    n_ep = gnss_time.size
+    allv = np.ones(len(vec.nav), bool)
+    sets = {"bgd": allv, "mbgd": vec.used, "closed_form": vec.used, "svd": vec.used}
+    if len(vec.nav):
+        longest = np.zeros(len(vec.nav), bool)
+        longest[int(np.argmax(np.linalg.norm(vec.nav, axis=1)))] = True
+        sets["sgd"] = longest
+    warnings = []
+    for name in ("bgd", "sgd", "mbgd", "svd", "closed_form"):
+        check_cancel(cancel)
+        mask = sets.get(name)
+        if mask is None or not mask.any():
+            methods[name] = MethodResult(name, undetermined="no observation vector long "
+                                         "enough: swing the pole wider")
+            continue
+        if screening is not None and name in ("mbgd", "svd", "closed_form"):
+            methods[name] = MethodResult(name, undetermined=screening)
+            continue
+        nav, imu = vec.nav[mask], vec.imu[mask]
+        if name == "svd":
+            R = align.wahba_svd(nav, imu)
+            psi = yaw_of(R)
+        elif name == "closed_form":
+            psi = align.closed_form(nav, imu)
+            R = rz(psi)
+        else:
+            d = align.descend(nav, imu, vec.centre, p.learning_rate, eps, p.max_iterations)
+            psi, R = d.psi, rz(d.psi)
+        psi_std = align.heading_sigma(nav, imu, psi, n_ep) if mask.sum() > 1 else math.nan
+        m = _heading_only(name, R, C_ep, C_imu[0], gnss_ned, window, length, p.sigma_h_m,
+                          p.sigma_v_m, psi_std if math.isfinite(psi_std) else 0.0)
+        m.psi_std, m.vectors = psi_std, int(mask.sum())
+        if name in ("bgd", "sgd", "mbgd"):
+            m.iterations, m.converged, m.history = d.iterations, d.converged, d.history
+            if not d.converged:
+                m.undetermined = (f"gradient descent did not converge in {d.iterations} "
+                                  "iterations (learning rate or stop threshold)")
+        methods[name] = m
+    report(progress, 0.3, "heading-only solutions")
+    # joint batch least squares, started from the best heading-only answer
+    start = next((methods[n] for n in ("closed_form", "bgd") if methods[n].ok), None)
+    joint = None
+    if start is None:
+        methods["joint"] = MethodResult("joint", undetermined="no heading-only start value: "
+                                        + (methods["bgd"].undetermined or ""))
+    else:
+        C0 = rz(start.psi) @ C_imu[0]
+        tip0 = align.compensate(gnss_ned, np.einsum("ij,kjl->kil", rz(start.psi), C_ep),
+                                length).mean(axis=0)
+        try:
+            joint = joint_lsq(time, gyro, accel, gnss_time, gnss_ned, length, C0, tip0,
+                              sigma_h=p.sigma_h_m, sigma_v=p.sigma_v_m, g=g,
+                              block_s=p.accel_block_s,
+                              gyro_bias_sigma=math.radians(p.gyro_bias_sigma_deg_s),
+                              accel_bias_sigma=p.accel_bias_sigma_m_s2,
+                              cancel_check=(lambda: check_cancel(cancel)))
+        except np.linalg.LinAlgError as exc:
+            methods["joint"] = MethodResult("joint", undetermined=f"adjustment failed: {exc}")
+        if joint is not None:
+            psi = float(wrap(yaw_of(joint.C0 @ C_imu[0].T)))
+            m = MethodResult("joint", psi, float(joint.attitude_std[2]), joint.C0, joint.tip,
+                             joint.tip_std, joint.iterations, joint.converged,
+                             vectors=int(gnss_time.size))
+            if not joint.converged:
+                m.undetermined = "batch least squares did not converge"
+            elif joint.sigma_gnss_m > 5 * p.sigma_h_m:
+                m.undetermined = (f"GNSS positions do not fit a fixed tip (σ "
+                                  f"{100 * joint.sigma_gnss_m:.1f} cm): did the tip move?")
+            methods["joint"] = m
+    report(progress, 0.9, "joint batch least squares")
+    best = next((methods[n] for n in ("joint", "closed_form", "bgd") if methods[n].ok), None)
+    if best is not None and best.name == "joint":
+        C_best = joint.C
+        u_best, _, _ = interpolate_vectors(time, pole_vectors(C_best, length), gnss_time)
+        tilt = np.arccos(np.clip(u_best[:, 2] / length, -1, 1))
+    elif best is not None:
+        tilt = tilt_of(C_ep)
+    else:
+        tilt = tilt_of(C_ep)
+    if screening is not None:
+        warnings.append(f"vector screening: {screening}")
+    return TiltSolution({n: methods[n] for n in METHODS}, vec, screening, C_imu, gnss_time,
+                        gnss_ned, tilt, window, joint, g, warnings)

@@ -1,0 +1,195 @@
+"""Simulated tilt-pole records: a person swings a pole whose tip rests on a point.
+
+The record has four phases: the pole held near vertical for levelling (with the hand's
+wobble — a hand-held pole is never still), a move to one end of the swing, the swing
+(2-3 s, one or three sweeps, along a line or an ellipse, with a twist about the pole) and
+the hold at the end of the swing (the shot). Attitude ``C = Rz(heading)·Ry(pitch)·
+Rx(roll)`` (body x forward, y right, z down along the pole; NED). The IMU sits at the
+antenna: gyro sample k is the exact mean rate over ``[t_k, t_(k+1))`` and accelerometer
+sample k the specific force ``Cᵀ(a − g·e_down)`` with the antenna acceleration from the
+trajectory; noise is white (density × √rate), biases constant. GNSS antenna positions
+(NED, m) at 5-20 Hz with white noise, optionally a gap. The IMU's own heading starts at 0,
+so the true heading at the start is the misalignment to find.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field, replace
+
+import numpy as np
+from scipy.spatial.transform import Rotation
+
+from hydrosync_core.methods.tilt_alignment.geometry import E_DOWN
+
+#: IMU grades: gyro noise (°/s/√Hz), gyro bias 1σ (°/s), accel noise (m/s²/√Hz),
+#: accel bias 1σ (m/s²). "mems" is the issue's example (0.05°/s, 0.02 m/s²).
+GRADES = {
+    "consumer": (0.015, 0.10, 0.0020, 0.040),
+    "mems": (0.008, 0.05, 0.0012, 0.020),
+    "industrial": (0.004, 0.02, 0.0006, 0.008),
+}
+
+
+@dataclass(frozen=True)
+class SwingConfig:
+    """One simulated record (SI units, degrees where named ``_deg``)."""
+
+    pole_length_m: float = 1.865
+    tilt_deg: float = 35.0             # swing amplitude = largest tilt
+    shape_ratio: float = 0.0           # 0 = swing along a line, up to 1 = ellipse/cone
+    sweeps: int = 1                    # 1 or 3 passes from end to end
+    swing_s: float = 2.5
+    level_s: float = 1.2
+    move_s: float = 0.7
+    hold_s: float = 1.2
+    azimuth_deg: float = 30.0          # lean direction of the swing in the body frame
+    heading_deg: float = 123.0         # true heading at the start = the misalignment
+    twist_deg: float = 8.0             # rotation about the pole during the swing
+    wobble_deg: float = 0.3            # hand wobble amplitude (3 sinusoids, ∝ 1/f above 0.7 Hz)
+    imu_rate_hz: float = 100.0
+    gnss_rate_hz: float = 10.0
+    gnss_sigma_h_m: float = 0.01
+    gnss_sigma_v_m: float = 0.02
+    gap_s: float = 0.0                 # GNSS gap length inside the swing
+    gyro_noise_deg_s_rthz: float = 0.008
+    accel_noise_m_s2_rthz: float = 0.0012
+    gyro_bias_deg_s: tuple[float, float, float] = (0.0, 0.0, 0.0)
+    accel_bias_m_s2: tuple[float, float, float] = (0.0, 0.0, 0.0)
+    gravity_m_s2: float = 9.80665
+    wobble: tuple = field(default=(), compare=False)   # (freqs, phases) filled by random
+
+
+def noise_free(config: SwingConfig) -> SwingConfig:
+    """The same swing without any noise or bias."""
+    return replace(config, gnss_sigma_h_m=0.0, gnss_sigma_v_m=0.0, gyro_noise_deg_s_rthz=0.0,
+                   accel_noise_m_s2_rthz=0.0, gyro_bias_deg_s=(0.0, 0.0, 0.0),
+                   accel_bias_m_s2=(0.0, 0.0, 0.0))
+
+
+def random_config(rng: np.random.Generator, tilt_range=(15.0, 60.0), **overrides
+                  ) -> SwingConfig:
+    """A random realistic swing: amplitude, shape, pole, IMU grade and biases, GNSS."""
+    grade = GRADES[rng.choice(list(GRADES))]
+    gn, gb, an, ab = grade
+    cfg = SwingConfig(
+        pole_length_m=float(rng.uniform(1.2, 2.5)),
+        tilt_deg=float(rng.uniform(*tilt_range)),
+        shape_ratio=float(rng.choice([0.0, rng.uniform(0.1, 0.8)])),
+        sweeps=int(rng.choice([1, 1, 3])),
+        swing_s=float(rng.uniform(2.0, 3.0)),
+        level_s=float(rng.uniform(1.0, 1.6)),
+        move_s=float(rng.uniform(0.5, 0.9)),
+        hold_s=float(rng.uniform(1.0, 1.5)),
+        azimuth_deg=float(rng.uniform(0, 360)),
+        heading_deg=float(rng.uniform(-180, 180)),
+        twist_deg=float(rng.uniform(-15, 15)),
+        wobble_deg=float(rng.uniform(0.05, 0.4)),
+        gnss_rate_hz=float(rng.choice([5.0, 10.0, 10.0, 20.0])),
+        gnss_sigma_h_m=float(rng.choice([0.01, 0.01, 0.015])),
+        gnss_sigma_v_m=float(rng.choice([0.02, 0.02, 0.03])),
+        gap_s=float(rng.choice([0.0, rng.uniform(0.2, 0.6)])),
+        gyro_noise_deg_s_rthz=gn,
+        accel_noise_m_s2_rthz=an,
+        gyro_bias_deg_s=tuple(float(v) for v in rng.normal(0, gb, 3)),
+        accel_bias_m_s2=tuple(float(v) for v in rng.normal(0, ab, 3)),
+        gravity_m_s2=float(9.80665 + rng.uniform(-0.025, 0.025)),
+    )
+    return replace(cfg, **overrides)
+
+
+def _smooth(u):
+    u = np.clip(u, 0.0, 1.0)
+    return 0.5 - 0.5 * np.cos(np.pi * u)
+
+
+def _angles(cfg: SwingConfig, t: np.ndarray, wob: tuple, scale: float) -> np.ndarray:
+    """(roll, pitch, heading) rad at times *t* (s from the start)."""
+    a = math.radians(cfg.tilt_deg) * scale
+    az = math.radians(cfg.azimuth_deg)
+    d1 = np.array([math.cos(az), math.sin(az)])
+    d2 = np.array([-math.sin(az), math.cos(az)])
+    lean0 = np.array([0.02, -0.015])
+    t_move = cfg.level_s
+    t_swing = t_move + cfg.move_s
+    tau = np.clip((t - t_swing) / cfg.swing_s, 0.0, 1.0)
+    n = cfg.sweeps
+    swing = (-np.cos(np.pi * n * tau))[:, None] * a * d1 \
+        + (cfg.shape_ratio * a * np.sin(np.pi * n * tau) * np.sin(np.pi * tau))[:, None] * d2
+    start = -a * d1
+    m = _smooth((t - t_move) / cfg.move_s)[:, None]
+    lean = np.where((t < t_swing)[:, None], lean0 + (start - lean0) * m, swing)
+    heading = math.radians(cfg.heading_deg) + math.radians(cfg.twist_deg) * _smooth(
+        (t - t_swing) / cfg.swing_s)
+    out = np.column_stack([lean[:, 0], lean[:, 1], heading])
+    freqs, phases, amps = wob
+    w = math.radians(cfg.wobble_deg)
+    for axis in range(3):
+        for f, ph, am in zip(freqs[axis], phases[axis], amps[axis], strict=True):
+            out[:, axis] += w * am * min(1.0, 0.7 / f) * np.sin(2 * np.pi * f * t + ph)
+    return out
+
+
+def _matrices(angles: np.ndarray) -> np.ndarray:
+    return Rotation.from_euler("ZYX", angles[:, [2, 1, 0]]).as_matrix()
+
+
+def simulate_swing(config: SwingConfig | None = None, seed: int = 0) -> dict:
+    """Simulate one record.
+
+    Returns
+    -------
+    dict with ``time`` (N,) s, ``gyro`` (N, 3) rad/s, ``accel`` (N, 3) m/s² (body),
+    ``gnss_time`` (M,) s, ``gnss_ned`` (M, 3) m, ``pole_length_m``, and ``truth``: ``C``
+    (N, 3, 3) true attitudes, ``tip_ned`` (3,) m (the origin), ``heading_deg`` (initial
+    true heading = misalignment), ``hold_tilt_deg`` (mean tilt in the hold), ``max_tilt_deg``,
+    ``gyro_bias`` rad/s, ``accel_bias`` m/s², ``config``.
+    """
+    cfg = config or SwingConfig()
+    rng = np.random.default_rng(seed)
+    wob = (rng.uniform(0.3, 2.5, (3, 3)), rng.uniform(0, 2 * np.pi, (3, 3)),
+           rng.uniform(0.3, 1.0, (3, 3)))
+    duration = cfg.level_s + cfg.move_s + cfg.swing_s + cfg.hold_s
+    dt = 1.0 / cfg.imu_rate_hz
+    n = int(round(duration / dt)) + 1
+    t = np.arange(n) * dt
+    # scale the amplitude so that the largest tilt equals the configured one
+    scale = 1.0
+    for _ in range(3):
+        C = _matrices(_angles(cfg, t, wob, scale))
+        max_tilt = math.degrees(float(np.max(np.arccos(np.clip(C[:, 2, 2], -1, 1)))))
+        scale *= cfg.tilt_deg / max(max_tilt, 1e-6)
+    C = _matrices(_angles(cfg, t, wob, scale))
+    length = cfg.pole_length_m
+    tip = np.zeros(3)
+    p = tip - C[:, :, 2] * length
+    steps = Rotation.from_matrix(np.einsum("kji,kjl->kil", C[:-1], C[1:])).as_rotvec() / dt
+    gyro = np.vstack([steps, steps[-1:]])
+    acc = np.zeros_like(p)
+    acc[1:-1] = (p[2:] - 2 * p[1:-1] + p[:-2]) / dt ** 2
+    acc[0], acc[-1] = acc[1], acc[-2]
+    g = cfg.gravity_m_s2
+    f = np.einsum("kji,kj->ki", C, acc - g * E_DOWN)
+    bg = np.radians(np.array(cfg.gyro_bias_deg_s))
+    ba = np.array(cfg.accel_bias_m_s2)
+    gyro = gyro + bg + rng.normal(0, math.radians(cfg.gyro_noise_deg_s_rthz)
+                                  * math.sqrt(cfg.imu_rate_hz), gyro.shape)
+    f = f + ba + rng.normal(0, cfg.accel_noise_m_s2_rthz * math.sqrt(cfg.imu_rate_hz), f.shape)
+    # GNSS epochs on the IMU grid (every imu_rate/gnss_rate samples), a gap in the swing
+    stride = max(1, int(round(cfg.imu_rate_hz / cfg.gnss_rate_hz)))
+    idx = np.arange(int(rng.integers(0, stride)), n, stride)
+    if cfg.gap_s > 0:
+        t_gap = cfg.level_s + cfg.move_s + rng.uniform(0.2, 0.7) * cfg.swing_s
+        idx = idx[(t[idx] < t_gap) | (t[idx] >= t_gap + cfg.gap_s)]
+    sig = np.array([cfg.gnss_sigma_h_m, cfg.gnss_sigma_h_m, cfg.gnss_sigma_v_m])
+    gnss = p[idx] + rng.normal(0, 1, (idx.size, 3)) * sig
+    hold = t >= duration - cfg.hold_s
+    tilt = np.degrees(np.arccos(np.clip(C[:, 2, 2], -1, 1)))
+    return {
+        "time": t, "gyro": gyro, "accel": f, "gnss_time": t[idx], "gnss_ned": gnss,
+        "pole_length_m": length,
+        "truth": {"C": C, "tip_ned": tip,
+                  "heading_deg": math.degrees(math.atan2(C[0, 1, 0], C[0, 0, 0])),
+                  "hold_tilt_deg": float(tilt[hold].mean()), "max_tilt_deg": float(tilt.max()),
+                  "gyro_bias": bg, "accel_bias": ba, "config": cfg},
+    }

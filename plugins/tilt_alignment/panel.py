@@ -1,0 +1,174 @@
+"""The Tilt Alignment panel: parameters, Run, the per-method table and the plots.
+
+Plots (pyqtgraph): the swing (antenna path, plan and side views, with the tip per epoch),
+J(ψ) with the gradient-descent iterates of each method (Li et al., fig. 11), the
+Monte-Carlo heading-error histogram (fig. 4) and the tip-error scatter (figs. 6-9).
+"""
+
+from __future__ import annotations
+
+import json
+
+import numpy as np
+import pyqtgraph as pg
+from PySide6.QtCore import Qt
+from PySide6.QtWidgets import (
+    QHBoxLayout,
+    QLabel,
+    QPushButton,
+    QSplitter,
+    QTabWidget,
+    QVBoxLayout,
+    QWidget,
+)
+
+from hydrosync_core.methods.tilt_alignment.params import METHODS, TiltParams
+from hydrosync_core.methods.tilt_alignment.project_run import RESULT, run
+from hydrosync_core.params import stored
+from hydrosync_gui.plugin_panel import PluginPanel
+from hydrosync_gui.widgets import ColumnsTable, ParamForm
+
+COLOURS = {"joint": (30, 90, 200), "mbgd": (200, 60, 40), "bgd": (230, 150, 30),
+           "sgd": (150, 80, 180), "svd": (40, 150, 60), "closed_form": (90, 90, 90)}
+
+
+def _plot(ylabel: str, xlabel: str, equal: bool = False) -> pg.PlotWidget:
+    w = pg.PlotWidget(background="w")
+    w.setLabel("left", ylabel)
+    w.setLabel("bottom", xlabel)
+    w.showGrid(x=True, y=True, alpha=0.3)
+    w.addLegend(offset=(10, 2), labelTextColor="k")
+    if equal:
+        w.setAspectLocked(True)
+    return w
+
+
+class TiltAlignmentPanel(PluginPanel):
+    """Heading alignment and tip of a tilt RTK pole."""
+
+    def __init__(self, spec=None, parent=None) -> None:
+        if spec is None:
+            from plugins.tilt_alignment import SPEC
+
+            spec = SPEC
+        super().__init__(spec, parent)
+        self.form = ParamForm(TiltParams)
+        self.run_button = QPushButton("Run")
+        self.run_button.clicked.connect(self._on_run)
+        self.summary = QLabel()
+        self.summary.setWordWrap(True)
+        self.table = ColumnsTable()
+        left = QWidget()
+        lay = QVBoxLayout(left)
+        for widget in (self.form, self.run_button, self.summary, self.table):
+            lay.addWidget(widget)
+        self.plan = _plot("north [m]", "east [m]", equal=True)
+        self.side = _plot("up [m]", "east [m]", equal=True)
+        swing = QWidget()
+        sl = QHBoxLayout(swing)
+        sl.addWidget(self.plan)
+        sl.addWidget(self.side)
+        self.jcurve = _plot("J(ψ)", "ψ [°]")
+        self.hist = _plot("runs", "heading error [°]")
+        self.scatter = _plot("tip error north [mm]", "tip error east [mm]", equal=True)
+        self.tabs = QTabWidget()
+        self.tabs.addTab(swing, "Swing")
+        self.tabs.addTab(self.jcurve, "J(ψ) and iterations")
+        self.tabs.addTab(self.hist, "Heading errors (Monte Carlo)")
+        self.tabs.addTab(self.scatter, "Tip errors (Monte Carlo)")
+        split = QSplitter(Qt.Orientation.Horizontal)
+        split.addWidget(left)
+        split.addWidget(self.tabs)
+        split.setStretchFactor(1, 3)
+        outer = QHBoxLayout(self)
+        outer.addWidget(split)
+
+    def _clear(self) -> None:
+        for w in (self.plan, self.side, self.jcurve, self.hist, self.scatter):
+            w.clear()
+        self.table.set_columns({})
+
+    def refresh(self) -> None:
+        project = self.project
+        missing = self.spec.missing_inputs(project) if project is not None else ["a project"]
+        self.run_button.setEnabled(not missing and not self.busy)
+        self._clear()
+        if project is None or not project.exists(f"{RESULT}/epochs"):
+            self.summary.setText("Needs " + ", ".join(missing) + " (File → Import: "
+                                 "--tilt_imu, --tilt_gnss, --tilt_pole)." if missing
+                                 else "Press Run.")
+            return
+        self.form.set_params(stored(TiltParams, project, RESULT))
+        doc = json.loads(project.attrs(RESULT)["result"])
+        chosen = doc["methods"][doc["method"]]
+        key = "tip_enu" if "tip_enu" in doc else "tip_llh"
+        if chosen["undetermined"]:
+            text = f"{doc['method']}: undetermined — {chosen['undetermined']}"
+        else:
+            tip = ", ".join(f"{v:.4f}" for v in chosen[key])
+            sd = "/".join(f"{1000 * s:.1f}" for s in chosen["tip_std_enu_m"])
+            text = (f"{doc['method']}: tip {tip} (σ {sd} mm), heading misalignment "
+                    f"{chosen['heading_misalignment_deg']:.3f}°")
+        self.summary.setText(f"{text}. Vectors used {doc['vectors_used']}, rejected "
+                             f"{doc['vectors_rejected']}; tilt up to "
+                             f"{doc['tilt_deg']['max']:.1f}°.")
+        table: dict[str, list] = {"method": [], "psi_deg": [], "sd_e_mm": [], "sd_n_mm": [],
+                                  "sd_u_mm": [], "vectors": [], "iterations": []}
+        for name in METHODS:
+            m = doc["methods"][name]
+            table["method"].append(name)
+            ok = not m["undetermined"]
+            table["psi_deg"].append(m["heading_misalignment_deg"] if ok else np.nan)
+            for i, a in enumerate("enu"):
+                table[f"sd_{a}_mm"].append(1000 * m["tip_std_enu_m"][i] if ok else np.nan)
+            table["vectors"].append(m["vectors"])
+            table["iterations"].append(m["iterations"])
+        self.table.set_columns({k: np.asarray(v) for k, v in table.items()},
+                               units={"psi_deg": "°", "sd_e_mm": "mm", "sd_n_mm": "mm",
+                                      "sd_u_mm": "mm"})
+        ep = project.get_table(f"{RESULT}/epochs")
+        e0, n0, u0 = (float(np.mean(ep[k])) for k in ("e", "n", "u"))
+        pen = pg.mkPen((30, 90, 200), width=1)
+        self.plan.plot(ep["e"] - e0, ep["n"] - n0, name="antenna", pen=pen, symbol="o",
+                       symbolSize=3)
+        self.side.plot(ep["e"] - e0, ep["u"] - u0, name="antenna", pen=pen, symbol="o",
+                       symbolSize=3)
+        if "tip_e" in ep:
+            for w, y in ((self.plan, ep["tip_n"] - n0), (self.side, ep["tip_u"] - u0)):
+                w.plot(ep["tip_e"] - e0, y, name="tip per epoch", pen=None, symbol="x",
+                       symbolSize=5, symbolBrush=(200, 60, 40), symbolPen=(200, 60, 40))
+        jc = project.get_table(f"{RESULT}/j_curve")
+        self.jcurve.plot(jc["psi_deg"], jc["J"], name="J(ψ)", pen=pg.mkPen("k", width=1))
+        for name in ("bgd", "sgd", "mbgd"):
+            d = project.get_table(f"{RESULT}/descent_{name}")
+            if d["psi_deg"].size:
+                c = COLOURS[name]
+                self.jcurve.plot(d["psi_deg"], d["J"], name=name.upper(), pen=pg.mkPen(c),
+                                 symbol="o", symbolSize=5, symbolBrush=c)
+        if project.exists(f"{RESULT}/montecarlo"):
+            mc = project.get_table(f"{RESULT}/montecarlo")
+            edges = np.linspace(-2.0, 2.0, 33)
+            for name in ("joint", "mbgd", "svd", "closed_form"):
+                v = mc[f"{name}_heading_err_deg"]
+                counts, _ = np.histogram(v[np.isfinite(v)], bins=edges)
+                self.hist.plot(edges, counts, stepMode="center", name=name,
+                               pen=pg.mkPen(COLOURS[name], width=2))
+            for name in ("mbgd", "svd", "joint"):
+                c = COLOURS[name]
+                self.scatter.plot(1000 * mc[f"{name}_tip_err_e"], 1000 * mc[f"{name}_tip_err_n"],
+                                  name=name, pen=None, symbol="o", symbolSize=5,
+                                  symbolBrush=c, symbolPen=None)
+            t = np.linspace(0, 2 * np.pi, 90)
+            for r in (10, 25):
+                self.scatter.plot(r * np.cos(t), r * np.sin(t), pen=pg.mkPen((150, 150, 150),
+                                                                             style=Qt.PenStyle.DashLine))
+
+    def _on_run(self) -> None:
+        project, params = self.project, self.form.params()
+        self.run_button.setEnabled(False)
+        self.start_work(lambda progress, cancel: run(project, params, progress, cancel),
+                        lambda _doc: (self.sig_project_modified.emit(), self.refresh()),
+                        label="Tilt alignment")
+
+    def work_done(self) -> None:
+        self.run_button.setEnabled(True)

@@ -1,0 +1,162 @@
+"""Tilt-pole alignment (Li et al. + joint batch LSQ): numbers against simulated truth."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from hydrosync_core.methods.tilt_alignment import align
+from hydrosync_core.methods.tilt_alignment.align import Undetermined
+from hydrosync_core.methods.tilt_alignment.geometry import (
+    mahony,
+    propagate,
+    rz,
+    yaw_of,
+)
+from hydrosync_core.methods.tilt_alignment.params import METHODS, TiltParams
+from hydrosync_core.methods.tilt_alignment.pipeline import solve_record
+from hydrosync_core.methods.tilt_alignment.simulate import (
+    SwingConfig,
+    noise_free,
+    simulate_swing,
+)
+
+
+def _solve(sim, params=None):
+    return solve_record(sim["time"], sim["gyro"], sim["accel"], sim["gnss_time"],
+                        sim["gnss_ned"], sim["pole_length_m"], params or TiltParams(),
+                        gravity=sim["truth"]["config"].gravity_m_s2)
+
+
+def test_gyro_propagation_reproduces_the_simulated_attitude():
+    sim = simulate_swing(noise_free(SwingConfig()), seed=1)
+    C = propagate(sim["truth"]["C"][0], sim["time"], sim["gyro"])
+    assert np.max(np.abs(C - sim["truth"]["C"])) < 1e-9
+
+
+def test_mahony_levels_a_still_pole_and_keeps_heading_zero():
+    cfg = noise_free(SwingConfig(wobble_deg=0.0, heading_deg=40.0))
+    sim = simulate_swing(cfg, seed=2)
+    C, _ = mahony(sim["time"], sim["gyro"], sim["accel"], 1.0, 0.3, 0.02, cfg.gravity_m_s2)
+    true0 = sim["truth"]["C"][0]
+    # C = Rz(ψ)·C' with ψ the true heading at the start: equal up to that rotation
+    assert np.max(np.abs(rz(math.radians(sim["truth"]["heading_deg"])) @ C[0] - true0)) < 1e-9
+    assert abs(yaw_of(C[0])) < 1e-12
+
+
+@pytest.mark.parametrize("heading", [123.0, -170.0])
+def test_noise_free_swing_recovers_the_misalignment_exactly_with_every_method(heading):
+    cfg = noise_free(SwingConfig(wobble_deg=0.0, heading_deg=heading, shape_ratio=0.3))
+    sim = simulate_swing(cfg, seed=3)
+    sol = _solve(sim, TiltParams(stop_deg=1e-9))
+    truth = sim["truth"]["heading_deg"]
+    for name in METHODS:
+        m = sol.methods[name]
+        assert m.ok, (name, m.undetermined)
+        err = (math.degrees(m.psi) - truth + 180) % 360 - 180
+        assert abs(err) < 1e-6, (name, err)
+        assert np.max(np.abs(m.tip - sim["truth"]["tip_ned"])) < 1e-6, name
+    # the descent itself, started far away (ψ0 = 0), converges to the same exact value
+    vec = sol.vectors
+    d = align.descend(vec.nav[vec.used], vec.imu[vec.used], 0.0, 0.3, 1e-12, 1000)
+    assert d.converged and d.iterations > 10
+    assert abs((math.degrees(d.psi) - truth + 180) % 360 - 180) < 1e-6
+
+
+def test_gradient_descent_stops_on_the_threshold_and_matches_the_closed_form():
+    sim = simulate_swing(SwingConfig(), seed=4)
+    sol = _solve(sim, TiltParams(learning_rate=0.2, stop_deg=1e-7))
+    mb, cf = sol.methods["mbgd"], sol.methods["closed_form"]
+    assert abs(mb.psi - cf.psi) < math.radians(1e-5)
+    h = mb.history
+    assert abs(h[-1] - h[-2]) < math.radians(1e-7) <= abs(h[-2] - h[-3])
+    coarse = _solve(sim, TiltParams(learning_rate=0.2, stop_deg=0.5))
+    assert coarse.methods["mbgd"].iterations < mb.iterations
+
+
+def test_discordant_vectors_are_rejected():
+    sim = simulate_swing(SwingConfig(wobble_deg=0.0, gnss_sigma_h_m=0.003,
+                                     gnss_sigma_v_m=0.006), seed=5)
+    bad = sim["gnss_ned"].copy()
+    bad[[12, 30]] += [0.25, -0.2, 0.0]      # two GNSS epochs off by 30 cm
+    sim_bad = dict(sim, gnss_ned=bad)
+    sol = _solve(sim_bad)
+    vec = sol.vectors
+    involved = np.isin(vec.pairs, [12, 30]).any(axis=1)
+    assert sol.screening is None
+    assert vec.n_rejected > 0
+    assert not vec.used[~involved].size or vec.used[~involved].mean() > 0.9
+    assert (~vec.used[involved]).mean() > 0.3
+    # the mini-batch (screened) beats the batch (all vectors) on the faulty set
+    truth = math.radians(sim["truth"]["heading_deg"])
+    e_mb = abs(align.wrap(sol.methods["mbgd"].psi - truth))
+    e_b = abs(align.wrap(sol.methods["bgd"].psi - truth))
+    assert e_mb < e_b
+
+
+def test_a_faulty_imu_makes_the_vector_set_undetermined():
+    # a gyro z axis 20 °/s off: per-pair headings spread over tens of degrees
+    cfg = SwingConfig(gyro_bias_deg_s=(0.0, 0.0, 20.0))
+    sim = simulate_swing(cfg, seed=6)
+    sol = _solve(sim)
+    assert sol.screening is not None and "disagree" in sol.screening
+    for name in ("mbgd", "svd", "closed_form"):
+        assert not sol.methods[name].ok
+    rng = np.random.default_rng(0)
+    nav = rng.normal(0, 1, (40, 3))
+    turn = rng.uniform(-np.pi, np.pi, 40)            # every vector with its own heading
+    imu = np.einsum("kij,kj->ki", np.array([rz(-a) for a in turn]), nav)
+    vec = align.Vectors(nav, imu, np.zeros((40, 2), int), align.pair_headings(nav, imu),
+                        np.ones(40, bool))
+    with pytest.raises(Undetermined, match="disagree"):
+        align.screen(vec, 3.0, math.radians(1), math.radians(8), 5)
+
+
+@pytest.mark.parametrize("tilt_deg", [20.0, 40.0, 60.0])
+def test_eq17_horizontal_error_from_a_heading_error(tilt_deg):
+    """ΔH = ψ·l·sinβ: tilt-compensate with the heading off by ψ and measure the tip shift."""
+    length, psi = 1.865, math.radians(0.5)
+    beta = math.radians(tilt_deg)
+    C = np.array([rz(0.3) @ np.array([[math.cos(beta), 0, math.sin(beta)], [0, 1, 0],
+                                       [-math.sin(beta), 0, math.cos(beta)]])])
+    antenna = -C[:, :, 2] * length                   # the tip at the origin
+    tip_right = align.compensate(antenna, C, length)
+    tip_wrong = align.compensate(antenna, rz(psi)[None] @ C, length)
+    dh = float(np.hypot(*(tip_wrong - tip_right)[0, :2]))
+    assert tip_right == pytest.approx(np.zeros((1, 3)), abs=1e-12)
+    assert dh == pytest.approx(align.horizontal_error_from_heading(psi, length, beta),
+                               rel=1e-5)
+    assert abs((tip_wrong - tip_right)[0, 2]) < 1e-12       # heights untouched (eq. 18)
+    # Li et al.: l = 1.865 m, 2.5 cm at 40° needs ψ ≤ 1.19°
+    assert math.degrees(0.025 / (length * math.sin(math.radians(40)))) == pytest.approx(1.19,
+                                                                                       abs=0.01)
+
+
+def test_joint_lsq_reaches_sub_centimetre_tips_on_a_noisy_swing():
+    cfg = SwingConfig(tilt_deg=55.0, shape_ratio=0.4, gyro_bias_deg_s=(0.05, -0.04, 0.05),
+                      accel_bias_m_s2=(0.02, -0.02, 0.01), wobble_deg=0.3, gap_s=0.4,
+                      gravity_m_s2=9.81)
+    sim = simulate_swing(cfg, seed=8)
+    sol = _solve(sim)
+    j = sol.methods["joint"]
+    err = j.tip - sim["truth"]["tip_ned"]
+    assert j.ok
+    assert np.hypot(*err[:2]) < 0.01 and abs(err[2]) < 0.01
+    assert np.all(np.abs(err) < 3.5 * j.tip_std + 1e-3)      # σ is honest
+    assert np.all(j.tip_std < 0.01)
+    assert np.allclose(np.degrees(sol.joint.gyro_bias), cfg.gyro_bias_deg_s, atol=0.03)
+    # the heading-only methods after static levelling miss by more on the same swing
+    mb = sol.methods["mbgd"]
+    assert np.hypot(*(mb.tip - sim["truth"]["tip_ned"])[:2]) > np.hypot(*err[:2])
+
+
+def test_simulator_keeps_the_tip_fixed_and_the_tilt_limit():
+    cfg = SwingConfig(tilt_deg=47.0, sweeps=3, shape_ratio=0.6)
+    sim = simulate_swing(noise_free(cfg), seed=9)
+    C, length = sim["truth"]["C"], sim["pole_length_m"]
+    k = np.searchsorted(sim["time"], sim["gnss_time"])
+    tips = sim["gnss_ned"] + C[k, :, 2] * length
+    assert np.max(np.abs(tips)) < 1e-12
+    assert sim["truth"]["max_tilt_deg"] == pytest.approx(47.0, abs=0.05)

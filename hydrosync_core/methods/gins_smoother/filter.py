@@ -20,7 +20,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from hydrosync_core.errors import InputError
-from hydrosync_core.methods.gins_smoother import kernel as K
+from hydrosync_core.methods.gins_smoother import kernel as K  # noqa: N812
 from hydrosync_core.methods.gins_smoother.config import (
     D2R,
     SensorConfig,

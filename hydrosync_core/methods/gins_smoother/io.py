@@ -24,7 +24,6 @@ file, line and field for bad input.
 
 from __future__ import annotations
 
-import io
 import math
 import os
 import re
@@ -102,10 +101,10 @@ def _numeric_table(path, text: str, min_cols: int, names: list[str]) -> np.ndarr
 
     The first bad line is named in the error (line numbers count every line).
     """
-    clean = text.replace(",", " ").replace("\t", " ")
+    clean = text.replace(",", " ").replace("\t", " ") if ("," in text or "\t" in text) else text
     try:
         with np.errstate(all="ignore"):
-            data = np.loadtxt(io.StringIO(clean), ndmin=2, comments="#")
+            data = np.loadtxt(_lines(clean), ndmin=2, comments="#")
         if data.size == 0:
             raise InputError(path, "no data lines")
         if data.shape[1] < min_cols:
@@ -130,6 +129,18 @@ def _numeric_table(path, text: str, min_cols: int, names: list[str]) -> np.ndarr
             if not math.isfinite(v):
                 raise InputError(path, "not a finite number", line=lineno, field=names[c])
     raise InputError(path, f"lines with different numbers of columns (expected {min_cols})")
+
+
+def _lines(text: str):
+    """The lines of *text* one by one (loadtxt without a second full copy)."""
+    start = 0
+    n = len(text)
+    while start < n:
+        end = text.find("\n", start)
+        if end < 0:
+            end = n
+        yield text[start:end]
+        start = end + 1
 
 
 def _data_lines(text: str) -> np.ndarray:

@@ -48,7 +48,7 @@ class GinsParams(Params):
         0.01, label="ZUPT σ", unit="m/s", minimum=0.0, min_exclusive=True, maximum=1.0,
         decimals=4, group="Motion constraints", help="standard deviation of the zero velocity")
     zupt_speed: float = param(
-        0.2, label="ZUPT speed limit", unit="m/s", minimum=0.0, min_exclusive=True,
+        0.05, label="ZUPT speed limit", unit="m/s", minimum=0.0, min_exclusive=True,
         maximum=5.0, decimals=3, group="Motion constraints", advanced=True,
         help="no ZUPT while the filter speed exceeds this (a quiet IMU at constant speed "
              "is not a standstill)")

@@ -76,6 +76,7 @@ def lever_arm(project: Project, to: str, origin: str) -> np.ndarray:
             where, f"the vessel sheet has no {' and no '.join(repr(m) for m in missing)} "
             f"sensor: set {'them' if len(missing) > 1 else 'it'} with 'hydrosync vessel "
             f"{Path(where).name if project.path else 'P.h5'} {example}' (body frame, m), "
-            "with Edit → Vessel offsets… in the application, or give the lever arm directly (--lever-arm X Y Z)",
+            "with Edit → Vessel offsets… in the application, or give the lever arm "
+            "directly (--lever-arm X Y Z)",
             field="vessel/sensors")
     return sensor_offset(project, to) - sensor_offset(project, origin)

@@ -1,0 +1,428 @@
+"""GNSS/INS integration: alignment, forward closed-loop EKF and RTS smoothing (Wang et al.).
+
+:func:`run_gins` is the pure function over arrays that the command, the project run and the
+benchmark call. The compiled loops are in :mod:`.kernel`; this module prepares their
+inputs (alignment, stationary detection, noise), runs the forward pass in chunks (progress
+and cancel between chunks), the backward RTS pass over the stored nodes, and turns the
+result into IMU-rate trajectories with standard deviations.
+
+Memory: the forward and smoothed trajectories at IMU rate (10 float64 each per epoch) plus,
+per smoother node (GNSS and motion-constraint epochs, at least one per
+``max_node_interval_s``), two total states and three ns × ns matrices — about 80 MB for an
+hour at 200 Hz with 1 Hz GNSS and 2 Hz constraints.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from hydrosync_core.errors import InputError
+from hydrosync_core.methods.gins_smoother import kernel as K  # noqa: N812
+from hydrosync_core.methods.gins_smoother.config import (
+    D2R,
+    SensorConfig,
+    initial_covariance,
+    noise_densities,
+)
+from hydrosync_core.methods.gins_smoother.io import GnssData, ImuData
+from hydrosync_core.methods.gins_smoother.params import GinsParams
+from hydrosync_core.progress import check_cancel, report
+
+CHUNK_S = 60.0  # seconds of IMU data per compiled chunk (progress / cancel granularity)
+
+
+@dataclass
+class Trajectory:
+    """A trajectory at IMU rate with 1σ.
+
+    ``llh`` (n, 3): lat, lon (deg), h (m); ``vel`` (n, 3) NED m/s; ``att`` (n, 3) roll,
+    pitch, yaw (deg, yaw in [0, 360)); ``pos_std`` N/E/D m, ``vel_std`` m/s, ``att_std``
+    roll/pitch/yaw deg.
+    """
+
+    time: np.ndarray
+    llh: np.ndarray
+    vel: np.ndarray
+    att: np.ndarray
+    pos_std: np.ndarray
+    vel_std: np.ndarray
+    att_std: np.ndarray
+
+
+@dataclass
+class GinsResult:
+    """Forward and smoothed solutions and the diagnostics of one run.
+
+    ``imu_errors_*``: per node ``time`` and the estimated gyro bias (deg/h), accelerometer
+    bias (mGal) and, with 21 states, scale factors (ppm), each (nodes, 3).
+    ``gnss``: ``time``, ``innovation`` (forward, computed − measured antenna position,
+    NED m, before the update), ``residual`` (smoothed trajectory minus measurement, NED m),
+    ``used`` (1 if the forward filter applied it).
+    """
+
+    forward: Trajectory
+    smoothed: Trajectory | None
+    imu_errors_forward: dict
+    imu_errors_smoothed: dict | None
+    gnss: dict
+    alignment: dict
+    counts: dict = field(default_factory=dict)
+
+
+def quat_to_euler(q: np.ndarray) -> np.ndarray:
+    """Roll, pitch, yaw (deg; yaw in [0, 360)) of quaternions (n, 4) ``[w, x, y, z]``."""
+    w, x, y, z = q[:, 0], q[:, 1], q[:, 2], q[:, 3]
+    roll = np.arctan2(2 * (w * x + y * z), 1 - 2 * (x * x + y * y))
+    pitch = np.arcsin(np.clip(2 * (w * y - z * x), -1, 1))
+    yaw = np.arctan2(2 * (w * z + x * y), 1 - 2 * (y * y + z * z))
+    out = np.degrees(np.column_stack([roll, pitch, yaw]))
+    out[:, 2] = np.mod(out[:, 2], 360.0)
+    return out
+
+
+def euler_to_quat(roll: float, pitch: float, yaw: float) -> np.ndarray:
+    """Quaternion ``[w, x, y, z]`` of ``C_b^n = Rz(yaw)·Ry(pitch)·Rx(roll)`` (radians)."""
+    cr, sr = math.cos(roll / 2), math.sin(roll / 2)
+    cp, sp = math.cos(pitch / 2), math.sin(pitch / 2)
+    cy, sy = math.cos(yaw / 2), math.sin(yaw / 2)
+    return np.array([cr * cp * cy + sr * sp * sy, sr * cp * cy - cr * sp * sy,
+                     cr * sp * cy + sr * cp * sy, cr * cp * sy - sr * sp * cy])
+
+
+def euler_matrix(roll: float, pitch: float, yaw: float) -> np.ndarray:
+    return K.qdcm(euler_to_quat(roll, pitch, yaw))
+
+
+def detect_static(imu: ImuData, window_s: float, acc_std: float, gyro_dps: float
+                  ) -> np.ndarray:
+    """IMU epochs in a quiet window: specific-force std below *acc_std* (m/s², per axis)
+    and mean angular-rate magnitude below *gyro_dps* (deg/s) over a centred window.
+
+    Quiet is necessary, not sufficient, for standstill (a vehicle cruising straight at
+    constant speed is quiet too): the filter applies a ZUPT only when its own speed is
+    below ``zupt_speed`` as well.
+    """
+    t = imu.time
+    dt = np.diff(t, prepend=t[0] - np.median(np.diff(t)))
+    dt = np.where((dt > 0) & (dt < 0.1), dt, np.median(np.diff(t)))
+    f = imu.inc[:, 3:6] / dt[:, None]
+    w = np.linalg.norm(imu.inc[:, 0:3], axis=1) / dt
+    n = max(3, int(round(window_s / float(np.median(dt)))))
+    if t.size < n:
+        return np.zeros(t.size, bool)
+    kern = np.ones(n) / n
+    var = np.zeros(t.size)
+    for c in range(3):
+        m = np.convolve(f[:, c], kern, mode="same")
+        m2 = np.convolve(f[:, c] ** 2, kern, mode="same")
+        var = np.maximum(var, m2 - m * m)
+    wm = np.convolve(w, kern, mode="same")
+    return (var < acc_std ** 2) & (wm < math.radians(gyro_dps))
+
+
+def _initial_state(imu: ImuData, gnss: GnssData, cfg: SensorConfig, i0: int,
+                   static: np.ndarray, p: GinsParams) -> tuple[int, np.ndarray, SensorConfig,
+                                                               dict]:
+    """Start index, total state and the config with alignment std (module :mod:`.kernel`).
+
+    Given (config ``initpos``/``initatt``) or from the data: static coarse alignment
+    (levelling from the mean specific force, heading by gyrocompassing when the gyro bias
+    instability is below 1 deg/h) or, for lower-grade gyros or a moving start, roll and
+    pitch 0 and heading from the GNSS course at the first epoch faster than
+    ``align_speed``.
+    """
+    info: dict = {}
+    x = np.zeros(K.NX)
+    x[10:13] = cfg.init_gyro_bias
+    x[13:16] = cfg.init_acc_bias
+    x[16:19] = cfg.init_gyro_scale
+    x[19:22] = cfg.init_acc_scale
+    if cfg.init_pos is not None and cfg.init_att is not None:
+        x[0:3] = cfg.init_pos
+        x[3:6] = cfg.init_vel if cfg.init_vel is not None else (0.0, 0.0, 0.0)
+        x[6:10] = euler_to_quat(*cfg.init_att)
+        info["method"] = "given"
+        return i0, x, cfg, info
+    t = imu.time
+    g_after = np.flatnonzero(gnss.time >= t[i0])
+    if g_after.size < 3:
+        raise InputError(gnss.source, "fewer than three GNSS epochs after the start: "
+                         "cannot align (give initpos/initatt in the configuration)")
+    lever = np.asarray(cfg.lever_arm_m)
+    # static start: quiet IMU over the alignment window at the start
+    n_al = int(p.align_time_s * imu.rate_hz)
+    gb_dph = max(cfg.noise.gb_std) * 3600 / D2R
+    if i0 + n_al < t.size and static[i0:i0 + n_al].all():
+        seg = slice(i0, i0 + n_al)
+        T = t[i0 + n_al - 1] - t[i0] + 1.0 / imu.rate_hz
+        f = imu.inc[seg, 3:6].sum(axis=0) / T
+        w = imu.inc[seg, 0:3].sum(axis=0) / T
+        roll = math.atan2(-f[1], -f[2])
+        pitch = math.atan2(f[0], math.hypot(f[1], f[2]))
+        lev = euler_matrix(roll, pitch, 0.0)
+        wl = lev @ w
+        if gb_dph < 1.0:
+            yaw = math.atan2(-wl[1], wl[0])
+            lat = math.radians(gnss.llh[g_after[0], 0])
+            yaw_std = max(cfg.noise.gb_std) / (K.WIE * math.cos(lat)) + 0.002
+            info["method"] = "static levelling + gyrocompassing"
+        else:
+            yaw, yaw_std = None, None
+        i_start = i0 + n_al - 1
+        if yaw is not None:
+            C = euler_matrix(roll, pitch, yaw)
+            gi = g_after[0]
+            lat, lon = np.radians(gnss.llh[gi, :2])
+            rm, rn = K.radii(lat)
+            la = C @ lever
+            x[0:3] = (lat - la[0] / (rm + gnss.llh[gi, 2]),
+                      lon - la[1] / ((rn + gnss.llh[gi, 2]) * math.cos(lat)),
+                      gnss.llh[gi, 2] + la[2])
+            x[3:6] = 0.0
+            x[6:10] = euler_to_quat(roll, pitch, yaw)
+            acc_std = max(cfg.noise.ab_std) / 9.8
+            cfg = cfg.with_(init_att_std=(acc_std + 1e-3, acc_std + 1e-3, yaw_std),
+                            init_vel_std=(0.01, 0.01, 0.01),
+                            init_pos_std=tuple(gnss.std[gi] + 0.01))
+            info.update(roll_deg=math.degrees(roll), pitch_deg=math.degrees(pitch),
+                        yaw_deg=math.degrees(yaw) % 360, start_time=float(t[i_start]))
+            return i_start, x, cfg, info
+    # moving alignment: heading from the GNSS course
+    gt, llh = gnss.time, gnss.llh
+    lat0 = math.radians(llh[0, 0])
+    rm, rn = K.radii(lat0)
+    ned = np.column_stack([np.radians(llh[:, 0] - llh[0, 0]) * (rm + llh[:, 2]),
+                           np.radians(llh[:, 1] - llh[0, 1]) * (rn + llh[:, 2]) * math.cos(lat0),
+                           -(llh[:, 2] - llh[0, 2])])
+    for k in range(1, gt.size - 1):
+        if gt[k] < t[i0] or gt[k + 1] - gt[k - 1] > 3.0:
+            continue
+        v = (ned[k + 1] - ned[k - 1]) / (gt[k + 1] - gt[k - 1])
+        speed = float(np.linalg.norm(v[:2]))
+        if speed < p.align_speed:
+            continue
+        i_start = int(np.searchsorted(t, gt[k]))
+        if i_start >= t.size - 1:
+            break
+        yaw = math.atan2(v[1], v[0])
+        pitch = math.atan2(-v[2], speed)
+        C = euler_matrix(0.0, pitch, yaw)
+        la = C @ lever
+        lat, lon = np.radians(llh[k, :2])
+        rmk, rnk = K.radii(lat)
+        dtg = t[i_start] - gt[k]
+        x[0:3] = (lat + (v[0] * dtg - la[0]) / (rmk + llh[k, 2]),
+                  lon + (v[1] * dtg - la[1]) / ((rnk + llh[k, 2]) * math.cos(lat)),
+                  llh[k, 2] - v[2] * dtg + la[2])
+        x[3:6] = v
+        x[6:10] = euler_to_quat(0.0, pitch, yaw)
+        sd = math.radians(p.align_att_std_deg)
+        cfg = cfg.with_(init_att_std=(sd, sd, max(sd, 3 * float(gnss.std[k, 0]) / speed)),
+                        init_vel_std=(0.1, 0.1, 0.1),
+                        init_pos_std=tuple(gnss.std[k] + 0.05 + float(np.linalg.norm(lever))))
+        info.update(method="GNSS course (moving)", roll_deg=0.0,
+                    pitch_deg=math.degrees(pitch), yaw_deg=math.degrees(yaw) % 360,
+                    start_time=float(t[i_start]))
+        return i_start, x, cfg, info
+    raise InputError(gnss.source, f"cannot align: never faster than {p.align_speed} m/s and "
+                     "no static start usable for gyrocompassing (give initatt)")
+
+
+def _std_from_diag(d: np.ndarray, yaw_deg: np.ndarray) -> tuple:
+    pos = np.sqrt(np.maximum(d[:, 0:3], 0))
+    vel = np.sqrt(np.maximum(d[:, 3:6], 0))
+    psi = np.radians(yaw_deg)
+    c2, s2 = np.cos(psi) ** 2, np.sin(psi) ** 2
+    roll = np.sqrt(np.maximum(c2 * d[:, 6] + s2 * d[:, 7], 0))
+    pitch = np.sqrt(np.maximum(s2 * d[:, 6] + c2 * d[:, 7], 0))
+    yaw = np.sqrt(np.maximum(d[:, 8], 0))
+    return pos, vel, np.degrees(np.column_stack([roll, pitch, yaw]))
+
+
+def _interp_diag(t, node_t, start_d, end_d) -> np.ndarray:
+    """Diagonal variance at IMU rate: linear between ``start_d[k]`` at node k and
+    ``end_d[k+1]`` just before node k+1."""
+    k = np.clip(np.searchsorted(node_t, t, side="right") - 1, 0, node_t.size - 1)
+    k1 = np.minimum(k + 1, node_t.size - 1)
+    span = node_t[k1] - node_t[k]
+    w = np.where(span > 0, (t - node_t[k]) / np.where(span > 0, span, 1), 0.0)[:, None]
+    at_node = np.isin(t, node_t)
+    out = (1 - w) * start_d[k] + w * end_d[k1]
+    out[at_node] = start_d[k[at_node]]
+    return out
+
+
+def _trajectory(t, traj, diag, node_t, diag_end) -> Trajectory:
+    att = quat_to_euler(traj[:, 6:10])
+    d = _interp_diag(t, node_t, diag, diag_end)
+    ps, vs, as_ = _std_from_diag(d, att[:, 2])
+    return Trajectory(t, np.column_stack([np.degrees(traj[:, 0:2]), traj[:, 2]]),
+                      traj[:, 3:6].copy(), att, ps, vs, as_)
+
+
+def _imu_errors(node_t, xs, ns) -> dict:
+    out = {"time": node_t, "gyro_bias_dph": np.degrees(xs[:, 10:13]) * 3600,
+           "acc_bias_mgal": xs[:, 13:16] / 1e-5}
+    if ns == 21:
+        out["gyro_scale_ppm"] = xs[:, 16:19] * 1e6
+        out["acc_scale_ppm"] = xs[:, 19:22] * 1e6
+    return out
+
+
+def _gnss_residuals(gnss: GnssData, traj: Trajectory, lever) -> np.ndarray:
+    """Trajectory (interpolated, lever arm applied) minus measured antenna, NED m."""
+    t = traj.time
+    inside = (gnss.time >= t[0]) & (gnss.time <= t[-1])
+    out = np.full((gnss.time.size, 3), np.nan)
+    if not inside.any():
+        return out
+    tg = gnss.time[inside]
+    j = np.clip(np.searchsorted(t, tg), 1, t.size - 1)
+    w = ((tg - t[j - 1]) / (t[j] - t[j - 1]))[:, None]
+    llh = (1 - w) * traj.llh[j - 1] + w * traj.llh[j]
+    att = np.radians(traj.att[j])
+    lat = np.radians(llh[:, 0])
+    rm, rn = np.vectorize(K.radii)(lat)
+    la = np.array([euler_matrix(*a) @ np.asarray(lever) for a in att]) if tg.size < 20000 \
+        else _lever_vec(att, lever)
+    g = gnss.llh[inside]
+    dn = np.radians(llh[:, 0] - g[:, 0]) * (rm + llh[:, 2]) + la[:, 0]
+    de = np.radians(llh[:, 1] - g[:, 1]) * (rn + llh[:, 2]) * np.cos(lat) + la[:, 1]
+    dd = -(llh[:, 2] - g[:, 2]) + la[:, 2]
+    out[inside] = np.column_stack([dn, de, dd])
+    return out
+
+
+def _lever_vec(att_rad: np.ndarray, lever) -> np.ndarray:
+    r, p, y = att_rad[:, 0], att_rad[:, 1], att_rad[:, 2]
+    cr, sr, cp, sp, cy, sy = np.cos(r), np.sin(r), np.cos(p), np.sin(p), np.cos(y), np.sin(y)
+    C = np.empty((r.size, 3, 3))
+    C[:, 0, 0] = cy * cp
+    C[:, 0, 1] = cy * sp * sr - sy * cr
+    C[:, 0, 2] = cy * sp * cr + sy * sr
+    C[:, 1, 0] = sy * cp
+    C[:, 1, 1] = sy * sp * sr + cy * cr
+    C[:, 1, 2] = sy * sp * cr - cy * sr
+    C[:, 2, 0] = -sp
+    C[:, 2, 1] = cp * sr
+    C[:, 2, 2] = cp * cr
+    return C @ np.asarray(lever, float)
+
+
+def run_gins(imu: ImuData, gnss: GnssData, cfg: SensorConfig, params: GinsParams | None = None,
+             progress=None, cancel=None) -> GinsResult:
+    """Forward closed-loop EKF and (unless ``params.smooth`` is off) RTS smoothing.
+
+    Parameters
+    ----------
+    imu : ImuData
+        Increments in the body frame (FRD), time-sorted.
+    gnss : GnssData
+        Antenna positions (deg, m) with N/E/D std (m).
+    cfg : SensorConfig
+        Initial state (or None parts for alignment), IMU noise, lever arm.
+    params : GinsParams
+        Processing options (scale-factor states, NHC, ZUPT, intervals, gate).
+
+    Returns
+    -------
+    GinsResult
+    """
+    p = params if params is not None else GinsParams()
+    ns = 21 if p.scale_factors else 15
+    t = np.ascontiguousarray(imu.time, float)
+    inc = np.ascontiguousarray(imu.inc, float)
+    if t.size < 10:
+        raise InputError(imu.source, "fewer than 10 IMU epochs")
+    if gnss.time.size == 0:
+        raise InputError(gnss.source, "no GNSS epochs")
+    start = cfg.start_time if cfg.start_time is not None else t[0]
+    end = cfg.end_time if cfg.end_time is not None else t[-1]
+    i0 = int(np.searchsorted(t, start - 1e-9))
+    i1 = int(np.searchsorted(t, end + 1e-9, side="right")) - 1
+    if i0 >= t.size or i1 - i0 < 10:
+        raise InputError(cfg.source or "config", f"processing interval {start} … {end} s holds "
+                         "fewer than 10 IMU epochs", field="starttime")
+    if gnss.time[-1] < t[i0] or gnss.time[0] > t[i1]:
+        raise InputError(gnss.source, "no GNSS epoch inside the IMU time span (same time "
+                         "scale, GPS seconds of week?)", field="time")
+    static = (detect_static(imu, p.zupt_window_s, p.zupt_acc_std, p.zupt_gyro_dps)
+              if p.zupt else np.zeros(t.size, bool))
+    i0, x0, cfg, align = _initial_state(imu, gnss, cfg, i0, static, p)
+    P0 = initial_covariance(cfg, ns)
+    qc = noise_densities(cfg, ns)
+    n_traj = i1 - i0 + 1
+    duration = t[i1] - t[i0]
+    g_in = (gnss.time > t[i0]) & (gnss.time <= t[i1])
+    con = p.constraint_interval_s if (p.nhc or p.zupt) else 1e9
+    max_nodes = int(g_in.sum() + duration / min(con, p.max_node_interval_s) * 1.05 + 16)
+    traj = np.zeros((n_traj, 10))
+    node_idx = np.zeros(max_nodes, np.int64)
+    xp_n = np.zeros((max_nodes, K.NX))
+    xf_n = np.zeros((max_nodes, K.NX))
+    Pp_n = np.zeros((max_nodes, ns, ns))
+    Pf_n = np.zeros((max_nodes, ns, ns))
+    Phi_n = np.zeros((max_nodes, ns, ns))
+    tg = np.ascontiguousarray(gnss.time)
+    llh_g = np.column_stack([np.radians(gnss.llh[:, :2]), gnss.llh[:, 2]])
+    std_g = np.ascontiguousarray(gnss.std * p.gnss_std_scale)
+    innov = np.full((tg.size, 3), np.nan)
+    used = np.zeros(tg.size, np.int8)
+    mount = np.radians(np.asarray(p.mounting_deg, float))
+    c_vb = euler_matrix(*mount).T  # vehicle ← body
+    nominal_dt = 1.0 / cfg.imu_rate_hz
+    prop_n = max(1, int(round(p.propagation_interval_s * cfg.imu_rate_hz)))
+    state = np.zeros(18)
+    x = x0.copy()
+    P = P0.copy()
+    Phi = np.eye(ns)
+    chunk = max(100, int(CHUNK_S * cfg.imu_rate_hz))
+    ja = i0
+    report(progress, 0.0, "forward filter")
+    while ja <= i1:
+        jb = min(i1, ja + chunk)
+        check_cancel(cancel)
+        K.forward(t, inc, i0, ja, jb, x, P, Phi, state, qc, ns, cfg.noise.corr_time, nominal_dt,
+                  prop_n, tg, llh_g, std_g, np.asarray(cfg.lever_arm_m, float), p.gnss_gate,
+                  p.nhc, p.nhc_std, c_vb, con, static, p.zupt_std, p.zupt_speed,
+                  p.max_node_interval_s, traj, node_idx, xp_n, xf_n, Pp_n, Pf_n, Phi_n, innov,
+                  used)
+        report(progress, 0.75 * (jb - i0 + 1) / n_traj if p.smooth else (jb - i0 + 1) / n_traj,
+               f"forward filter {t[jb] - t[i0]:.0f} of {duration:.0f} s")
+        ja = jb + 1
+    nn = int(state[5])
+    if not np.all(np.isfinite(traj)):
+        raise InputError(imu.source, "the filter diverged (non-finite state): check units, "
+                         "initial state and the IMU noise figures")
+    tt = t[i0:i1 + 1]
+    node_t = t[node_idx[:nn]]
+    diag_f = np.einsum("kii->ki", Pf_n[:nn])
+    diag_p = np.einsum("kii->ki", Pp_n[:nn])
+    forward = _trajectory(tt, traj, diag_f, node_t, diag_p)
+    err_f = _imu_errors(node_t, xf_n[:nn], ns)
+    gnss_out = {"time": gnss.time, "innovation": innov, "used": used}
+    counts = {"imu_epochs": int(n_traj), "nodes": nn, "states": ns,
+              "gnss_epochs": int(g_in.sum()), "gnss_used": int(used.sum()),
+              "static_epochs": int(static[i0:i1 + 1].sum())}
+    smoothed = err_s = None
+    if p.smooth:
+        check_cancel(cancel)
+        report(progress, 0.8, "RTS smoother")
+        xs_n = np.zeros((nn, K.NX))
+        es_n = np.zeros((nn, ns))
+        ep_n = np.zeros((nn, ns))
+        ps_diag = np.zeros((nn, ns))
+        K.smooth(xp_n, xf_n, Pp_n, Pf_n, Phi_n, nn, ns, xs_n, es_n, ep_n, ps_diag)
+        check_cancel(cancel)
+        out = np.zeros_like(traj)
+        rel = node_idx[:nn] - i0
+        K.apply_corrections(traj, rel, es_n, ep_n, tt, nn, ns, out)
+        smoothed = _trajectory(tt, out, ps_diag, node_t, ps_diag)
+        err_s = _imu_errors(node_t, xs_n, ns)
+        gnss_out["residual"] = _gnss_residuals(gnss, smoothed, cfg.lever_arm_m)
+    gnss_out["residual_forward"] = _gnss_residuals(gnss, forward, cfg.lever_arm_m)
+    report(progress, 1.0, "done")
+    return GinsResult(forward, smoothed, err_f, err_s, gnss_out, align, counts)

@@ -1,0 +1,128 @@
+"""Report section of the GNSS/INS smoother (Wang et al.).
+
+Reads ``/results/gins_smoother`` as :mod:`.project_run` stores it: a trajectory map (GNSS
+fixes, forward, smoothed), the forward-versus-smoothed error table and the outage drift
+table when a reference is stored, position/attitude σ plots and the parameters.
+"""
+
+from __future__ import annotations
+
+import json
+
+import numpy as np
+
+from hydrosync_core.methods.gins_smoother.params import GinsParams
+from hydrosync_core.methods.gins_smoother.project_run import GNSS, RESULT
+from hydrosync_core.params import stored
+from hydrosync_core.report.context import fmt
+
+HEADING = "GNSS/INS trajectory with RTS smoothing"
+MAX_POINTS = 1500
+
+
+def _thin(n: int) -> np.ndarray:
+    return np.arange(0, n, max(1, n // MAX_POINTS))
+
+
+def summary(project) -> list[tuple[str, str]]:
+    """Key results for the report summary and ``hydrosync demo``."""
+    attrs = project.attrs(RESULT)
+    counts = json.loads(attrs["counts"])
+    ev = json.loads(attrs["evaluation"])
+    rows = [("IMU epochs / GNSS fixes used",
+             f"{counts['imu_epochs']} / {counts['gnss_used']} of {counts['gnss_epochs']}")]
+    for name in ("forward", "smoothed"):
+        if name in ev:
+            a = ev[name].get("gnss_on", ev[name]["all"])
+            rows.append((f"{name.capitalize()} horizontal RMS / yaw RMS vs reference",
+                         f"{fmt(a['horizontal']['rms'] * 100, 2)} cm / "
+                         f"{fmt(a['yaw']['rms'], 4)}°"))
+            o = ev[name].get("outage")
+            if o and o["rms_max_horizontal_m"] is not None:
+                rows.append((f"{name.capitalize()} outage drift (max horizontal)",
+                             f"{fmt(o['max_horizontal_m'], 3)} m"))
+    return rows
+
+
+def section(project, ctx) -> list:
+    attrs = project.attrs(RESULT)
+    counts = json.loads(attrs["counts"])
+    ev = json.loads(attrs["evaluation"])
+    align = json.loads(attrs["alignment"])
+    params = stored(GinsParams, project, RESULT)
+    out = [ctx.heading(HEADING)]
+    out.append(ctx.para(
+        "Loosely coupled GNSS/INS integration after Wang et al.: strapdown mechanisation in "
+        "the local-level frame (earth rate, transport rate, normal gravity, coning and "
+        "sculling), an error-state Kalman filter with "
+        f"{counts['states']} states, GNSS position updates with the antenna lever arm, "
+        "optional non-holonomic and zero-velocity constraints, closed-loop feedback, and a "
+        "Rauch-Tung-Striebel smoother on the total state. Angles in degrees, NED metres."))
+    out += ctx.key_values(
+        [("IMU epochs", str(counts["imu_epochs"])),
+         ("GNSS fixes in span / used", f"{counts['gnss_epochs']} / {counts['gnss_used']}"),
+         ("Smoother nodes", str(counts["nodes"])),
+         ("Alignment", str(align.get("method")))], caption="Processing summary.")
+    fwd = project.get_table(f"{RESULT}/forward")
+    smo = project.get_table(f"{RESULT}/smoothed") if project.exists(f"{RESULT}/smoothed") \
+        else None
+    g = project.get_table(GNSS)
+    lat0, lon0 = float(fwd["lat"][0]), float(fwd["lon"][0])
+    k_e = 111320.0 * np.cos(np.radians(lat0))
+
+    def en(tab):
+        return (np.asarray(tab["lon"]) - lon0) * k_e, (np.asarray(tab["lat"]) - lat0) * 110540.0
+
+    ch = ctx.chart(height=220, xlabel="east [m]", ylabel="north [m]")
+    e, n = en(g)
+    gi = _thin(e.size)
+    ch.points(e[gi], n[gi], label="GNSS", size=1.0)
+    idx = _thin(fwd["time"].size)
+    e, n = en(fwd)
+    ch.line(e[idx], n[idx], label="forward")
+    if smo is not None:
+        e, n = en(smo)
+        ch.line(e[idx], n[idx], label="smoothed")
+    out.append(ctx.figure(ch, "Trajectory: GNSS antenna fixes, forward and smoothed IMU "
+                          "positions (local east/north from the start)."))
+    t0 = float(fwd["time"][0])
+    charts = []
+    for key, label, scale in (("sd_n", "σ north [cm]", 100), ("sd_d", "σ down [cm]", 100),
+                              ("sd_yaw", "σ yaw [°]", 1)):
+        c = ctx.chart(height=140, fraction=1 / 3, xlabel="time [s]", ylabel=label)
+        c.line(fwd["time"][idx] - t0, scale * fwd[key][idx], label="forward")
+        if smo is not None:
+            c.line(smo["time"][idx] - t0, scale * smo[key][idx], label="smoothed")
+        charts.append(c)
+    out.append(ctx.figure(charts, "Standard deviations, forward and smoothed (the smoother "
+                          "reduces them everywhere, most across GNSS outages)."))
+    if ev:
+        rows = []
+        for name in ("forward", "smoothed"):
+            if name not in ev:
+                continue
+            a = ev[name].get("gnss_on", ev[name]["all"])
+            rows.append([name] + [fmt(a[k]["rms"] * 1000, 1) for k in ("north", "east", "down")]
+                        + [fmt(a[k]["rms"] * 1000, 2) for k in ("vn", "ve", "vd")]
+                        + [fmt(a[k]["rms"], 4) for k in ("roll", "pitch", "yaw")])
+        out += ctx.table(["Solution", "N mm", "E mm", "D mm", "vN mm/s", "vE", "vD", "roll °",
+                          "pitch °", "yaw °"], rows,
+                         col_widths=[0.14] + [0.086] * 3 + [0.09] * 3 + [0.1] * 3,
+                         caption="RMS error against the reference (epochs with GNSS).")
+        orow = []
+        for name in ("forward", "smoothed"):
+            o = ev.get(name, {}).get("outage")
+            if not o:
+                continue
+            for i, w in enumerate(o["outages"]):
+                if len(orow) < 40:
+                    orow.append([name, str(i + 1), f"{w['end'] - w['start']:.0f} s",
+                                 fmt(w["max_horizontal_m"], 3), fmt(w["max_vertical_m"], 3)])
+        if orow:
+            out += ctx.table(["Solution", "Outage", "Length", "max horizontal m",
+                              "max vertical m"], orow, col_widths=[0.2, 0.15, 0.15, 0.25, 0.25],
+                             caption="Drift across simulated GNSS outages.")
+    else:
+        out.append(ctx.para("No reference trajectory stored: no error statistics."))
+    out += ctx.params_table(params, "GNSS/INS smoother: processing parameters.")
+    return out

@@ -294,7 +294,8 @@ class MainWindow(QMainWindow, FileActions):
     @Slot(object, str)
     def _on_panel_status(self, panel: PluginPanel, message: str) -> None:
         name = panel.spec.name if panel.spec is not None else type(panel).__name__
-        text = f"{name}: {message}"
+        # Panels may name themselves already ("Latency started"): never "Latency: Latency".
+        text = message if message.lower().startswith(name.lower()) else f"{name}: {message}"
         level = logging.WARNING if " failed" in message else logging.INFO
         logging.getLogger("hydrosync_gui.plugins").log(level, "%s", text)
         self.statusBar().showMessage(text, 8000)

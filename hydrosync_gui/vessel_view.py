@@ -16,6 +16,20 @@ _PEN = pg.mkPen("#1f5fa8")
 _BRUSH = pg.mkBrush("#1f5fa8")
 
 
+def label_groups(names: list[str], h, v, tol: float) -> list[tuple[str, float, float]]:
+    """One label per cluster of sensors closer than *tol* in this view (names joined), so
+    sensors at one place ("ins", "motion" at the reference point) do not overprint."""
+    groups: list[tuple[list[str], float, float]] = []
+    for name, x, y in zip(names, h, v, strict=True):
+        for members, gx, gy in groups:
+            if abs(gx - x) <= tol and abs(gy - y) <= tol:
+                members.append(name)
+                break
+        else:
+            groups.append(([name], float(x), float(y)))
+    return [(", ".join(members), gx, gy) for members, gx, gy in groups]
+
+
 class _View(pg.PlotWidget):
     """One projection: points with their sensor names and the reference-point cross."""
 
@@ -33,18 +47,20 @@ class _View(pg.PlotWidget):
     def show_points(self, names: list[str], h: np.ndarray, v: np.ndarray) -> None:
         """Draw sensors at horizontal *h* and vertical *v* (plot units, m)."""
         self.clear()
+        self.labels: list[str] = []
         self.addItem(pg.ScatterPlotItem([0.0], [0.0], symbol="+", size=16,
                                         pen=pg.mkPen("#a33", width=2), brush=None))
         if len(names):
             self.addItem(pg.ScatterPlotItem(h, v, size=9, pen=_PEN, brush=_BRUSH))
-        for name, x, y in zip(names, h, v, strict=True):
-            label = pg.TextItem(name, color="#222", anchor=(0, 1))
-            label.setPos(float(x), float(y))
-            self.addItem(label)
         # Half a metre of margin at least, so one sensor at the origin is still readable.
         span_h = np.r_[h, 0.0]
         span_v = np.r_[v, 0.0]
         pad = max(0.5, 0.15 * max(np.ptp(span_h), np.ptp(span_v)))
+        for text, x, y in label_groups(names, h, v, 0.2 * pad):
+            label = pg.TextItem(text, color="#222", anchor=(0, 1))
+            label.setPos(x, y)
+            self.addItem(label)
+            self.labels.append(text)
         # Names are written right of their point: more room on that side.
         self.setXRange(span_h.min() - pad, span_h.max() + 3 * pad, padding=0)
         self.setYRange(span_v.min() - pad, span_v.max() + pad, padding=0)

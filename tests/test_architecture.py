@@ -84,15 +84,21 @@ SPEC_PROBE = textwrap.dedent(
     importlib.import_module({module!r})
     heavy = sorted(m for m in sys.modules
                    if m.split(".")[0] in ("scipy", "open3d", "PySide6", "shiboken6",
-                                          "pyqtgraph", "reportlab", "laspy", "h5py")
+                                          "pyqtgraph", "reportlab", "laspy", "h5py", "numba")
                    or (m.startswith("hydrosync_core.methods.") and m.count(".") >= 3))
     print(json.dumps(heavy))
     """
 )
 
 
-@pytest.mark.parametrize("module", ["plugins.latency", "plugins.pool_calibration",
-                                    "hydrosync_heave_stats"])
+def _spec_modules() -> list[str]:
+    from importlib.metadata import entry_points
+
+    found = sorted({ep.value.partition(":")[0] for ep in entry_points(group="hydrosync.plugins")})
+    return found + ["hydrosync_heave_stats"]
+
+
+@pytest.mark.parametrize("module", _spec_modules())
 def test_importing_a_spec_is_cheap(module):
     """A spec is declared, then loaded lazily: no scipy, open3d, Qt, nor method modules."""
     from pathlib import Path

@@ -104,7 +104,8 @@ def cover_page(project, ctx: ReportContext, statuses: list[ModuleStatus]) -> lis
         ("Project file SHA-256", file_sha256(path)
          + (" (the project has unsaved changes)" if project.dirty else "")),
         ("Project created", utc_text(attrs.get("created"))),
-        ("Project last saved", utc_text(attrs.get("modified"))),
+        ("Project last saved", utc_text(attrs.get("modified")) if path is not None
+         and Path(path).exists() else "never (the project exists only in memory)"),
         ("Modules with results", ", ".join(run) if run else "none"),
     ]
     out: list[Flowable] = [

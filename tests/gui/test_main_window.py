@@ -371,3 +371,15 @@ def test_every_panel_fits_a_1366x768_screen(qtbot, make_window, tmp_path):
         qtbot.wait(10)
         hint = window.minimumSizeHint()
         assert hint.width() <= 1366 and hint.height() <= 700, (index, hint)
+
+
+def test_status_bar_names_the_panel_once(qtbot, make_window):
+    window = make_window()
+    panel = window.current_panel()
+    if panel is None:
+        pytest.skip("no panel in the fake registry")
+    name = panel.spec.name
+    panel.sig_status.emit(f"{name} started")
+    assert window.statusBar().currentMessage() == f"{name} started"
+    panel.sig_status.emit("3 of 4 lines used")
+    assert window.statusBar().currentMessage() == f"{name}: 3 of 4 lines used"

@@ -257,3 +257,15 @@ def test_out_of_date_banner_and_browser_mark(qtbot, make_window):
     assert "Out of date" in panel.stale_banner.text()
     assert "vessel sheet entry 'gnss'" in panel.stale_banner.text()
     assert window.browser.row_texts("results/latency")[0] == "latency (out of date)"
+
+
+def test_schematic_labels_of_coincident_sensors_do_not_overprint(qtbot):
+    from hydrosync_gui.vessel_view import VesselSchematic, label_groups
+
+    assert label_groups(["ins", "motion", "gnss"], [0.0, 0.01, 2.0], [0.0, 0.0, -6.0], 0.1) \
+        == [("ins, motion", 0.0, 0.0), ("gnss", 2.0, -6.0)]
+    view = VesselSchematic()
+    qtbot.addWidget(view)
+    view.show_sensors({"ins": np.zeros(3), "motion": np.zeros(3),
+                       "gnss": np.array([-1.5, 2.0, -6.0])})
+    assert view.plan.labels == ["ins, motion", "gnss"]

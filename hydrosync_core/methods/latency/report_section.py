@@ -240,10 +240,11 @@ def _before_after_figures(project, ctx, table, attrs, params, arm) -> list[Flowa
         keep = (t >= mid - EXCERPT_S / 2) & (t <= mid + EXCERPT_S / 2)
         t = t[keep]
         h, before, after = (series[k][keep] for k in ("height", "heave_before", "heave_after"))
-        # Compare shapes as the seed does (eq. 5): both curves about their means, in cm.
-        hc, bc, ac = (100 * (v - np.mean(v)) for v in (h, before, after))
+        # Compare shapes as Qi et al. do (eq. 5): both curves about their means; heights
+        # and heave are in metres throughout the report.
+        hc, bc, ac = (v - np.mean(v) for v in (h, before, after))
         chart = ctx.chart(height=190, xlabel="time since line start [s]",
-                          ylabel="height change [cm]")
+                          ylabel="height change [m]")
         chart.line(t, hc, color=INK, width=1.1, label="GNSS height, detrended")
         chart.line(t, bc, color=SERIES[1], width=0.8, dash=(3, 2),
                    label="total heave before (\u0394t = 0)")

@@ -242,8 +242,11 @@ def solve_array(tracks: Mapping[str, Track], antennas: Mapping[str, list[float]]
     -------
     ArraySolution
         ``counts`` holds ``epochs`` (all matched epochs), ``solved``, ``too_few_antennas``,
-        ``with_dropped_antenna``, per antenna ``present``, ``not_accepted_quality``,
-        ``length_rejected``, ``used``, ``duplicates``, and the gaps between solved epochs
+        ``with_dropped_antenna``, ``cov_fallback`` (solved epochs where some used
+        antenna's file covariance was not positive definite and the a-priori σ replaced
+        it), per antenna ``present``, ``cov_fallback`` (rows whose covariance fell back),
+        ``not_accepted_quality``, ``length_rejected``, ``used``, ``duplicates``, and the
+        gaps between solved epochs
         (``gaps``, ``longest_gap_s``, ``median_interval_s``).
 
     Raises
@@ -275,6 +278,7 @@ def solve_array(tracks: Mapping[str, Track], antennas: Mapping[str, list[float]]
     ecef = np.full((E, K, 3), np.nan)
     q = np.zeros((E, K), np.int16)
     cov = np.broadcast_to(_apriori_cov(params), (E, K, 3, 3)).copy()
+    fallback = np.zeros((E, K), bool)  # file covariance not positive definite -> a priori
     for k, n in enumerate(names):
         t, pos = tracks[n], index[n]
         have = pos >= 0
@@ -282,9 +286,11 @@ def solve_array(tracks: Mapping[str, Track], antennas: Mapping[str, list[float]]
         q[have, k] = t.q[pos[have]]
         if params.weights == "file" and t.cov_ned is not None:
             c = t.cov_ned[pos[have]]
-            good = np.all(np.linalg.eigvalsh(c) > 0, axis=-1)
+            good = np.all(np.isfinite(c), axis=(-2, -1))
+            good[good] = np.all(np.linalg.eigvalsh(c[good]) > 0, axis=-1)
             sel = np.flatnonzero(have)[good]
             cov[sel, k] = c[good]
+            fallback[np.flatnonzero(have)[~good], k] = True
     present = q > 0
     ok = present & (q <= QUALITY_LIMIT[params.min_quality])
     any_ok = ok.any(axis=1)
@@ -356,7 +362,9 @@ def solve_array(tracks: Mapping[str, Track], antennas: Mapping[str, list[float]]
         "direct_solved": int(np.isfinite(methods["direct"].angles_deg[:, 0]).sum()),
         "gaps": int(gaps.sum()), "longest_gap_s": float(dt.max()) if dt.size else 0.0,
         "median_interval_s": median_dt,
+        "cov_fallback": int((fallback & used & solved[:, None]).any(axis=1).sum()),
         "antennas": {n: {"present": int(present[:, k].sum()),
+                         "cov_fallback": int(fallback[:, k].sum()),
                          "not_accepted_quality": int((present[:, k] & ~ok[:, k]).sum()),
                          "length_rejected": int((ok[:, k] & ~used[:, k]).sum()),
                          "used": int((used[:, k] & solved).sum()),

@@ -50,12 +50,17 @@ class Track:
         RTKLIB quality flag (1 fixed, 2 float, …).
     cov_ned : ndarray (n, 3, 3) or None
         Position covariance in NED (m²); None → a-priori σ.
+    week_based : bool
+        True when *gps_s* are GPS seconds (``.pos``/``.geo`` files): the solution's
+        ``time`` is then the time of week. False for times on another continuous scale
+        (the CSV's ``time`` column), which are reported as given.
     """
 
     gps_s: np.ndarray
     ecef: np.ndarray
     q: np.ndarray
     cov_ned: np.ndarray | None = None
+    week_based: bool = True
 
 
 @dataclass
@@ -77,7 +82,8 @@ class ArraySolution:
     Attributes
     ----------
     time : ndarray (E,)
-        GPS time of week (s).
+        GPS time of week (s); the input times as given when they are not GPS seconds
+        (:attr:`Track.week_based`).
     gps_s : ndarray (E,)
         Continuous GPS seconds.
     names : list of str
@@ -370,7 +376,8 @@ def solve_array(tracks: Mapping[str, Track], antennas: Mapping[str, list[float]]
                          "used": int((used[:, k] & solved).sum()),
                          "duplicates": dups[n]} for k, n in enumerate(names)},
     }
-    week = np.floor(gps_s / 604800.0)
+    week_based = all(tracks[n].week_based for n in names)
+    week = np.floor(gps_s / 604800.0) if week_based else np.zeros_like(gps_s)
     pairs = [f"{names[i]}-{names[j]}" for i, j in combinations(range(K), 2)]
     llh = (float(np.nanmean(lat)), float(np.nanmean(lon)), float(np.nanmean(hgt)))
     report(progress, 1.0, "attitude solved")

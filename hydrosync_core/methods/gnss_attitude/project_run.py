@@ -63,7 +63,8 @@ def track_from_columns(columns: Mapping[str, np.ndarray], source: str) -> Track:
                              "e/n/u file needs its header's ref pos)", field=key)
     xyz = np.column_stack([np.asarray(columns[k], float) for k in ("x", "y", "z")])
     cov = ned_covariance(dict(columns)) if "lat" in columns or "sdn" in columns else None
-    return Track(np.asarray(columns["gps_s"], float), xyz, np.asarray(columns["q"], int), cov)
+    return Track(np.asarray(columns["gps_s"], float), xyz, np.asarray(columns["q"], int), cov,
+                 week_based="week" in columns)
 
 
 def solution_tables(sol: ArraySolution) -> dict[str, dict[str, np.ndarray]]:

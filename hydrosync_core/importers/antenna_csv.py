@@ -91,7 +91,7 @@ def read_antenna_csv(path: str | os.PathLike) -> dict[str, dict[str, np.ndarray]
         raise InputError(name, f"quality {q[bad[0]]:g} is not a GGA fix quality 0-8",
                          line=int(lines[bad[0]]), field="quality")
     r = np.sqrt(cols["x"] ** 2 + cols["y"] ** 2 + cols["z"] ** 2)
-    bad = np.flatnonzero((r < 6.0e6) | (r > 5.0e7))
+    bad = np.flatnonzero(((r < 6.0e6) | (r > 5.0e7)) & (q != 0))  # no fix: may be zeros
     if bad.size:
         raise InputError(name, f"ECEF position {r[bad[0]]:.0f} m from the Earth's centre is "
                          "not near the Earth", line=int(lines[bad[0]]), field="x")

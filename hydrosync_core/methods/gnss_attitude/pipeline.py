@@ -402,13 +402,27 @@ def statistics(sol: ArraySolution, start: float | None = None,
     the RMS of the per-epoch formal standard deviations, ``predicted`` beside ``std`` is
     the precision check of Liu et al.'s static-period table.
     """
-    sel = np.ones(sol.time.size, bool)
+    return interval_statistics(sol.time, {name: (m.angles_deg, m.std_deg)
+                                          for name, m in sol.methods.items()}, start, end)
+
+
+def interval_statistics(time: np.ndarray, methods: Mapping[str, tuple[np.ndarray, np.ndarray]],
+                        start: float | None = None, end: float | None = None) -> dict:
+    """:func:`statistics` from arrays: *methods* maps a name to (angles (E, 3), std (E, 3))
+    in degrees, order heading, pitch, roll; *time* (E,) on the scale of *start*/*end*.
+
+    Used to recompute the table for another static interval from the stored per-method
+    tables, without solving again.
+    """
+    time = np.asarray(time, float)
+    sel = np.ones(time.size, bool)
     if start is not None:
-        sel &= sol.time >= start
+        sel &= time >= start
     if end is not None:
-        sel &= sol.time <= end
+        sel &= time <= end
     out = {}
-    for name, m in sol.methods.items():
+    for name, (angles_deg, std_deg) in methods.items():
+        m = MethodSolution(np.asarray(angles_deg, float), np.asarray(std_deg, float))
         good = sel & np.isfinite(m.angles_deg[:, 0])
         entry: dict = {"epochs": int(good.sum())}
         for c, angle in enumerate(("heading", "pitch", "roll")):

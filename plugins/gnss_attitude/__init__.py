@@ -19,6 +19,14 @@ SPEC = PluginSpec(
         DataKind("pos", "RTKLIB solution file .pos of one antenna (llh/xyz/enu; the file "
                  "stem names the antenna)", "raw/gnss_attitude/pos",
                  "hydrosync_core.importers.rtklib_pos:store_pos", "custom"),
+        DataKind("geo", "position file .geo of one antenna (calendar time, lat, lon, h, "
+                 "3 sigma; no quality flag; the file stem names the antenna)",
+                 "raw/gnss_attitude/pos",
+                 "hydrosync_core.importers.geo_positions:store_geo", "custom"),
+        DataKind("antenna_csv", "antenna_positions.csv: time, antenna, x, y, z (ECEF m), "
+                 "quality (GGA) of every antenna of the array",
+                 "raw/gnss_attitude/pos",
+                 "hydrosync_core.importers.antenna_csv:store_antenna_csv", "custom"),
         DataKind("antennas", "antennas.json: antenna coordinates in the body frame (FRD, m)",
                  "raw/gnss_attitude/antennas", f"{CORE}.antennas:read_antennas_json", "json"),
     ),

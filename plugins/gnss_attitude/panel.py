@@ -1,8 +1,14 @@
 """The GNSS Attitude panel: parameters, Run, statistics and the plots of the stored run.
 
 Plots (pyqtgraph): heading, pitch and roll against time with the direct method and the
-least squares overlaid (the interval of the statistics shaded), the baseline-length
-residuals, and the predicted / simulated precision versus baseline length.
+least squares overlaid, the baseline-length residuals, and the predicted / simulated
+precision versus baseline length.
+
+The static interval of the statistics table is a shaded region on the three time series:
+drag it (or its edges) with the mouse. While it moves the table follows, computed from
+the stored per-method tables (no solving); when it is released the form's
+``static_start_s``/``static_end_s`` are set and, in a writable project, the stored
+statistics and parameters are updated (:func:`...project_run.restat`).
 """
 
 from __future__ import annotations
@@ -23,7 +29,8 @@ from PySide6.QtWidgets import (
 )
 
 from hydrosync_core.methods.gnss_attitude.params import GnssAttitudeParams
-from hydrosync_core.methods.gnss_attitude.project_run import RESULT, run
+from hydrosync_core.methods.gnss_attitude.pipeline import interval_statistics
+from hydrosync_core.methods.gnss_attitude.project_run import RESULT, restat, run
 from hydrosync_core.params import stored
 from hydrosync_gui.plugin_panel import PluginPanel
 from hydrosync_gui.widgets import ColumnsTable, ParamForm
@@ -79,12 +86,86 @@ class GnssAttitudePanel(PluginPanel):
         split.setStretchFactor(1, 3)
         outer = QHBoxLayout(self)
         outer.addWidget(split)
+        self.regions: dict[str, pg.LinearRegionItem] = {}
+        self._tables: dict[str, tuple[np.ndarray, np.ndarray]] = {}
+        self._time = np.zeros(0)
+        self._t0 = 0.0
+        self._syncing = False
 
     # ------------------------------------------------------------------ drawing
     def _clear(self) -> None:
         for w in (*self.series.values(), self.residuals, self.curve):
             w.clear()
         self.stats.set_columns({})
+        self.regions = {}
+        self._tables = {}
+        self._time = np.zeros(0)
+
+    def _show_stats(self, stats: dict) -> None:
+        table: dict[str, list] = {"method": []}
+        for a in ANGLES:
+            table[f"sd_{a}"], table[f"pred_{a}"] = [], []
+        table["epochs"] = []
+        for m, s in stats.items():
+            table["method"].append(m)
+            table["epochs"].append(s["epochs"])
+            for a in ANGLES:
+                table[f"sd_{a}"].append(np.nan if s[a]["std"] is None else s[a]["std"])
+                table[f"pred_{a}"].append(np.nan if s[a]["predicted"] is None
+                                          else s[a]["predicted"])
+        self.stats.set_columns({k: np.asarray(v) for k, v in table.items()},
+                               units={k: "°" for k in table if k[:3] in ("sd_", "pre")})
+        self.current_stats = stats
+
+    # ------------------------------------------------------------ static interval
+    def static_interval(self) -> tuple[float, float] | None:
+        """The selected interval (time of week, s), None before a result is shown."""
+        if not self.regions:
+            return None
+        lo, hi = self.regions["heading"].getRegion()
+        return lo + self._t0, hi + self._t0
+
+    def set_static_interval(self, start: float, end: float) -> None:
+        """Select [start, end] (time of week, s) as if dragged, and store it."""
+        if not self.regions:
+            return
+        region = self.regions["heading"]
+        self._syncing = True  # one update below, whatever signals setRegion emits
+        try:
+            region.setRegion((start - self._t0, end - self._t0))
+        finally:
+            self._syncing = False
+        self._on_region_finished(region)
+
+    def _on_region_moving(self, region) -> None:
+        if self._syncing:
+            return
+        self._syncing = True
+        try:
+            lo, hi = region.getRegion()
+            for other in self.regions.values():
+                if other is not region:
+                    other.setRegion((lo, hi))
+        finally:
+            self._syncing = False
+        start, end = self.static_interval()
+        self._show_stats(interval_statistics(self._time, self._tables, start, end))
+
+    def _on_region_finished(self, region) -> None:
+        if self._syncing:
+            return
+        self._on_region_moving(region)
+        start, end = self.static_interval()
+        if not end > start:
+            return
+        self.form.editors["static_start_s"].set_value(round(start, 3))
+        self.form.editors["static_end_s"].set_value(round(end, 3))
+        project = self.project
+        if project is not None and not project.readonly and not self.busy:
+            restat(project, start, end)
+            self.sig_project_modified.emit()
+            self.sig_status.emit(f"statistics interval {start:.1f}–{end:.1f} s "
+                                 f"({end - start:.0f} s) stored")
 
     def refresh(self) -> None:
         project = self.project
@@ -104,35 +185,34 @@ class GnssAttitudePanel(PluginPanel):
             f"{counts['too_few_antennas']} with fewer than 3 usable antennas, "
             f"{counts['with_dropped_antenna']} with an antenna dropped by the length check, "
             f"{counts['gaps']} gaps. Statistics: scatter and predicted 1σ (°).")
-        table: dict[str, list] = {"method": []}
-        for a in ANGLES:
-            table[f"sd_{a}"], table[f"pred_{a}"] = [], []
-        table["epochs"] = []
-        for m, s in stats.items():
-            table["method"].append(m)
-            table["epochs"].append(s["epochs"])
-            for a in ANGLES:
-                table[f"sd_{a}"].append(np.nan if s[a]["std"] is None else s[a]["std"])
-                table[f"pred_{a}"].append(np.nan if s[a]["predicted"] is None
-                                          else s[a]["predicted"])
-        self.stats.set_columns({k: np.asarray(v) for k, v in table.items()},
-                               units={k: "°" for k in table if k[:3] in ("sd_", "pre")})
+        self._show_stats(stats)
         lsq = project.get_table(f"{RESULT}/lsq")
         direct = project.get_table(f"{RESULT}/direct")
         t0 = float(np.nanmin(lsq["time"])) if lsq["time"].size else 0.0
+        self._t0, self._time = t0, np.asarray(lsq["time"], float)
+        for name in ("lsq", "wahba", "direct"):
+            if project.exists(f"{RESULT}/{name}"):
+                tab = project.get_table(f"{RESULT}/{name}")
+                self._tables[name] = (
+                    np.column_stack([tab["heading"], tab["pitch"], tab["roll"]]),
+                    np.column_stack([tab["sd_heading"], tab["sd_pitch"], tab["sd_roll"]]))
         for a in ANGLES:
             for name, tab in (("direct", direct), ("lsq", lsq)):
                 self.series[a].plot(tab["time"] - t0, tab[a], name=name,
                                     pen=pg.mkPen(COLOURS[name], width=1), connect="finite")
         params = stored(GnssAttitudeParams, project, RESULT)
-        if params.static_start_s is not None or params.static_end_s is not None:
-            lo = (params.static_start_s if params.static_start_s is not None else t0) - t0
-            hi = (params.static_end_s if params.static_end_s is not None
-                  else float(np.nanmax(lsq["time"]))) - t0
-            for a in ANGLES:
-                region = pg.LinearRegionItem((lo, hi), movable=False,
-                                             brush=pg.mkBrush(200, 200, 240, 60))
-                self.series[a].addItem(region)
+        t_end = float(np.nanmax(lsq["time"])) if lsq["time"].size else t0
+        lo = (params.static_start_s if params.static_start_s is not None else t0) - t0
+        hi = (params.static_end_s if params.static_end_s is not None else t_end) - t0
+        for a in ANGLES:
+            region = pg.LinearRegionItem((lo, hi), movable=True,
+                                         brush=pg.mkBrush(200, 200, 240, 60))
+            region.setToolTip("statistics interval: drag it or its edges")
+            region.setZValue(-10)
+            region.sigRegionChanged.connect(self._on_region_moving)
+            region.sigRegionChangeFinished.connect(self._on_region_finished)
+            self.series[a].addItem(region)
+            self.regions[a] = region
         res = project.get_table(f"{RESULT}/baseline_residuals")
         pairs = [k for k in res if k != "time"]
         for i, pair in enumerate(pairs):

@@ -50,12 +50,17 @@ class Track:
         RTKLIB quality flag (1 fixed, 2 float, …).
     cov_ned : ndarray (n, 3, 3) or None
         Position covariance in NED (m²); None → a-priori σ.
+    week_based : bool
+        True when *gps_s* are GPS seconds (``.pos``/``.geo`` files): the solution's
+        ``time`` is then the time of week. False for times on another continuous scale
+        (the CSV's ``time`` column), which are reported as given.
     """
 
     gps_s: np.ndarray
     ecef: np.ndarray
     q: np.ndarray
     cov_ned: np.ndarray | None = None
+    week_based: bool = True
 
 
 @dataclass
@@ -77,7 +82,8 @@ class ArraySolution:
     Attributes
     ----------
     time : ndarray (E,)
-        GPS time of week (s).
+        GPS time of week (s); the input times as given when they are not GPS seconds
+        (:attr:`Track.week_based`).
     gps_s : ndarray (E,)
         Continuous GPS seconds.
     names : list of str
@@ -242,8 +248,11 @@ def solve_array(tracks: Mapping[str, Track], antennas: Mapping[str, list[float]]
     -------
     ArraySolution
         ``counts`` holds ``epochs`` (all matched epochs), ``solved``, ``too_few_antennas``,
-        ``with_dropped_antenna``, per antenna ``present``, ``not_accepted_quality``,
-        ``length_rejected``, ``used``, ``duplicates``, and the gaps between solved epochs
+        ``with_dropped_antenna``, ``cov_fallback`` (solved epochs where some used
+        antenna's file covariance was not positive definite and the a-priori σ replaced
+        it), per antenna ``present``, ``cov_fallback`` (rows whose covariance fell back),
+        ``not_accepted_quality``, ``length_rejected``, ``used``, ``duplicates``, and the
+        gaps between solved epochs
         (``gaps``, ``longest_gap_s``, ``median_interval_s``).
 
     Raises
@@ -275,6 +284,7 @@ def solve_array(tracks: Mapping[str, Track], antennas: Mapping[str, list[float]]
     ecef = np.full((E, K, 3), np.nan)
     q = np.zeros((E, K), np.int16)
     cov = np.broadcast_to(_apriori_cov(params), (E, K, 3, 3)).copy()
+    fallback = np.zeros((E, K), bool)  # file covariance not positive definite -> a priori
     for k, n in enumerate(names):
         t, pos = tracks[n], index[n]
         have = pos >= 0
@@ -282,9 +292,11 @@ def solve_array(tracks: Mapping[str, Track], antennas: Mapping[str, list[float]]
         q[have, k] = t.q[pos[have]]
         if params.weights == "file" and t.cov_ned is not None:
             c = t.cov_ned[pos[have]]
-            good = np.all(np.linalg.eigvalsh(c) > 0, axis=-1)
+            good = np.all(np.isfinite(c), axis=(-2, -1))
+            good[good] = np.all(np.linalg.eigvalsh(c[good]) > 0, axis=-1)
             sel = np.flatnonzero(have)[good]
             cov[sel, k] = c[good]
+            fallback[np.flatnonzero(have)[~good], k] = True
     present = q > 0
     ok = present & (q <= QUALITY_LIMIT[params.min_quality])
     any_ok = ok.any(axis=1)
@@ -356,13 +368,16 @@ def solve_array(tracks: Mapping[str, Track], antennas: Mapping[str, list[float]]
         "direct_solved": int(np.isfinite(methods["direct"].angles_deg[:, 0]).sum()),
         "gaps": int(gaps.sum()), "longest_gap_s": float(dt.max()) if dt.size else 0.0,
         "median_interval_s": median_dt,
+        "cov_fallback": int((fallback & used & solved[:, None]).any(axis=1).sum()),
         "antennas": {n: {"present": int(present[:, k].sum()),
+                         "cov_fallback": int(fallback[:, k].sum()),
                          "not_accepted_quality": int((present[:, k] & ~ok[:, k]).sum()),
                          "length_rejected": int((ok[:, k] & ~used[:, k]).sum()),
                          "used": int((used[:, k] & solved).sum()),
                          "duplicates": dups[n]} for k, n in enumerate(names)},
     }
-    week = np.floor(gps_s / 604800.0)
+    week_based = all(tracks[n].week_based for n in names)
+    week = np.floor(gps_s / 604800.0) if week_based else np.zeros_like(gps_s)
     pairs = [f"{names[i]}-{names[j]}" for i, j in combinations(range(K), 2)]
     llh = (float(np.nanmean(lat)), float(np.nanmean(lon)), float(np.nanmean(hgt)))
     report(progress, 1.0, "attitude solved")
@@ -387,13 +402,27 @@ def statistics(sol: ArraySolution, start: float | None = None,
     the RMS of the per-epoch formal standard deviations, ``predicted`` beside ``std`` is
     the precision check of Liu et al.'s static-period table.
     """
-    sel = np.ones(sol.time.size, bool)
+    return interval_statistics(sol.time, {name: (m.angles_deg, m.std_deg)
+                                          for name, m in sol.methods.items()}, start, end)
+
+
+def interval_statistics(time: np.ndarray, methods: Mapping[str, tuple[np.ndarray, np.ndarray]],
+                        start: float | None = None, end: float | None = None) -> dict:
+    """:func:`statistics` from arrays: *methods* maps a name to (angles (E, 3), std (E, 3))
+    in degrees, order heading, pitch, roll; *time* (E,) on the scale of *start*/*end*.
+
+    Used to recompute the table for another static interval from the stored per-method
+    tables, without solving again.
+    """
+    time = np.asarray(time, float)
+    sel = np.ones(time.size, bool)
     if start is not None:
-        sel &= sol.time >= start
+        sel &= time >= start
     if end is not None:
-        sel &= sol.time <= end
+        sel &= time <= end
     out = {}
-    for name, m in sol.methods.items():
+    for name, (angles_deg, std_deg) in methods.items():
+        m = MethodSolution(np.asarray(angles_deg, float), np.asarray(std_deg, float))
         good = sel & np.isfinite(m.angles_deg[:, 0])
         entry: dict = {"epochs": int(good.sum())}
         for c, angle in enumerate(("heading", "pitch", "roll")):

@@ -63,7 +63,8 @@ def track_from_columns(columns: Mapping[str, np.ndarray], source: str) -> Track:
                              "e/n/u file needs its header's ref pos)", field=key)
     xyz = np.column_stack([np.asarray(columns[k], float) for k in ("x", "y", "z")])
     cov = ned_covariance(dict(columns)) if "lat" in columns or "sdn" in columns else None
-    return Track(np.asarray(columns["gps_s"], float), xyz, np.asarray(columns["q"], int), cov)
+    return Track(np.asarray(columns["gps_s"], float), xyz, np.asarray(columns["q"], int), cov,
+                 week_based="week" in columns)
 
 
 def solution_tables(sol: ArraySolution) -> dict[str, dict[str, np.ndarray]]:
@@ -132,3 +133,39 @@ def run(project, params: GnssAttitudeParams | Mapping | None = None, progress=No
     record(project, RESULT, (f"{RAW}/pos", f"{RAW}/antennas"), p)
     report(progress, 1.0, "attitude stored")
     return sol
+
+
+def stored_statistics(project, start: float | None, end: float | None) -> dict:
+    """Statistics of the stored per-method tables over [start, end] (no solving)."""
+    from hydrosync_core.methods.gnss_attitude.pipeline import interval_statistics
+
+    methods, time = {}, None
+    for name in ("lsq", "wahba", "direct"):
+        if not project.exists(f"{RESULT}/{name}"):
+            continue
+        t = project.get_table(f"{RESULT}/{name}")
+        time = t["time"]
+        methods[name] = (np.column_stack([t["heading"], t["pitch"], t["roll"]]),
+                         np.column_stack([t["sd_heading"], t["sd_pitch"], t["sd_roll"]]))
+    if time is None:
+        raise InputError(f"/{RESULT}", "no stored attitude (run the analysis first)")
+    return interval_statistics(time, methods, start, end)
+
+
+def restat(project, start: float | None, end: float | None) -> dict:
+    """Change the static interval of the stored result without solving again.
+
+    Recomputes the statistics from the stored tables and stores them with the parameters
+    (``static_start_s``/``static_end_s`` replaced; the provenance record too). The other
+    results do not depend on the interval. Returns the new statistics.
+    """
+    from hydrosync_core.params import stored
+
+    old = stored(GnssAttitudeParams, project, RESULT) or GnssAttitudeParams()
+    p = GnssAttitudeParams.from_dict({**old.to_dict(), "static_start_s": start,
+                                      "static_end_s": end})  # validated
+    stats = stored_statistics(project, p.static_start_s, p.static_end_s)
+    project.put_json(RESULT, p.to_dict())
+    project.set_attrs(RESULT, statistics=json.dumps(stats))
+    record(project, RESULT, (f"{RAW}/pos", f"{RAW}/antennas"), p)
+    return stats

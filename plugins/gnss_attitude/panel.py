@@ -176,7 +176,8 @@ class GnssAttitudePanel(PluginPanel):
             self.summary.setText("Needs " + ", ".join(missing) + " (File → Import: --pos, "
                                  "--antennas)." if missing else "Press Run.")
             return
-        self.form.set_params(stored(GnssAttitudeParams, project, RESULT))
+        p = stored(GnssAttitudeParams, project, RESULT)
+        self.form.set_params(p)
         attrs = project.attrs(RESULT)
         counts = json.loads(attrs["counts"])
         stats = json.loads(attrs["statistics"])
@@ -184,7 +185,12 @@ class GnssAttitudePanel(PluginPanel):
             f"{counts['solved']} of {counts['epochs']} epochs solved; "
             f"{counts['too_few_antennas']} with fewer than 3 usable antennas, "
             f"{counts['with_dropped_antenna']} with an antenna dropped by the length check, "
-            f"{counts['gaps']} gaps. Statistics: scatter and predicted 1σ (°).")
+            f"{counts['gaps']} gaps. Statistics: scatter and predicted 1σ (°)"
+            + (" over the static interval." if p.static_start_s is not None
+               or p.static_end_s is not None else
+               " over the <b>whole record</b>: on a moving platform the scatter is its motion, "
+               "not the precision — drag the shaded region onto a period when the platform "
+               "stood still."))
         self._show_stats(stats)
         lsq = project.get_table(f"{RESULT}/lsq")
         direct = project.get_table(f"{RESULT}/direct")

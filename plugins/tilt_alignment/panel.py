@@ -36,6 +36,9 @@ def _plot(ylabel: str, xlabel: str, equal: bool = False) -> pg.PlotWidget:
     w = pg.PlotWidget(background="w")
     w.setLabel("left", ylabel)
     w.setLabel("bottom", xlabel)
+    for side in ("left", "bottom"):
+        # Metres stay metres: no "(x0.001)" SI rescaling of a swing that spans centimetres.
+        w.getAxis(side).enableAutoSIPrefix(False)
     w.showGrid(x=True, y=True, alpha=0.3)
     w.addLegend(offset=(10, 2), labelTextColor="k")
     if equal:

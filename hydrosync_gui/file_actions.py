@@ -21,7 +21,7 @@ from pathlib import Path
 from PySide6.QtWidgets import QFileDialog, QMessageBox
 
 from hydrosync_core.errors import ProjectAccessError
-from hydrosync_core.importers.kinds import KINDS, import_file
+from hydrosync_core.importers.kinds import import_file, kinds
 from hydrosync_core.project import Project
 from hydrosync_core.project.subtree import copy_subtree
 from hydrosync_gui.dialogs import ImportDialog
@@ -48,7 +48,7 @@ def open_for_gui(path: str) -> Project:
 def _import_into_scratch(kind: str, path: str, options: dict):
     """Read *path* into a scratch project (worker thread): the real one stays untouched."""
     scratch = Project.new(name="import")
-    accepted = {k: v for k, v in options.items() if k in KINDS[kind].options}
+    accepted = {k: v for k, v in options.items() if k in kinds()[kind].options}
     return scratch, import_file(scratch, kind, path, **accepted)
 
 
@@ -186,7 +186,7 @@ class FileActions:
     def _on_import(self) -> None:
         if not self.ensure_idle():
             return
-        choice = ImportDialog.ask(self, KINDS, self.last_dir())
+        choice = ImportDialog.ask(self, kinds(), self.last_dir())
         if choice is not None:
             self.import_data(*choice)
 
@@ -204,7 +204,7 @@ class FileActions:
 
         def imported(result) -> None:
             scratch, message = result
-            copy_subtree(scratch, project, KINDS[kind].target)
+            copy_subtree(scratch, project, kinds()[kind].target)
             scratch.close()
             self.remember_dir(path)
             self.browser.refresh()

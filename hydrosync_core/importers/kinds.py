@@ -52,15 +52,10 @@ def collect_kinds(specs=None) -> dict[str, DataKind]:
     return kinds
 
 
-_KINDS: dict[str, DataKind] | None = None
-
-
 def kinds() -> dict[str, DataKind]:
-    """The registry's kinds, collected once per process."""
-    global _KINDS
-    if _KINDS is None:
-        _KINDS = collect_kinds()
-    return _KINDS
+    """The kinds of the registry as it is now (discovery takes milliseconds; not cached, so
+    an analysis installed or a registry replaced in a test is seen at once)."""
+    return collect_kinds()
 
 
 def __getattr__(name: str) -> Any:

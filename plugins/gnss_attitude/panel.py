@@ -17,38 +17,23 @@ import json
 
 import numpy as np
 import pyqtgraph as pg
-from PySide6.QtCore import Qt
-from PySide6.QtWidgets import (
-    QHBoxLayout,
-    QLabel,
-    QPushButton,
-    QSplitter,
-    QTabWidget,
-    QVBoxLayout,
-    QWidget,
-)
 
 from hydrosync_core.methods.gnss_attitude.params import GnssAttitudeParams
 from hydrosync_core.methods.gnss_attitude.pipeline import interval_statistics
-from hydrosync_core.methods.gnss_attitude.project_run import RESULT, restat, run
+from hydrosync_core.methods.gnss_attitude.project_run import RESULT, restat
 from hydrosync_core.params import stored
-from hydrosync_gui.plugin_panel import PluginPanel
-from hydrosync_gui.widgets import ColumnsTable, ParamForm
+from hydrosync_gui.analysis_panel import AnalysisPanel, plot_widget
+from hydrosync_gui.widgets import ColumnsTable
 
 ANGLES = ("heading", "pitch", "roll")
 COLOURS = {"direct": (200, 60, 40), "lsq": (30, 90, 200), "wahba": (40, 150, 60)}
 
 
 def _plot(ylabel: str, xlabel: str = "time from first epoch [s]") -> pg.PlotWidget:
-    w = pg.PlotWidget(background="w")
-    w.setLabel("left", ylabel)
-    w.setLabel("bottom", xlabel)
-    w.showGrid(x=True, y=True, alpha=0.3)
-    w.addLegend(offset=(10, 2), labelTextColor="k")
-    return w
+    return plot_widget(ylabel, xlabel)
 
 
-class GnssAttitudePanel(PluginPanel):
+class GnssAttitudePanel(AnalysisPanel):
     """Attitude from a GNSS antenna array."""
 
     def __init__(self, spec=None, parent=None) -> None:
@@ -56,36 +41,17 @@ class GnssAttitudePanel(PluginPanel):
             from plugins.gnss_attitude import SPEC
 
             spec = SPEC
-        super().__init__(spec, parent)
-        self.form = ParamForm(GnssAttitudeParams)
-        self.run_button = QPushButton("Run")
-        self.run_button.clicked.connect(self._on_run)
-        self.summary = QLabel()
-        self.summary.setWordWrap(True)
+        super().__init__(spec, GnssAttitudeParams, parent)
         self.stats = ColumnsTable()
-        left = QWidget()
-        lay = QVBoxLayout(left)
-        for widget in (self.form, self.run_button, self.summary, self.stats):
-            lay.addWidget(widget)
         self.series = {a: _plot(f"{a} [°]") for a in ANGLES}
         self.series["pitch"].setXLink(self.series["heading"])
         self.series["roll"].setXLink(self.series["heading"])
-        series_page = QWidget()
-        sl = QVBoxLayout(series_page)
-        for a in ANGLES:
-            sl.addWidget(self.series[a])
         self.residuals = _plot("length residual [mm]")
         self.curve = _plot("1σ [°]", "longest baseline [m]")
-        self.tabs = QTabWidget()
-        self.tabs.addTab(series_page, "Heading / pitch / roll")
-        self.tabs.addTab(self.residuals, "Baseline residuals")
-        self.tabs.addTab(self.curve, "Precision vs baseline")
-        split = QSplitter(Qt.Orientation.Horizontal)
-        split.addWidget(left)
-        split.addWidget(self.tabs)
-        split.setStretchFactor(1, 3)
-        outer = QHBoxLayout(self)
-        outer.addWidget(split)
+        self.add_tab("Heading / pitch / roll", *(self.series[a] for a in ANGLES))
+        self.add_tab("Baseline residuals", self.residuals)
+        self.add_tab("Precision vs baseline", self.curve)
+        self.build(after_summary=[self.stats])
         self.regions: dict[str, pg.LinearRegionItem] = {}
         self._tables: dict[str, tuple[np.ndarray, np.ndarray]] = {}
         self._time = np.zeros(0)
@@ -237,12 +203,3 @@ class GnssAttitudePanel(PluginPanel):
                                 symbolBrush=colour)
 
     # ------------------------------------------------------------------ running
-    def _on_run(self) -> None:
-        project, params = self.project, self.form.params()
-        self.run_button.setEnabled(False)
-        self.start_work(lambda progress, cancel: run(project, params, progress, cancel),
-                        lambda _sol: (self.sig_project_modified.emit(), self.refresh()),
-                        label="GNSS attitude")
-
-    def work_done(self) -> None:
-        self.run_button.setEnabled(True)

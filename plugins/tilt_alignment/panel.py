@@ -12,41 +12,19 @@ import json
 import numpy as np
 import pyqtgraph as pg
 from PySide6.QtCore import Qt
-from PySide6.QtWidgets import (
-    QHBoxLayout,
-    QLabel,
-    QPushButton,
-    QSplitter,
-    QTabWidget,
-    QVBoxLayout,
-    QWidget,
-)
 
 from hydrosync_core.methods.tilt_alignment.params import METHODS, TiltParams
-from hydrosync_core.methods.tilt_alignment.project_run import RESULT, run
+from hydrosync_core.methods.tilt_alignment.project_run import RESULT
 from hydrosync_core.params import stored
-from hydrosync_gui.plugin_panel import PluginPanel
-from hydrosync_gui.widgets import ColumnsTable, ParamForm
+from hydrosync_gui.analysis_panel import AnalysisPanel
+from hydrosync_gui.analysis_panel import plot_widget as _plot
+from hydrosync_gui.widgets import ColumnsTable
 
 COLOURS = {"joint": (30, 90, 200), "mbgd": (200, 60, 40), "bgd": (230, 150, 30),
            "sgd": (150, 80, 180), "svd": (40, 150, 60), "closed_form": (90, 90, 90)}
 
 
-def _plot(ylabel: str, xlabel: str, equal: bool = False) -> pg.PlotWidget:
-    w = pg.PlotWidget(background="w")
-    w.setLabel("left", ylabel)
-    w.setLabel("bottom", xlabel)
-    for side in ("left", "bottom"):
-        # Metres stay metres: no "(x0.001)" SI rescaling of a swing that spans centimetres.
-        w.getAxis(side).enableAutoSIPrefix(False)
-    w.showGrid(x=True, y=True, alpha=0.3)
-    w.addLegend(offset=(10, 2), labelTextColor="k")
-    if equal:
-        w.setAspectLocked(True)
-    return w
-
-
-class TiltAlignmentPanel(PluginPanel):
+class TiltAlignmentPanel(AnalysisPanel):
     """Heading alignment and tip of a tilt RTK pole."""
 
     def __init__(self, spec=None, parent=None) -> None:
@@ -54,37 +32,18 @@ class TiltAlignmentPanel(PluginPanel):
             from plugins.tilt_alignment import SPEC
 
             spec = SPEC
-        super().__init__(spec, parent)
-        self.form = ParamForm(TiltParams)
-        self.run_button = QPushButton("Run")
-        self.run_button.clicked.connect(self._on_run)
-        self.summary = QLabel()
-        self.summary.setWordWrap(True)
+        super().__init__(spec, TiltParams, parent)
         self.table = ColumnsTable()
-        left = QWidget()
-        lay = QVBoxLayout(left)
-        for widget in (self.form, self.run_button, self.summary, self.table):
-            lay.addWidget(widget)
         self.plan = _plot("north [m]", "east [m]", equal=True)
         self.side = _plot("up [m]", "east [m]", equal=True)
-        swing = QWidget()
-        sl = QHBoxLayout(swing)
-        sl.addWidget(self.plan)
-        sl.addWidget(self.side)
         self.jcurve = _plot("J(ψ)", "ψ [°]")
         self.hist = _plot("runs", "heading error [°]")
         self.scatter = _plot("tip error north [mm]", "tip error east [mm]", equal=True)
-        self.tabs = QTabWidget()
-        self.tabs.addTab(swing, "Swing")
-        self.tabs.addTab(self.jcurve, "J(ψ) and iterations")
-        self.tabs.addTab(self.hist, "Heading errors (Monte Carlo)")
-        self.tabs.addTab(self.scatter, "Tip errors (Monte Carlo)")
-        split = QSplitter(Qt.Orientation.Horizontal)
-        split.addWidget(left)
-        split.addWidget(self.tabs)
-        split.setStretchFactor(1, 3)
-        outer = QHBoxLayout(self)
-        outer.addWidget(split)
+        self.add_tab("Swing", self.plan, self.side, horizontal=True)
+        self.add_tab("J(ψ) and iterations", self.jcurve)
+        self.add_tab("Heading errors (Monte Carlo)", self.hist)
+        self.add_tab("Tip errors (Monte Carlo)", self.scatter)
+        self.build(after_summary=[self.table])
 
     def _clear(self) -> None:
         for w in (self.plan, self.side, self.jcurve, self.hist, self.scatter):
@@ -166,12 +125,3 @@ class TiltAlignmentPanel(PluginPanel):
                 self.scatter.plot(r * np.cos(t), r * np.sin(t), pen=pg.mkPen((150, 150, 150),
                                                                              style=Qt.PenStyle.DashLine))
 
-    def _on_run(self) -> None:
-        project, params = self.project, self.form.params()
-        self.run_button.setEnabled(False)
-        self.start_work(lambda progress, cancel: run(project, params, progress, cancel),
-                        lambda _doc: (self.sig_project_modified.emit(), self.refresh()),
-                        label="Tilt alignment")
-
-    def work_done(self) -> None:
-        self.run_button.setEnabled(True)

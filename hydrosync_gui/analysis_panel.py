@@ -1,0 +1,109 @@
+"""The common shape of an analysis panel, and the plot factory its views share.
+
+Left: the parameter form derived from the analysis's schema, optional extra controls, the
+Run button, a one-paragraph summary and optional widgets below it. Right: the views in
+tabs. Run validates the parameters on the GUI thread (an invalid value is shown in the
+summary, never raised), runs ``spec.run(project, params, progress, cancel)`` in a worker
+and redraws from the project when it returns.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable
+
+import pyqtgraph as pg
+from PySide6.QtCore import Qt
+from PySide6.QtWidgets import (
+    QHBoxLayout,
+    QLabel,
+    QLayout,
+    QPushButton,
+    QSplitter,
+    QTabWidget,
+    QVBoxLayout,
+    QWidget,
+)
+
+from hydrosync_core.errors import InputError
+from hydrosync_core.params import Params
+from hydrosync_gui.plugin_panel import PluginPanel
+from hydrosync_gui.widgets import ParamForm
+
+
+def plot_widget(ylabel: str, xlabel: str, equal: bool = False) -> pg.PlotWidget:
+    """A white plot with grid, legend and axis labels kept in the units given (no SI
+    rescaling such as "(x0.001)"); *equal* locks the aspect ratio (maps, plan views)."""
+    w = pg.PlotWidget(background="w")
+    w.setLabel("left", ylabel)
+    w.setLabel("bottom", xlabel)
+    for side in ("left", "bottom"):
+        w.getAxis(side).enableAutoSIPrefix(False)
+    w.showGrid(x=True, y=True, alpha=0.3)
+    w.addLegend(offset=(10, 2), labelTextColor="k")
+    if equal:
+        w.setAspectLocked(True)
+    return w
+
+
+class AnalysisPanel(PluginPanel):
+    """Form, Run and summary on the left; tabs of views on the right (see module doc)."""
+
+    def __init__(self, spec, schema: type[Params], parent: QWidget | None = None) -> None:
+        super().__init__(spec, parent)
+        self.form = ParamForm(schema)
+        self.run_button = QPushButton("Run")
+        self.run_button.clicked.connect(self._on_run)
+        self.summary = QLabel()
+        self.summary.setWordWrap(True)
+        self.tabs = QTabWidget()
+
+    def build(self, before_run: Iterable[QWidget | QLayout] = (),
+              after_summary: Iterable[QWidget | QLayout] = ()) -> None:
+        """Lay the panel out once the subclass has made its widgets and tabs."""
+        left = QWidget()
+        lay = QVBoxLayout(left)
+        lay.addWidget(self.form)
+        for item in (*before_run, self.run_button, self.summary, *after_summary):
+            if isinstance(item, QLayout):
+                lay.addLayout(item)
+            else:
+                lay.addWidget(item)
+        split = QSplitter(Qt.Orientation.Horizontal)
+        split.addWidget(left)
+        split.addWidget(self.tabs)
+        split.setStretchFactor(1, 3)
+        QHBoxLayout(self).addWidget(split)
+
+    def add_tab(self, title: str, *widgets: QWidget, horizontal: bool = False) -> QWidget:
+        """A tab holding *widgets* stacked (or side by side); returns the page."""
+        if len(widgets) == 1:
+            page = widgets[0]
+        else:
+            page = QWidget()
+            layout = QHBoxLayout(page) if horizontal else QVBoxLayout(page)
+            for w in widgets:
+                layout.addWidget(w)
+        self.tabs.addTab(page, title)
+        return page
+
+    # ------------------------------------------------------------------ running
+    def _on_run(self) -> None:
+        project = self.project
+        if project is None:
+            return
+        try:
+            params = self.form.params()
+        except InputError as exc:
+            self.summary.setText(f"<b>Parameter error</b>: {exc.one_line()}")
+            return
+        run = self.spec.load_run()
+        self.run_button.setEnabled(False)
+        self.start_work(lambda progress, cancel: run(project, params, progress, cancel),
+                        self._on_run_finished, label=self.spec.name)
+
+    def _on_run_finished(self, _result) -> None:
+        self.sig_project_modified.emit()
+        self.refresh()
+
+    def work_done(self) -> None:
+        self.run_button.setEnabled(True)

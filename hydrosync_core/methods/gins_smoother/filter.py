@@ -380,7 +380,7 @@ def _imu_errors(node_t, xs, ns) -> dict:
     return out
 
 
-def _gnss_residuals(gnss: GnssData, traj: Trajectory, lever) -> np.ndarray:
+def gnss_residuals(gnss: GnssData, traj: Trajectory, lever) -> np.ndarray:
     """Trajectory (interpolated, lever arm applied) minus measured antenna, NED m."""
     t = traj.time
     inside = (gnss.time >= t[0]) & (gnss.time <= t[-1])
@@ -530,7 +530,7 @@ def run_gins(imu: ImuData, gnss: GnssData, cfg: SensorConfig, params: GinsParams
         K.apply_corrections(traj, rel, es_n, ep_n, tt, nn, ns, out)
         smoothed = _trajectory(tt, out, ps_diag, node_t, ps_diag)
         err_s = _imu_errors(node_t, xs_n, ns)
-        gnss_out["residual"] = _gnss_residuals(gnss, smoothed, cfg.lever_arm_m)
-    gnss_out["residual_forward"] = _gnss_residuals(gnss, forward, cfg.lever_arm_m)
+        gnss_out["residual"] = gnss_residuals(gnss, smoothed, cfg.lever_arm_m)
+    gnss_out["residual_forward"] = gnss_residuals(gnss, forward, cfg.lever_arm_m)
     report(progress, 1.0, "done")
     return GinsResult(forward, smoothed, err_f, err_s, gnss_out, align, counts)

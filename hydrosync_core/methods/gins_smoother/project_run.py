@@ -25,6 +25,7 @@ from __future__ import annotations
 import json
 from collections.abc import Mapping
 from datetime import UTC, datetime
+from pathlib import Path
 
 import numpy as np
 
@@ -74,6 +75,46 @@ def config_json(path) -> dict:
     from hydrosync_core.methods.gins_smoother.config import read_config
 
     return read_config(path).to_dict()
+
+
+def store_recording(project, target: str, path, **_options) -> str:
+    """``hydrosync import --gins-recording FOLDER``: a real recording folder (comma2k19
+    segment or rtklibexplorer drive/walk, :mod:`.recordings`) → ``raw/gins/imu``,
+    ``gnss``, ``config`` and, when the recording has one, ``reference``.
+
+    The GNSS-minus-IMU clock offset is estimated from the data
+    (:func:`.recordings.estimate_time_shift`) and applied; it and the recording's notes
+    are stored as attributes of ``raw/gins``.
+    """
+    from hydrosync_core.methods.gins_smoother.recordings import (
+        estimate_time_shift,
+        read_recording,
+        shifted,
+    )
+
+    rec = read_recording(path)
+    shift, _grid = estimate_time_shift(rec)
+    rec = shifted(rec, shift)
+    imu = {"time": rec.imu.time}
+    imu.update({c: rec.imu.inc[:, i] for i, c in enumerate(IMU_COLS)})
+    g = rec.gnss
+    for sub in ("imu", "gnss", "config", "reference", "outages"):
+        if project.exists(f"{target}/{sub}"):
+            project.delete(f"{target}/{sub}")
+    project.put_table(f"{target}/imu", imu, source=str(path), units="rad, m/s, body FRD")
+    project.put_table(f"{target}/gnss", {"time": g.time, "lat": g.llh[:, 0],
+                                         "lon": g.llh[:, 1], "height": g.llh[:, 2],
+                                         "sd_n": g.std[:, 0], "sd_e": g.std[:, 1],
+                                         "sd_d": g.std[:, 2]}, source=str(path))
+    project.put_json(f"{target}/config", rec.config.to_dict())
+    if rec.reference is not None:
+        project.put_table(f"{target}/reference", nav_columns(rec.reference), source=str(path))
+    project.set_attrs(target, recording=rec.name, time_shift_s=shift,
+                      notes=json.dumps(rec.notes), recommended_params=json.dumps(rec.params))
+    return (f"{Path(path).name} -> /{target}: {rec.name}, {rec.imu.time.size} IMU epochs "
+            f"({rec.imu.rate_hz:.0f} Hz), {g.time.size} GNSS fixes"
+            + (", reference" if rec.reference is not None else "")
+            + f"; GNSS−IMU clock offset {shift:+.3f} s estimated and applied")
 
 
 def nav_columns(nav) -> dict:
@@ -150,7 +191,16 @@ def run(project, params: GinsParams | Mapping | None = None, progress=None, canc
     from hydrosync_core.methods.gins_smoother.evaluate import evaluate
     from hydrosync_core.methods.gins_smoother.filter import run_gins
 
-    p = params if isinstance(params, GinsParams) else GinsParams.from_dict(params or {})
+    if isinstance(params, GinsParams):
+        p = params
+    else:  # a recording imported with --gins-recording brings its recommended options
+        base = {}
+        if project.exists(RAW):
+            try:
+                base = json.loads(project.attrs(RAW).get("recommended_params", "{}"))
+            except (TypeError, ValueError):
+                base = {}
+        p = GinsParams.from_dict({**base, **dict(params or {})})
     check_cancel(cancel)
     imu, gnss, cfg, ref, windows = load_inputs(project)
     report(progress, 0.02, "inputs read")

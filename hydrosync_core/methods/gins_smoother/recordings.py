@@ -402,3 +402,112 @@ def read_recording(folder) -> Recording:
     raise InputError(str(folder), "not a known recording folder (comma2k19 segment with "
                      "processed_log/ and global_pose/, or rtklibexplorer imu_*.csv + "
                      "gnss_*_sf.pos)")
+
+
+# ------------------------------------------------------------------ processing
+#: Which clock a recording's timing estimate moves: comma2k19's IMU and reference share the
+#: logger clock, so the GNSS tags move; rtklibexplorer's GNSS is GPST, so the IMU moves.
+SHIFTED_CLOCK = {"comma2k19": "gnss"}
+
+
+def shifted(rec: Recording, seconds: float) -> Recording:
+    """*rec* with the GNSS-minus-IMU clock offset changed by *seconds*: the GNSS epochs
+    later by *seconds* (comma2k19) or the IMU epochs earlier (rtklibexplorer)."""
+    if SHIFTED_CLOCK.get(rec.name) == "gnss":
+        g = rec.gnss
+        gnss = GnssData(g.time + seconds, g.llh, g.std, g.source, g.vel)
+        return Recording(rec.name, rec.imu, gnss, rec.config, rec.params, rec.reference,
+                         rec.notes)
+    imu = ImuData(rec.imu.time - seconds, rec.imu.inc, rec.imu.source)
+    return Recording(rec.name, imu, rec.gnss, rec.config, rec.params, rec.reference,
+                     rec.notes)
+
+
+def estimate_time_shift(rec: Recording, half_range_s: float = 0.3, step_s: float = 0.05
+                        ) -> tuple[float, list[tuple[float, float]]]:
+    """GNSS-minus-IMU clock offset (s) that minimises the smoothed GNSS residuals.
+
+    A loosely coupled filter fed fixes that are late by δ puts the trajectory v·δ behind;
+    the speed changes of a real drive make that visible in the residuals, so the offset is
+    found from the recording itself (no reference): a grid of smoothed runs over
+    ±*half_range_s*, refined by a parabola through the best three. Returns the offset and
+    the (offset, horizontal residual RMS m) grid.
+    """
+    from hydrosync_core.methods.gins_smoother.filter import run_gins
+    from hydrosync_core.methods.gins_smoother.params import GinsParams
+
+    p = GinsParams.from_dict({**rec.params, "smooth": True})
+    grid = []
+    for d in np.arange(-half_range_s, half_range_s + 1e-9, step_s):
+        r = shifted(rec, float(d))
+        res = run_gins(r.imu, r.gnss, r.config, p)
+        e = res.gnss["residual"]
+        ok = np.isfinite(e).all(axis=1)
+        grid.append((float(d), float(np.sqrt(np.mean(np.sum(e[ok, :2] ** 2, axis=1))))))
+    x = np.array([g[0] for g in grid])
+    y = np.array([g[1] for g in grid])
+    i = int(np.clip(np.argmin(y), 1, x.size - 2))
+    a, b, _c = np.polyfit(x[i - 1:i + 2], y[i - 1:i + 2], 2)
+    best = float(-b / (2 * a)) if a > 0 else float(x[np.argmin(y)])
+    return float(np.clip(best, x[0], x[-1])), grid
+
+
+def outage_test(rec: Recording, windows, params: dict | None = None) -> dict:
+    """Remove the GNSS epochs inside *windows* and measure the drift against the removed
+    fixes themselves (the antenna, lever arm applied) and against the reference if any.
+
+    Returns ``windows`` (per window: length, and for forward and smoothed the largest
+    horizontal and vertical distance to the removed fixes, m) and the run's result.
+    """
+    from hydrosync_core.methods.gins_smoother.evaluate import error_series
+    from hydrosync_core.methods.gins_smoother.filter import gnss_residuals, run_gins
+    from hydrosync_core.methods.gins_smoother.params import GinsParams
+
+    p = GinsParams.from_dict({**rec.params, **(params or {}), "smooth": True})
+    res = run_gins(rec.imu, rec.gnss.without(windows), rec.config, p)
+    rows = []
+    ref_err = {}
+    if rec.reference is not None:
+        for name in ("forward", "smoothed"):
+            ref_err[name] = error_series(getattr(res, name), rec.reference)
+    resid = {name: gnss_residuals(rec.gnss, getattr(res, name), rec.config.lever_arm_m)
+             for name in ("forward", "smoothed")}
+    for a, b in windows:
+        m = (rec.gnss.time > a) & (rec.gnss.time < b)
+        row = {"start": float(a), "end": float(b), "length_s": float(b - a)}
+        for name, r in resid.items():
+            rr = r[m]
+            ok = np.isfinite(rr).all(axis=1)
+            row[f"{name}_max_h_m"] = float(np.max(np.hypot(rr[ok, 0], rr[ok, 1]))) \
+                if ok.any() else None
+            row[f"{name}_max_v_m"] = float(np.max(np.abs(rr[ok, 2]))) if ok.any() else None
+            if name in ref_err:
+                e = ref_err[name]
+                mr = (e["time"] > a) & (e["time"] < b)
+                row[f"{name}_ref_max_h_m"] = float(np.max(e["horizontal"][mr])) \
+                    if mr.any() else None
+        rows.append(row)
+    return {"windows": rows, "result": res}
+
+
+def moving_windows(rec: Recording, length_s: float, every_s: float, min_speed: float = 2.0,
+                   margin_s: float = 10.0) -> list[tuple[float, float]]:
+    """Outage windows of *length_s* every *every_s* where the GNSS says the vehicle moves
+    faster than *min_speed* throughout, *margin_s* clear of the ends."""
+    from hydrosync_core.methods.gins_smoother.filter import _gnss_velocity
+
+    g = rec.gnss
+    v = _gnss_velocity(g)
+    speed = np.hypot(v[:, 0], v[:, 1])
+    t0 = max(g.time[0], rec.imu.time[0]) + margin_s
+    t1 = min(g.time[-1], rec.imu.time[-1]) - margin_s
+    out = []
+    a = t0
+    while a + length_s <= t1:
+        m = (g.time >= a) & (g.time <= a + length_s)
+        if m.any() and np.nanmin(speed[m]) >= min_speed:
+            out.append((float(a), float(a + length_s)))
+            a += every_s
+        else:
+            a += 1.0
+    return out

@@ -146,7 +146,10 @@ def _run_project(args, params: GinsParams) -> int:
     project = Project.open(args.project)
     progress = TerminalProgress("gins")
     try:
-        res = run(project, params, progress, None)
+        # schema defaults the user left alone give way to an imported recording's options
+        defaults = GinsParams.from_dict({}).to_dict()
+        given = {k: v for k, v in params.to_dict().items() if v != defaults[k]}
+        res = run(project, given, progress, None)
     except InputError as exc:
         raise InputError(f"{args.project}{exc.file or ''}", exc.message, line=exc.line,
                          field=exc.field) from None

@@ -137,6 +137,50 @@ def trajectory_columns(tr) -> dict:
     return out
 
 
+def table_trajectory(tab):
+    """A :class:`.filter.Trajectory` from a stored ``forward``/``smoothed`` table."""
+    from hydrosync_core.methods.gins_smoother.filter import Trajectory
+
+    def cols(*names):
+        return np.column_stack([np.asarray(tab[n], float) for n in names])
+
+    return Trajectory(np.asarray(tab["time"], float), cols("lat", "lon", "height"),
+                      cols("vn", "ve", "vd"), cols("roll", "pitch", "yaw"),
+                      cols("sd_n", "sd_e", "sd_d"), cols("sd_vn", "sd_ve", "sd_vd"),
+                      cols("sd_roll", "sd_pitch", "sd_yaw"))
+
+
+def load_reference(project):
+    """The stored reference trajectory (:class:`.io.NavData`) or None."""
+    from hydrosync_core.methods.gins_smoother.io import NavData
+
+    if not project.exists(REFERENCE):
+        return None
+    r = project.get_table(REFERENCE)
+    return NavData(np.asarray(r["time"], float),
+                   np.column_stack([r["lat"], r["lon"], r["height"]]),
+                   np.column_stack([r["vn"], r["ve"], r["vd"]]),
+                   np.column_stack([r["roll"], r["pitch"], r["yaw"]]), f"/{REFERENCE}")
+
+
+def stored_errors(project) -> dict:
+    """Per-epoch errors (with the solution's σ) of the stored forward and smoothed
+    trajectories against the stored reference: ``{name: error_series}``; empty without a
+    reference or results."""
+    from hydrosync_core.methods.gins_smoother.evaluate import error_series
+
+    ref = load_reference(project)
+    out = {}
+    if ref is None:
+        return out
+    for name in ("forward", "smoothed"):
+        if project.exists(f"{RESULT}/{name}"):
+            e = error_series(table_trajectory(project.get_table(f"{RESULT}/{name}")), ref)
+            if e["time"].size:
+                out[name] = e
+    return out
+
+
 # ----------------------------------------------------------------- run
 def load_inputs(project):
     """IMU, GNSS, sensor configuration, reference (or None) and outage windows."""

@@ -23,6 +23,9 @@ SPEC = PluginSpec(
                  "raw/gins/gnss", f"{RUN}:gnss_table", "table"),
         DataKind("gins_config", "KF-GINS YAML configuration (initial state, IMU noise, lever "
                  "arm)", "raw/gins/config", f"{RUN}:config_json", "json"),
+        DataKind("gins_recording", "a real recording folder: comma2k19 segment or "
+                 "rtklibexplorer drive/walk (IMU, GNSS, configuration, reference)",
+                 "raw/gins", f"{RUN}:store_recording", "custom"),
         DataKind("gins_reference", "reference trajectory, 11-column KF-GINS .nav",
                  "raw/gins/reference", f"{RUN}:nav_table", "table"),
     ),

@@ -15,6 +15,7 @@ from PySide6.QtCore import Qt
 from PySide6.QtWidgets import (
     QDoubleSpinBox,
     QFormLayout,
+    QGridLayout,
     QHBoxLayout,
     QLabel,
     QPushButton,
@@ -85,7 +86,13 @@ class GinsPanel(PluginPanel):
         self.sigma = {k: _plot(lab) for k, lab in (("sd_n", "σ north [m]"),
                                                    ("sd_d", "σ down [m]"),
                                                    ("sd_yaw", "σ yaw [°]"))}
-        self.errors = _plot("horizontal error [m]")
+        self.errors = {c: _plot(f"{c} error [{u}]") for cs, u in
+                       ((("north", "east", "down"), "m"), (("vn", "ve", "vd"), "m/s"),
+                        (("roll", "pitch", "yaw"), "°")) for c in cs}
+        err_page = QWidget()
+        grid = QGridLayout(err_page)
+        for k, w in enumerate(self.errors.values()):
+            grid.addWidget(w, k // 3, k % 3)
         self.tabs = QTabWidget()
         self.tabs.addTab(self.map, "Map")
         for title, group in (("Position / velocity / attitude", self.series),
@@ -95,7 +102,7 @@ class GinsPanel(PluginPanel):
             for w in group.values():
                 pl.addWidget(w)
             self.tabs.addTab(page, title)
-        self.tabs.addTab(self.errors, "Errors vs reference")
+        self.tabs.addTab(err_page, "Errors vs reference (±σ)")
         split = QSplitter(Qt.Orientation.Horizontal)
         split.addWidget(left)
         split.addWidget(self.tabs)
@@ -104,7 +111,7 @@ class GinsPanel(PluginPanel):
         outer.addWidget(split)
 
     def _all_plots(self):
-        return [self.map, self.errors, *self.series.values(), *self.sigma.values()]
+        return [self.map, *self.errors.values(), *self.series.values(), *self.sigma.values()]
 
     def refresh(self) -> None:
         project = self.project
@@ -151,23 +158,19 @@ class GinsPanel(PluginPanel):
             self.series["yaw"].plot(t, tab["yaw"][i], pen=pen, name=name)
             for k, w in self.sigma.items():
                 w.plot(t, tab[k][i], pen=pen, name=name)
-        if project.exists("raw/gins/reference"):
-            from hydrosync_core.methods.gins_smoother.evaluate import error_series
-            from hydrosync_core.methods.gins_smoother.filter import Trajectory
-            from hydrosync_core.methods.gins_smoother.project_run import load_inputs
+        from hydrosync_core.methods.gins_smoother.project_run import stored_errors
 
-            ref = load_inputs(project)[3]
-            for name, tab in tabs.items():
-                tr = Trajectory(tab["time"], np.column_stack([tab["lat"], tab["lon"],
-                                                              tab["height"]]),
-                                np.column_stack([tab["vn"], tab["ve"], tab["vd"]]),
-                                np.column_stack([tab["roll"], tab["pitch"], tab["yaw"]]),
-                                None, None, None)
-                e = error_series(tr, ref)
-                if e["time"].size:
-                    i = _thin(e["time"].size)
-                    self.errors.plot(e["time"][i] - t0, e["horizontal"][i],
-                                     pen=pg.mkPen(COLOURS[name], width=1), name=name)
+        for name, e in stored_errors(project).items():
+            i = _thin(e["time"].size)
+            x = e["time"][i] - t0
+            pen = pg.mkPen(COLOURS[name], width=1)
+            dash = pg.mkPen(COLOURS[name], width=1, style=Qt.PenStyle.DashLine)
+            for comp, w in self.errors.items():
+                w.plot(x, e[comp][i], pen=pen, name=name)
+                sd = e.get(f"sd_{comp}")
+                if sd is not None:
+                    w.plot(x, sd[i], pen=dash)
+                    w.plot(x, -sd[i], pen=dash)
 
     def _on_outages(self) -> None:
         project = self.project

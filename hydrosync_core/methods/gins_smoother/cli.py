@@ -79,16 +79,44 @@ def _run_files(args, params: GinsParams) -> int:
         read_outages,
     )
 
-    missing = [o for o, v in (("--imu", args.imu), ("--gnss", args.gnss),
-                              ("--config", args.config), ("--out", args.out)) if not v]
-    if missing:
-        raise InputError(None, f"missing option(s) {', '.join(missing)} (or give a project)")
+    if args.recording is not None:
+        if args.imu or args.gnss:
+            raise InputError(str(args.recording), "give either --recording or --imu/--gnss")
+        if not args.out:
+            raise InputError(None, "missing option --out")
+    else:
+        missing = [o for o, v in (("--imu", args.imu), ("--gnss", args.gnss),
+                                  ("--config", args.config), ("--out", args.out)) if not v]
+        if missing:
+            raise InputError(None, f"missing option(s) {', '.join(missing)} (or give a "
+                             "project or --recording)")
     _check_out(args.out, "--out")
     _check_out(args.json, "--json")
-    cfg = read_config(args.config)
-    imu = read_imu(args.imu, cfg.imu_rate_hz)
-    gnss = read_gnss(args.gnss)
     truth = read_nav(args.truth) if args.truth else None
+    if args.recording is not None:
+        from hydrosync_core.methods.gins_smoother.recordings import (
+            estimate_time_shift,
+            read_recording,
+            shifted,
+        )
+
+        rec = read_recording(args.recording)
+        shift, _ = estimate_time_shift(rec)
+        rec = shifted(rec, shift)
+        print(f"{rec.name}: GNSS−IMU clock offset {shift:+.3f} s estimated and applied")
+        for note in rec.notes:
+            print(f"  {note}")
+        cfg = read_config(args.config) if args.config else rec.config
+        imu, gnss = rec.imu, rec.gnss
+        truth = truth if truth is not None else rec.reference
+        # the recording's options replace the schema defaults the user left alone
+        given = {k: v for k, v in params.to_dict().items()
+                 if v != GinsParams.from_dict({}).to_dict()[k]}
+        params = GinsParams.from_dict({**rec.params, **given})
+    else:
+        cfg = read_config(args.config)
+        imu = read_imu(args.imu, cfg.imu_rate_hz)
+        gnss = read_gnss(args.gnss)
     windows = read_outages(args.outages) if args.outages else []
     progress = TerminalProgress("gins")
     res = run_gins(imu, gnss.without(windows) if windows else gnss, cfg, params, progress)
@@ -110,15 +138,18 @@ def _run_project(args, params: GinsParams) -> int:
     from hydrosync_core.methods.gins_smoother.project_run import run
     from hydrosync_core.project import Project
 
-    if args.imu or args.gnss or args.config:
+    if args.imu or args.gnss or args.config or args.recording:
         raise InputError(str(args.project), "give either a project file or --imu/--gnss/"
-                         "--config")
+                         "--config/--recording")
     _check_out(args.out, "--out")
     _check_out(args.json, "--json")
     project = Project.open(args.project)
     progress = TerminalProgress("gins")
     try:
-        res = run(project, params, progress, None)
+        # schema defaults the user left alone give way to an imported recording's options
+        defaults = GinsParams.from_dict({}).to_dict()
+        given = {k: v for k, v in params.to_dict().items() if v != defaults[k]}
+        res = run(project, given, progress, None)
     except InputError as exc:
         raise InputError(f"{args.project}{exc.file or ''}", exc.message, line=exc.line,
                          field=exc.field) from None
@@ -161,6 +192,9 @@ def register(sub: argparse._SubParsersAction) -> None:
                    "IMU noise, lever arm) or JSON with the same keys")
     p.add_argument("--out", type=Path, help="trajectory to write, 11-column KF-GINS .nav "
                    "(+ NAME_std.nav)")
+    p.add_argument("--recording", type=Path, help="a real recording folder instead of "
+                   "--imu/--gnss: comma2k19 segment or rtklibexplorer drive/walk (its IMU "
+                   "grade, lever arm, options and reference are used unless given)")
     p.add_argument("--forward-only", action="store_true", help="write the forward filter "
                    "solution, skip smoothing")
     p.add_argument("--truth", type=Path, help="reference .nav for error statistics")

@@ -130,6 +130,12 @@ class SensorConfig:
             "initgyrscale": [v / PPM for v in self.init_gyro_scale],
             "initaccscale": [v / PPM for v in self.init_acc_scale],
         }
+        for key, val, k in (("initbgstd", self.init_bg_std, 3600 / D2R),
+                            ("initbastd", self.init_ba_std, 1 / MGAL),
+                            ("initsgstd", self.init_sg_std, 1 / PPM),
+                            ("initsastd", self.init_sa_std, 1 / PPM)):
+            if val is not None:
+                d[key] = [v * k for v in val]
         if self.init_pos is not None:
             d["initpos"] = [self.init_pos[0] / D2R, self.init_pos[1] / D2R, self.init_pos[2]]
         if self.init_vel is not None:

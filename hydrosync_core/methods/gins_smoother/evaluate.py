@@ -25,7 +25,8 @@ def error_series(sol: Trajectory, ref: NavData) -> dict[str, np.ndarray]:
     """Per-epoch errors at the reference epochs inside the solution's span.
 
     Returns ``time`` and the columns of :data:`POS` (m), :data:`VEL` (m/s), :data:`ATT`
-    (deg) plus ``horizontal`` (m).
+    (deg) plus ``horizontal`` (m) and, when the solution carries standard deviations, the
+    solution's 1σ of each component as ``sd_<name>`` (same units) for error/σ plots.
     """
     t = sol.time
     keep = (ref.time >= t[0]) & (ref.time <= t[-1])
@@ -57,6 +58,10 @@ def error_series(sol: Trajectory, ref: NavData) -> dict[str, np.ndarray]:
         out[VEL[c]] = dv[:, c]
         out[ATT[c]] = da[:, c]
     out["horizontal"] = np.hypot(out["north"], out["east"])
+    for names, std in ((POS, sol.pos_std), (VEL, sol.vel_std), (ATT, sol.att_std)):
+        if std is not None:
+            for c, name in enumerate(names):
+                out[f"sd_{name}"] = np.interp(tr, t, std[:, c])
     return out
 
 

@@ -54,19 +54,25 @@ class ImuData:
 
 @dataclass
 class GnssData:
-    """GNSS antenna positions: ``time`` (m,) s, ``llh`` (m, 3) deg/deg/m, ``std`` (m, 3) m."""
+    """GNSS antenna positions: ``time`` (m,) s, ``llh`` (m, 3) deg/deg/m, ``std`` (m, 3) m.
+
+    ``vel`` (m, 3) NED m/s, optional (NaN where unknown): the receiver's velocity, used
+    only by the moving alignment.
+    """
 
     time: np.ndarray
     llh: np.ndarray
     std: np.ndarray
     source: str = ""
+    vel: np.ndarray | None = None
 
     def without(self, windows) -> GnssData:
         """A copy without the epochs strictly inside any ``(start, end)`` window (s)."""
         keep = np.ones(self.time.size, bool)
         for a, b in windows:
             keep &= ~((self.time > a) & (self.time < b))
-        return GnssData(self.time[keep], self.llh[keep], self.std[keep], self.source)
+        return GnssData(self.time[keep], self.llh[keep], self.std[keep], self.source,
+                        None if self.vel is None else self.vel[keep])
 
 
 @dataclass

@@ -25,6 +25,7 @@ from __future__ import annotations
 import json
 from collections.abc import Mapping
 from datetime import UTC, datetime
+from pathlib import Path
 
 import numpy as np
 
@@ -76,6 +77,46 @@ def config_json(path) -> dict:
     return read_config(path).to_dict()
 
 
+def store_recording(project, target: str, path, **_options) -> str:
+    """``hydrosync import --gins-recording FOLDER``: a real recording folder (comma2k19
+    segment or rtklibexplorer drive/walk, :mod:`.recordings`) → ``raw/gins/imu``,
+    ``gnss``, ``config`` and, when the recording has one, ``reference``.
+
+    The GNSS-minus-IMU clock offset is estimated from the data
+    (:func:`.recordings.estimate_time_shift`) and applied; it and the recording's notes
+    are stored as attributes of ``raw/gins``.
+    """
+    from hydrosync_core.methods.gins_smoother.recordings import (
+        estimate_time_shift,
+        read_recording,
+        shifted,
+    )
+
+    rec = read_recording(path)
+    shift, _grid = estimate_time_shift(rec)
+    rec = shifted(rec, shift)
+    imu = {"time": rec.imu.time}
+    imu.update({c: rec.imu.inc[:, i] for i, c in enumerate(IMU_COLS)})
+    g = rec.gnss
+    for sub in ("imu", "gnss", "config", "reference", "outages"):
+        if project.exists(f"{target}/{sub}"):
+            project.delete(f"{target}/{sub}")
+    project.put_table(f"{target}/imu", imu, source=str(path), units="rad, m/s, body FRD")
+    project.put_table(f"{target}/gnss", {"time": g.time, "lat": g.llh[:, 0],
+                                         "lon": g.llh[:, 1], "height": g.llh[:, 2],
+                                         "sd_n": g.std[:, 0], "sd_e": g.std[:, 1],
+                                         "sd_d": g.std[:, 2]}, source=str(path))
+    project.put_json(f"{target}/config", rec.config.to_dict())
+    if rec.reference is not None:
+        project.put_table(f"{target}/reference", nav_columns(rec.reference), source=str(path))
+    project.set_attrs(target, recording=rec.name, time_shift_s=shift,
+                      notes=json.dumps(rec.notes), recommended_params=json.dumps(rec.params))
+    return (f"{Path(path).name} -> /{target}: {rec.name}, {rec.imu.time.size} IMU epochs "
+            f"({rec.imu.rate_hz:.0f} Hz), {g.time.size} GNSS fixes"
+            + (", reference" if rec.reference is not None else "")
+            + f"; GNSS−IMU clock offset {shift:+.3f} s estimated and applied")
+
+
 def nav_columns(nav) -> dict:
     return {"time": nav.time, "lat": nav.llh[:, 0], "lon": nav.llh[:, 1],
             "height": nav.llh[:, 2], "vn": nav.vel[:, 0], "ve": nav.vel[:, 1],
@@ -93,6 +134,50 @@ def trajectory_columns(tr) -> dict:
         out[f"sd_v{k}"] = tr.vel_std[:, i]
     for i, k in enumerate(("roll", "pitch", "yaw")):
         out[f"sd_{k}"] = tr.att_std[:, i]
+    return out
+
+
+def table_trajectory(tab):
+    """A :class:`.filter.Trajectory` from a stored ``forward``/``smoothed`` table."""
+    from hydrosync_core.methods.gins_smoother.filter import Trajectory
+
+    def cols(*names):
+        return np.column_stack([np.asarray(tab[n], float) for n in names])
+
+    return Trajectory(np.asarray(tab["time"], float), cols("lat", "lon", "height"),
+                      cols("vn", "ve", "vd"), cols("roll", "pitch", "yaw"),
+                      cols("sd_n", "sd_e", "sd_d"), cols("sd_vn", "sd_ve", "sd_vd"),
+                      cols("sd_roll", "sd_pitch", "sd_yaw"))
+
+
+def load_reference(project):
+    """The stored reference trajectory (:class:`.io.NavData`) or None."""
+    from hydrosync_core.methods.gins_smoother.io import NavData
+
+    if not project.exists(REFERENCE):
+        return None
+    r = project.get_table(REFERENCE)
+    return NavData(np.asarray(r["time"], float),
+                   np.column_stack([r["lat"], r["lon"], r["height"]]),
+                   np.column_stack([r["vn"], r["ve"], r["vd"]]),
+                   np.column_stack([r["roll"], r["pitch"], r["yaw"]]), f"/{REFERENCE}")
+
+
+def stored_errors(project) -> dict:
+    """Per-epoch errors (with the solution's σ) of the stored forward and smoothed
+    trajectories against the stored reference: ``{name: error_series}``; empty without a
+    reference or results."""
+    from hydrosync_core.methods.gins_smoother.evaluate import error_series
+
+    ref = load_reference(project)
+    out = {}
+    if ref is None:
+        return out
+    for name in ("forward", "smoothed"):
+        if project.exists(f"{RESULT}/{name}"):
+            e = error_series(table_trajectory(project.get_table(f"{RESULT}/{name}")), ref)
+            if e["time"].size:
+                out[name] = e
     return out
 
 
@@ -150,7 +235,16 @@ def run(project, params: GinsParams | Mapping | None = None, progress=None, canc
     from hydrosync_core.methods.gins_smoother.evaluate import evaluate
     from hydrosync_core.methods.gins_smoother.filter import run_gins
 
-    p = params if isinstance(params, GinsParams) else GinsParams.from_dict(params or {})
+    if isinstance(params, GinsParams):
+        p = params
+    else:  # a recording imported with --gins-recording brings its recommended options
+        base = {}
+        if project.exists(RAW):
+            try:
+                base = json.loads(project.attrs(RAW).get("recommended_params", "{}"))
+            except (TypeError, ValueError):
+                base = {}
+        p = GinsParams.from_dict({**base, **dict(params or {})})
     check_cancel(cancel)
     imu, gnss, cfg, ref, windows = load_inputs(project)
     report(progress, 0.02, "inputs read")

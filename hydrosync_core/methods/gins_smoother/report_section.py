@@ -44,6 +44,46 @@ def summary(project) -> list[tuple[str, str]]:
     return rows
 
 
+#: (components, unit label, scale) of the three error figures.
+ERROR_GROUPS = ((("north", "east", "down"), "position", "m", 1.0),
+                (("vn", "ve", "vd"), "velocity", "m/s", 1.0),
+                (("roll", "pitch", "yaw"), "attitude", "°", 1.0))
+COLOR = {"forward": "#c83c28", "smoothed": "#1e5ac8"}
+
+
+def error_figures(project, ctx, t0: float) -> list:
+    """Per-component error against the reference, forward and smoothed, with the ±1σ
+    envelope of each solution; simulated outages shaded. Empty without a reference."""
+    from hydrosync_core.methods.gins_smoother.project_run import stored_errors
+
+    errs = stored_errors(project)
+    if not errs:
+        return []
+    windows = json.loads(project.attrs(RESULT).get("outages", "[]"))
+    out = []
+    for comps, what, unit, scale in ERROR_GROUPS:
+        charts = []
+        for comp in comps:
+            c = ctx.chart(height=130, fraction=1 / 3, xlabel="time [s]",
+                          ylabel=f"{comp} error [{unit}]")
+            for a, b in windows:
+                c.vspan(a - t0, b - t0)
+            for name, e in errs.items():
+                i = _thin(e["time"].size)
+                x = e["time"][i] - t0
+                c.line(x, scale * e[comp][i], color=COLOR[name], label=name, width=0.7)
+                sd = e.get(f"sd_{comp}")
+                if sd is not None:
+                    c.line(x, scale * sd[i], color=COLOR[name], width=0.5, dash=(2, 2))
+                    c.line(x, -scale * sd[i], color=COLOR[name], width=0.5, dash=(2, 2))
+            charts.append(c)
+        out.append(ctx.figure(charts, f"{what.capitalize()} error against the reference "
+                              f"(solution − reference, {unit}), forward and smoothed; "
+                              "dashed: ±1σ of each solution"
+                              + ("; shaded: simulated GNSS outages." if windows else ".")))
+    return out
+
+
 def section(project, ctx) -> list:
     attrs = project.attrs(RESULT)
     counts = json.loads(attrs["counts"])
@@ -96,6 +136,7 @@ def section(project, ctx) -> list:
         charts.append(c)
     out.append(ctx.figure(charts, "Standard deviations, forward and smoothed (the smoother "
                           "reduces them everywhere, most across GNSS outages)."))
+    out += error_figures(project, ctx, t0)
     if ev:
         rows = []
         for name in ("forward", "smoothed"):

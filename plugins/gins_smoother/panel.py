@@ -16,39 +16,28 @@ from PySide6.QtWidgets import (
     QDoubleSpinBox,
     QFormLayout,
     QGridLayout,
-    QHBoxLayout,
-    QLabel,
     QPushButton,
-    QSplitter,
-    QTabWidget,
-    QVBoxLayout,
     QWidget,
 )
 
 from hydrosync_core.methods.gins_smoother.params import GinsParams
-from hydrosync_core.methods.gins_smoother.project_run import GNSS, OUTAGES, RESULT, run
+from hydrosync_core.methods.gins_smoother.project_run import GNSS, OUTAGES, RESULT
 from hydrosync_core.params import stored
-from hydrosync_gui.plugin_panel import PluginPanel
-from hydrosync_gui.widgets import ParamForm
+from hydrosync_gui.analysis_panel import AnalysisPanel, plot_widget
 
 COLOURS = {"forward": (200, 60, 40), "smoothed": (30, 90, 200), "gnss": (90, 90, 90)}
 MAX_POINTS = 4000
 
 
 def _plot(ylabel: str, xlabel: str = "time from start [s]") -> pg.PlotWidget:
-    w = pg.PlotWidget(background="w")
-    w.setLabel("left", ylabel)
-    w.setLabel("bottom", xlabel)
-    w.showGrid(x=True, y=True, alpha=0.3)
-    w.addLegend(offset=(10, 2), labelTextColor="k")
-    return w
+    return plot_widget(ylabel, xlabel)
 
 
 def _thin(n: int) -> np.ndarray:
     return np.arange(0, n, max(1, n // MAX_POINTS))
 
 
-class GinsPanel(PluginPanel):
+class GinsPanel(AnalysisPanel):
     """GNSS/INS integration with RTS smoothing (Wang et al.)."""
 
     def __init__(self, spec=None, parent=None) -> None:
@@ -56,8 +45,7 @@ class GinsPanel(PluginPanel):
             from plugins.gins_smoother import SPEC
 
             spec = SPEC
-        super().__init__(spec, parent)
-        self.form = ParamForm(GinsParams)
+        super().__init__(spec, GinsParams, parent)
         self.outage_len = QDoubleSpinBox(minimum=0.0, maximum=600.0, value=30.0, suffix=" s")
         self.outage_every = QDoubleSpinBox(minimum=1.0, maximum=3600.0, value=120.0, suffix=" s")
         self.outage_button = QPushButton("Set outages")
@@ -68,16 +56,6 @@ class GinsPanel(PluginPanel):
         outage_box.addRow("Outage length", self.outage_len)
         outage_box.addRow("Every", self.outage_every)
         outage_box.addRow(self.outage_button)
-        self.run_button = QPushButton("Run")
-        self.run_button.clicked.connect(self._on_run)
-        self.summary = QLabel()
-        self.summary.setWordWrap(True)
-        left = QWidget()
-        lay = QVBoxLayout(left)
-        lay.addWidget(self.form)
-        lay.addLayout(outage_box)
-        lay.addWidget(self.run_button)
-        lay.addWidget(self.summary)
         self.map = _plot("north [m]", "east [m]")
         self.map.setAspectLocked(True)
         self.series = {k: _plot(lab) for k, lab in (("height", "height [m]"),
@@ -93,22 +71,11 @@ class GinsPanel(PluginPanel):
         grid = QGridLayout(err_page)
         for k, w in enumerate(self.errors.values()):
             grid.addWidget(w, k // 3, k % 3)
-        self.tabs = QTabWidget()
-        self.tabs.addTab(self.map, "Map")
-        for title, group in (("Position / velocity / attitude", self.series),
-                             ("Standard deviations", self.sigma)):
-            page = QWidget()
-            pl = QVBoxLayout(page)
-            for w in group.values():
-                pl.addWidget(w)
-            self.tabs.addTab(page, title)
-        self.tabs.addTab(err_page, "Errors vs reference (±σ)")
-        split = QSplitter(Qt.Orientation.Horizontal)
-        split.addWidget(left)
-        split.addWidget(self.tabs)
-        split.setStretchFactor(1, 3)
-        outer = QHBoxLayout(self)
-        outer.addWidget(split)
+        self.add_tab("Map", self.map)
+        self.add_tab("Position / velocity / attitude", *self.series.values())
+        self.add_tab("Standard deviations", *self.sigma.values())
+        self.add_tab("Errors vs reference (±σ)", err_page)
+        self.build(before_run=[outage_box])
 
     def _all_plots(self):
         return [self.map, *self.errors.values(), *self.series.values(), *self.sigma.values()]
@@ -186,12 +153,3 @@ class GinsPanel(PluginPanel):
         self.sig_project_modified.emit()
         self.summary.setText(f"{len(windows)} GNSS outages of {length:g} s set; press Run.")
 
-    def _on_run(self) -> None:
-        project, params = self.project, self.form.params()
-        self.run_button.setEnabled(False)
-        self.start_work(lambda progress, cancel: run(project, params, progress, cancel),
-                        lambda _res: (self.sig_project_modified.emit(), self.refresh()),
-                        label="GNSS/INS smoother")
-
-    def work_done(self) -> None:
-        self.run_button.setEnabled(True)

@@ -18,6 +18,7 @@ from PySide6.QtWidgets import (
     QLabel,
     QLayout,
     QPushButton,
+    QScrollArea,
     QSplitter,
     QTabWidget,
     QVBoxLayout,
@@ -68,10 +69,19 @@ class AnalysisPanel(PluginPanel):
                 lay.addLayout(item)
             else:
                 lay.addWidget(item)
+        # The controls scroll in a column of their own, so the views keep the width and the
+        # panel fits a 1366×768 screen however many parameters the analysis has.
+        scroll = QScrollArea()
+        scroll.setWidget(left)
+        scroll.setWidgetResizable(True)
+        scroll.setFrameShape(QScrollArea.Shape.NoFrame)
+        scroll.setMinimumWidth(300)
         split = QSplitter(Qt.Orientation.Horizontal)
-        split.addWidget(left)
+        split.addWidget(scroll)
         split.addWidget(self.tabs)
+        split.setStretchFactor(0, 2)
         split.setStretchFactor(1, 3)
+        split.setSizes([470, 530])
         QHBoxLayout(self).addWidget(split)
 
     def add_tab(self, title: str, *widgets: QWidget, horizontal: bool = False) -> QWidget:

@@ -201,6 +201,8 @@ class ConvergencePlot(pg.PlotWidget):
         super().__init__(parent)
         self.setBackground("w")
         self.setLabel("bottom", "iteration")
+        self.getAxis("left").enableAutoSIPrefix(False)
+        self.getAxis("left").setWidth(58)
         self.showGrid(x=True, y=True, alpha=0.3)
         # The legend is outside the plot (:func:`convergence_legend`): the curves fill
         # every corner of it.
@@ -220,7 +222,9 @@ class ConvergencePlot(pg.PlotWidget):
         self.round_lines = []
         empty = table is None or len(table.get("iteration", ())) == 0
         self.setLogMode(y=log and not empty)  # an empty log axis shows odd 2…9 ticks
-        self.setLabel("left", "|angle correction|" if log else "angle correction", units="°")
+        # A short label with the unit inline: the log axis' tick labels ("1e-4") take the
+        # width a long label would need, and it was cut.
+        self.setLabel("left", "|Δ angle| [°]" if log else "Δ angle [°]")
         if empty:
             for item in self.curves.values():
                 item.setData([], [])

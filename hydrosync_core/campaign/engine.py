@@ -266,7 +266,7 @@ def run_campaign(campaign: Campaign, *, scheduler: str | None = None,
                 changed = True
             progress.elapsed_s = time.perf_counter() - t0
             if progress.finished == progress.total:
-                progress.running = 0
+                progress.running, progress.eta_s = 0, 0.0
                 listener.update(progress)
                 break
             progress.running = _running(client, keys, threads)

@@ -155,6 +155,10 @@ class MainWindow(QMainWindow, FileActions):
                                        "Import a data file into the project")
         self.act_report = self._action(m, "&Export report…", self._on_export_report, "Ctrl+E",
                                        "Write the PDF report of the project")
+        self.act_campaign = self._action(m, "Run &campaign…", self.open_campaign_dialog,
+                                         tip="Run a campaign file (many projects x analyses) "
+                                         "on Dask")
+        self.campaign_dialog = None
         m.addSeparator()
         self._action(m, "&Quit", self.close, key.Quit, "Quit HydroSync")
         edit = self.menuBar().addMenu("&Edit")
@@ -347,6 +351,16 @@ class MainWindow(QMainWindow, FileActions):
         self.settings.sync()
 
     # ----------------------------------------------------------------- help
+    def open_campaign_dialog(self):
+        """File → Run campaign…: the (non-modal) campaign dialog, made once."""
+        from hydrosync_gui.campaign_dialog import CampaignDialog
+
+        if self.campaign_dialog is None:
+            self.campaign_dialog = CampaignDialog(self, self.last_dir())
+        self.campaign_dialog.show()
+        self.campaign_dialog.raise_()
+        return self.campaign_dialog
+
     def show_plugins(self) -> PluginsDialog:
         """Open (non-modally) the list of loaded and failed plugins."""
         if self.plugins_dialog is not None:
@@ -391,6 +405,8 @@ class MainWindow(QMainWindow, FileActions):
                 # After the prompt (and a save if chosen) close again, without asking.
                 self.maybe_save(lambda: QTimer.singleShot(0, self.close_without_prompt))
                 return
+        if self.campaign_dialog is not None:
+            self.campaign_dialog.close()  # cancels a running campaign and waits for it
         self.host.cancel_all()
         self.wait_idle(60.0)
         self._save_settings()

@@ -51,6 +51,7 @@ SUBCOMMAND_MODULES = (
     "hydrosync_core.cli.project_cmds",
     "hydrosync_core.cli.report_cmd",
     "hydrosync_core.cli.demo_cmd",
+    "hydrosync_core.cli.batch_cmd",
 )
 
 EXIT_OK, EXIT_ERROR, EXIT_INPUT, EXIT_UNDETERMINED, EXIT_INTERRUPTED = 0, 1, 2, 3, 130

@@ -4,6 +4,7 @@ Importing this module loads only :mod:`hydrosync_core.plugins.spec`; the method,
 parameter schema and the panel are named by dotted path and imported when used.
 """
 
+from hydrosync_core.methods.gnss_attitude import VERSION
 from hydrosync_core.plugins.spec import DataKind, PluginSpec
 
 CORE = "hydrosync_core.methods.gnss_attitude"
@@ -37,5 +38,5 @@ SPEC = PluginSpec(
     demo=f"{CORE}.demo:fill_demo",
     report_section=f"{CORE}.report_section:section",
     order=30,
-    version="1.0.0",
+    version=VERSION,
 )

@@ -13,3 +13,6 @@ writers), ``kernel`` (compiled mechanisation, filter and smoother), ``filter``
 ``report_section``, ``cli``. Importing the package is cheap: nothing below is imported
 until used.
 """
+
+#: Version of the analysis (stored with its results; ``PluginSpec.version``).
+VERSION = "1.0.0"

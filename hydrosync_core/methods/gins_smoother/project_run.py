@@ -31,6 +31,7 @@ import numpy as np
 
 from hydrosync_core import __version__
 from hydrosync_core.errors import InputError
+from hydrosync_core.methods.gins_smoother import VERSION
 from hydrosync_core.methods.gins_smoother.params import GinsParams
 from hydrosync_core.progress import check_cancel, report, sub_progress
 from hydrosync_core.provenance import record
@@ -281,6 +282,6 @@ def run(project, params: GinsParams | Mapping | None = None, progress=None, canc
                 g[f"{key}_{a}"] = res.gnss[key][:, i]
     project.put_table(f"{RESULT}/gnss", g, units="m")
     inputs = [IMU, GNSS, CONFIG] + [x for x in (REFERENCE, OUTAGES) if project.exists(x)]
-    record(project, RESULT, inputs, p)
+    record(project, RESULT, inputs, p, plugin_version=VERSION)
     report(progress, 1.0, "GNSS/INS trajectory stored")
     return res

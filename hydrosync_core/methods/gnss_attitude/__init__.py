@@ -10,3 +10,6 @@ Modules: ``params`` (the parameter schema), ``solve`` (the three estimators),
 (``antennas.json``), ``simulate``, ``project_run``, ``demo``, ``report_section``, ``cli``.
 Importing the package is cheap: nothing below is imported until used.
 """
+
+#: Version of the analysis (stored with its results; ``PluginSpec.version``).
+VERSION = "1.0.0"

@@ -37,6 +37,7 @@ import numpy as np
 from hydrosync_core import __version__
 from hydrosync_core.errors import InputError
 from hydrosync_core.importers.rtklib_pos import ned_covariance
+from hydrosync_core.methods.gnss_attitude import VERSION
 from hydrosync_core.methods.gnss_attitude.antennas import check_antennas
 from hydrosync_core.methods.gnss_attitude.params import GnssAttitudeParams
 from hydrosync_core.methods.gnss_attitude.pipeline import (
@@ -130,7 +131,7 @@ def run(project, params: GnssAttitudeParams | Mapping | None = None, progress=No
     resid.update({pair: sol.length_residual_m[:, c] for c, pair in enumerate(sol.pairs)})
     project.put_table(f"{RESULT}/baseline_residuals", resid, units="m")
     project.put_table(f"{RESULT}/precision", curve, units="deg, m")
-    record(project, RESULT, (f"{RAW}/pos", f"{RAW}/antennas"), p)
+    record(project, RESULT, (f"{RAW}/pos", f"{RAW}/antennas"), p, plugin_version=VERSION)
     report(progress, 1.0, "attitude stored")
     return sol
 
@@ -167,5 +168,5 @@ def restat(project, start: float | None, end: float | None) -> dict:
     stats = stored_statistics(project, p.static_start_s, p.static_end_s)
     project.put_json(RESULT, p.to_dict())
     project.set_attrs(RESULT, statistics=json.dumps(stats))
-    record(project, RESULT, (f"{RAW}/pos", f"{RAW}/antennas"), p)
+    record(project, RESULT, (f"{RAW}/pos", f"{RAW}/antennas"), p, plugin_version=VERSION)
     return stats

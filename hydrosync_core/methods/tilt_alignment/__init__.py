@@ -19,3 +19,6 @@ Frames: body x forward, y right, z down along the pole towards the tip (``format
 navigation frame NED inside (ENU at the file edges); attitude ``C = Rz(heading)·Ry(pitch)·
 Rx(roll)`` body→NED; pole vector ``l_b = [0, 0, l]``; tip = antenna + C·l_b (NED).
 """
+
+#: Version of the analysis (stored with its results; ``PluginSpec.version``).
+VERSION = "1.0.0"

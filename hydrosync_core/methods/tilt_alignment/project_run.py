@@ -35,7 +35,7 @@ import numpy as np
 
 from hydrosync_core import __version__
 from hydrosync_core.errors import InputError
-from hydrosync_core.methods.tilt_alignment import align
+from hydrosync_core.methods.tilt_alignment import VERSION, align
 from hydrosync_core.methods.tilt_alignment.geometry import interpolate_vectors, pole_vectors
 from hydrosync_core.methods.tilt_alignment.io import check_pole
 from hydrosync_core.methods.tilt_alignment.params import TiltParams
@@ -123,7 +123,7 @@ def run(project, params: TiltParams | Mapping | None = None, progress=None, canc
                                                   "used": vec.used.astype(np.int8)})
     if mc is not None:
         project.put_table(f"{RESULT}/montecarlo", mc)
-    record(project, RESULT, (IMU, GNSS, POLE), p)
+    record(project, RESULT, (IMU, GNSS, POLE), p, plugin_version=VERSION)
     report(progress, 1.0, "tilt alignment stored")
     return doc
 

@@ -20,6 +20,14 @@ Gauss-Newton with analytic Jacobians: a perturbation φ_k (NED) of the attitude 
 k is ``φ_k = δθ − M_k·δb_g`` with ``M_k = Σ_(j<k) C_(j+1)·Δt_j``; ``δu_k = φ_k × u_k``.
 The weights of the two groups are re-estimated from their residuals (variance
 components), and the covariance of the result gives σ of the tip.
+
+Observability: a swing in one vertical plane rotates the IMU about one horizontal axis
+only, so the accelerometer bias along that axis stays the same vector in NED and looks
+exactly like a tilt out of the plane (error ``b/g`` rad, ``l·b/g`` at the tip); only the
+GNSS curvature term ``l·δθ·(1 − cos β)`` tells them apart, which is weak below about 40°.
+The solution then rests on the bias prior. :func:`joint_lsq` measures how much: the
+share of the tip's horizontal variance, along its weakest direction, that would vanish
+if the accelerometer bias were known (``bias_share``).
 """
 
 from __future__ import annotations
@@ -57,6 +65,16 @@ class JointResult:
     rms_gnss_m: float
     gnss_residuals: np.ndarray
     n_blocks: int
+    bias_share: float = 0.0
+    weak_direction: np.ndarray | None = None
+
+    @property
+    def weak_sigma_m(self) -> float:
+        """1σ (m) of the tip along its weakest horizontal direction."""
+        d = self.weak_direction
+        if d is None:
+            return float("nan")
+        return float(np.sqrt(max(d @ self.cov[3:5, 3:5] @ d, 0.0)))
 
     @property
     def tip_std(self) -> np.ndarray:
@@ -194,8 +212,26 @@ def joint_lsq(time: np.ndarray, gyro: np.ndarray, accel: np.ndarray, gnss_t: np.
     prior[:3, BG] = np.eye(3) / gyro_bias_sigma
     prior[3:, BA] = np.eye(3) / accel_bias_sigma
     A = np.vstack(rows + [prior])
-    var_factor = (q_g + q_a) / red
-    cov = np.linalg.pinv(A.T @ A) * max(var_factor, 1.0)
+    var_factor = max((q_g + q_a) / red, 1.0)
+    normal = A.T @ A
+    cov = np.linalg.pinv(normal) * var_factor
+    share, weak = _bias_share(normal, cov, var_factor, accel_bias_sigma)
     return JointResult(C0, tip, bg, ba, cov, C, it_total, converged, sigma_h * s_g,
                        sigma_dv * s_a, float(np.sqrt(np.mean(eg ** 2))), eg,
-                       int(max(bounds.size - 1, 0)))
+                       int(max(bounds.size - 1, 0)), share, weak)
+
+
+def _bias_share(normal: np.ndarray, cov: np.ndarray, var_factor: float,
+                accel_bias_sigma: float) -> tuple[float, np.ndarray]:
+    """Share of the horizontal tip variance (weakest direction) owed to the unknown
+    accelerometer bias, and that direction (unit north/east vector)."""
+    h = cov[3:5, 3:5]
+    w, v = np.linalg.eigh(h)
+    d = v[:, 1]
+    known = normal.copy()
+    known[BA, BA] += np.eye(3) * (1e3 / accel_bias_sigma) ** 2   # bias as good as known
+    hk = np.linalg.pinv(known)[3:5, 3:5] * var_factor
+    full = float(d @ h @ d)
+    share = 1.0 - float(d @ hk @ d) / full if full > 0 else 0.0
+    return float(np.clip(share, 0.0, 1.0)), d
+

@@ -39,7 +39,8 @@ class MethodResult:
     ``psi`` is the heading misalignment (C = Rz(ψ)·C' at the start of the record), ``C0``
     the attitude estimated at the first IMU sample, ``tip``/``tip_std`` the tip and its
     1σ, ``history`` the gradient-descent iterates of ψ (empty for other methods).
-    ``undetermined`` holds the reason when the data do not determine the result.
+    ``undetermined`` holds the reason when the data do not determine the result;
+    ``warning`` says when the result is determined but weaker than the tip tolerance.
     """
 
     name: str
@@ -53,6 +54,7 @@ class MethodResult:
     history: np.ndarray = field(default_factory=lambda: np.zeros(0))
     vectors: int = 0
     undetermined: str | None = None
+    warning: str | None = None
 
     @property
     def ok(self) -> bool:
@@ -86,6 +88,27 @@ def _heading_only(name: str, R: np.ndarray, C_epochs: np.ndarray, C_imu0: np.nda
     sh = math.hypot(sigma_h / math.sqrt(n), psi_std * length * math.sin(beta) / math.sqrt(2))
     return MethodResult(name, float(wrap(yaw_of(R))), psi_std, R @ C_imu0, tips.mean(axis=0),
                         np.array([sh, sh, sigma_v / math.sqrt(n)]))
+
+
+def weak_tip_warning(joint: JointResult, tolerance_m: float) -> str | None:
+    """The warning for a tip weaker than *tolerance_m* (95 %, horizontal), else None.
+
+    The weakest horizontal direction of the tip is, for a swing nearly in one plane,
+    across the plane: there the accelerometer bias along the swing axis and the tilt out
+    of the plane are one unknown, fixed only by the bias prior (``bias_share``).
+    """
+    s95 = 1.96 * joint.weak_sigma_m
+    if not math.isfinite(s95) or s95 <= tolerance_m:
+        return None
+    d = joint.weak_direction
+    az = math.degrees(math.atan2(d[1], d[0])) % 180.0
+    head = (f"joint: the tip is uncertain to ±{1000 * s95:.0f} mm (95 %) along azimuth "
+            f"{az:.0f}°/{az + 180:.0f}°, beyond the {1000 * tolerance_m:.0f} mm tolerance")
+    if joint.bias_share >= 0.5:
+        return (f"{head}; {100 * joint.bias_share:.0f} % of it is the accelerometer bias, "
+                "which this swing cannot tell from the tilt out of its plane (a swing "
+                "nearly in one plane): swing in an ellipse or twist the pole while swinging")
+    return f"{head} (GNSS noise): swing wider or longer"
 
 
 def solve_record(time: np.ndarray, gyro: np.ndarray, accel: np.ndarray, gnss_time: np.ndarray,
@@ -200,6 +223,8 @@ def solve_record(time: np.ndarray, gyro: np.ndarray, accel: np.ndarray, gnss_tim
             elif joint.sigma_gnss_m > 5 * p.sigma_h_m:
                 m.undetermined = (f"GNSS positions do not fit a fixed tip (σ "
                                   f"{100 * joint.sigma_gnss_m:.1f} cm): did the tip move?")
+            else:
+                m.warning = weak_tip_warning(joint, p.tip_tolerance_m)
             methods["joint"] = m
     report(progress, 0.9, "joint batch least squares")
     best = next((methods[n] for n in ("joint", "closed_form", "bgd") if methods[n].ok), None)
@@ -213,5 +238,7 @@ def solve_record(time: np.ndarray, gyro: np.ndarray, accel: np.ndarray, gnss_tim
         tilt = tilt_of(C_ep)
     if screening is not None:
         warnings.append(f"vector screening: {screening}")
+    if methods["joint"].warning:
+        warnings.append(methods["joint"].warning)
     return TiltSolution({n: methods[n] for n in METHODS}, vec, screening, C_imu, gnss_time,
                         gnss_ned, tilt, window, joint, g, warnings)

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+from dataclasses import replace
 
 import numpy as np
 import pytest
@@ -201,3 +202,18 @@ def test_monte_carlo_statistics_give_sigma_coverage_and_the_warned_share():
     s = statistics(mc, "joint")
     assert s["coverage_e"] == 0.75 and s["coverage_n"] == 1.0    # 0.02 > 1.96·0.002
     assert s["warned"] == 0.25 and s["h_within_1cm_quiet"] == 1.0
+
+
+def test_a_gnss_time_offset_is_found_corrected_and_named():
+    cfg = SwingConfig(tilt_deg=50.0, sweeps=3, shape_ratio=0.5, gnss_time_offset_s=0.03)
+    sim = simulate_swing(cfg, seed=3)
+    sol = _solve(sim)
+    j = sol.joint
+    assert j.time_offset_applied_s + j.time_offset_s == pytest.approx(0.03, abs=0.003)
+    assert any("time tags are +30" in w for w in sol.warnings)
+    err = sol.methods["joint"].tip - sim["truth"]["tip_ned"]
+    assert np.hypot(*err[:2]) < 0.005
+    # tags right: nothing applied, nothing said
+    sol = _solve(simulate_swing(replace(cfg, gnss_time_offset_s=0.0), seed=3))
+    assert sol.joint.time_offset_applied_s == 0.0
+    assert not any("time tags" in w for w in sol.warnings)

@@ -96,7 +96,10 @@ def result_document(sol: TiltSolution, frame: dict, length: float, params: TiltP
                         "iterations": j.iterations, "converged": j.converged,
                         "weak_azimuth_deg": math.degrees(math.atan2(
                             j.weak_direction[1], j.weak_direction[0])) % 180.0,
-                        "weak_std_m": j.weak_sigma_m, "weak_bias_share": j.bias_share}
+                        "weak_std_m": j.weak_sigma_m, "weak_bias_share": j.bias_share,
+                        "time_offset_ms": 1000 * (j.time_offset_applied_s + j.time_offset_s),
+                        "time_offset_std_ms": 1000 * j.time_offset_std_s,
+                        "time_offset_applied_ms": 1000 * j.time_offset_applied_s}
     if frame["form"] == "llh":
         doc["origin_llh"] = frame["origin_llh"]
     return doc

@@ -71,9 +71,10 @@ class TiltAlignmentPanel(AnalysisPanel):
             sd = "/".join(f"{1000 * s:.1f}" for s in chosen["tip_std_enu_m"])
             text = (f"{doc['method']}: tip {tip} (σ {sd} mm), heading misalignment "
                     f"{chosen['heading_misalignment_deg']:.3f}°")
+        warn = "".join(f" Warning — {w}." for w in doc.get("warnings", []))
         self.summary.setText(f"{text}. Vectors used {doc['vectors_used']}, rejected "
                              f"{doc['vectors_rejected']}; tilt up to "
-                             f"{doc['tilt_deg']['max']:.1f}°.")
+                             f"{doc['tilt_deg']['max']:.1f}°.{warn}")
         table: dict[str, list] = {"method": [], "psi_deg": [], "sd_e_mm": [], "sd_n_mm": [],
                                   "sd_u_mm": [], "vectors": [], "iterations": []}
         for name in METHODS:

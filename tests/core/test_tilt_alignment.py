@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+from dataclasses import replace
 
 import numpy as np
 import pytest
@@ -160,3 +161,59 @@ def test_simulator_keeps_the_tip_fixed_and_the_tilt_limit():
     tips = sim["gnss_ned"] + C[k, :, 2] * length
     assert np.max(np.abs(tips)) < 1e-12
     assert sim["truth"]["max_tilt_deg"] == pytest.approx(47.0, abs=0.05)
+
+
+def test_a_swing_in_one_plane_is_warned_across_the_plane_and_an_ellipse_is_not():
+    # 20° swing in one vertical plane, no twist: the accelerometer bias along the swing axis
+    # is the tilt out of the plane. The swing plane is body y–z (roll only), at heading
+    # 123° the pole leans towards 213°/33°: the weak direction is across it, 123°/303°.
+    planar = SwingConfig(tilt_deg=20.0, shape_ratio=0.0, twist_deg=0.0, wobble_deg=0.1,
+                         azimuth_deg=0.0, heading_deg=123.0, accel_bias_m_s2=(0.04, 0.0, 0.0))
+    sim = simulate_swing(planar, seed=1)
+    sol = _solve(sim)
+    j = sol.methods["joint"]
+    assert j.ok and j.warning is not None and "ellipse" in j.warning
+    assert j.warning in sol.warnings
+    weak = sol.joint.weak_direction
+    assert abs(abs(math.degrees(math.atan2(weak[1], weak[0])) % 180.0 - 123.0)) < 5.0
+    assert sol.joint.bias_share > 0.9
+    assert 1.96 * sol.joint.weak_sigma_m > 0.01                # σ says it, not only the text
+    err = j.tip - sim["truth"]["tip_ned"]
+    assert abs(err[:2] @ weak) < 1.96 * sol.joint.weak_sigma_m
+    # the same pole swung in an ellipse with a twist: no warning, tip well within 1 cm
+    sim = simulate_swing(SwingConfig(tilt_deg=35.0, shape_ratio=0.8, twist_deg=15.0,
+                                     accel_bias_m_s2=(0.04, 0.0, 0.0)), seed=1)
+    sol = _solve(sim)
+    j = sol.methods["joint"]
+    assert j.ok and j.warning is None and not sol.warnings
+    assert 1.96 * sol.joint.weak_sigma_m < 0.01
+    assert np.hypot(*(j.tip - sim["truth"]["tip_ned"])[:2]) < 0.01
+
+
+def test_monte_carlo_statistics_give_sigma_coverage_and_the_warned_share():
+    from hydrosync_core.methods.tilt_alignment.montecarlo import statistics
+
+    err = np.array([0.001, -0.002, 0.003, 0.02])
+    mc = {"run": np.arange(4.0), "joint_heading_err_deg": np.zeros(4),
+          "joint_tip_err_e": err, "joint_tip_err_n": np.zeros(4),
+          "joint_tip_err_u": np.zeros(4), "joint_tip_std_e": np.full(4, 0.002),
+          "joint_tip_std_n": np.full(4, 0.001), "joint_tip_std_u": np.full(4, 0.001),
+          "joint_warned": np.array([0.0, 0.0, 0.0, 1.0])}
+    s = statistics(mc, "joint")
+    assert s["coverage_e"] == 0.75 and s["coverage_n"] == 1.0    # 0.02 > 1.96·0.002
+    assert s["warned"] == 0.25 and s["h_within_1cm_quiet"] == 1.0
+
+
+def test_a_gnss_time_offset_is_found_corrected_and_named():
+    cfg = SwingConfig(tilt_deg=50.0, sweeps=3, shape_ratio=0.5, gnss_time_offset_s=0.03)
+    sim = simulate_swing(cfg, seed=3)
+    sol = _solve(sim)
+    j = sol.joint
+    assert j.time_offset_applied_s + j.time_offset_s == pytest.approx(0.03, abs=0.003)
+    assert any("time tags are +30" in w for w in sol.warnings)
+    err = sol.methods["joint"].tip - sim["truth"]["tip_ned"]
+    assert np.hypot(*err[:2]) < 0.005
+    # tags right: nothing applied, nothing said
+    sol = _solve(simulate_swing(replace(cfg, gnss_time_offset_s=0.0), seed=3))
+    assert sol.joint.time_offset_applied_s == 0.0
+    assert not any("time tags" in w for w in sol.warnings)

@@ -20,6 +20,14 @@ Gauss-Newton with analytic Jacobians: a perturbation φ_k (NED) of the attitude 
 k is ``φ_k = δθ − M_k·δb_g`` with ``M_k = Σ_(j<k) C_(j+1)·Δt_j``; ``δu_k = φ_k × u_k``.
 The weights of the two groups are re-estimated from their residuals (variance
 components), and the covariance of the result gives σ of the tip.
+
+Observability: a swing in one vertical plane rotates the IMU about one horizontal axis
+only, so the accelerometer bias along that axis stays the same vector in NED and looks
+exactly like a tilt out of the plane (error ``b/g`` rad, ``l·b/g`` at the tip); only the
+GNSS curvature term ``l·δθ·(1 − cos β)`` tells them apart, which is weak below about 40°.
+The solution then rests on the bias prior. :func:`joint_lsq` measures how much: the
+share of the tip's horizontal variance, along its weakest direction, that would vanish
+if the accelerometer bias were known (``bias_share``).
 """
 
 from __future__ import annotations
@@ -39,6 +47,10 @@ TH, TIP, BG, BA = slice(0, 3), slice(3, 6), slice(6, 9), slice(9, 12)
 class JointResult:
     """Solution of :func:`joint_lsq` (NED, SI units, radians).
 
+    ``bias_share``/``weak_direction``: see the module. ``time_offset_s`` ± ``_std_s``: the
+    GNSS time tags' offset against the IMU clock indicated by the residuals (a check: the
+    solution assumes the tags as given; :func:`.pipeline.solve_record` applies a significant
+    offset to the tags, adjusts again and records it in ``time_offset_applied_s``).
     ``cov`` is the 12×12 covariance (δθ, tip, b_g, b_a); ``sigma_gnss_m`` and
     ``sigma_dv_m_s`` the a-posteriori σ of one GNSS coordinate (horizontal; vertical is
     twice) and of one velocity increment; ``rms_gnss_m`` the RMS of the GNSS residuals.
@@ -57,6 +69,19 @@ class JointResult:
     rms_gnss_m: float
     gnss_residuals: np.ndarray
     n_blocks: int
+    bias_share: float = 0.0
+    weak_direction: np.ndarray | None = None
+    time_offset_s: float = 0.0
+    time_offset_std_s: float = float("nan")
+    time_offset_applied_s: float = 0.0
+
+    @property
+    def weak_sigma_m(self) -> float:
+        """1σ (m) of the tip along its weakest horizontal direction."""
+        d = self.weak_direction
+        if d is None:
+            return float("nan")
+        return float(np.sqrt(max(d @ self.cov[3:5, 3:5] @ d, 0.0)))
 
     @property
     def tip_std(self) -> np.ndarray:
@@ -194,8 +219,52 @@ def joint_lsq(time: np.ndarray, gyro: np.ndarray, accel: np.ndarray, gnss_t: np.
     prior[:3, BG] = np.eye(3) / gyro_bias_sigma
     prior[3:, BA] = np.eye(3) / accel_bias_sigma
     A = np.vstack(rows + [prior])
-    var_factor = (q_g + q_a) / red
-    cov = np.linalg.pinv(A.T @ A) * max(var_factor, 1.0)
+    var_factor = max((q_g + q_a) / red, 1.0)
+    normal = A.T @ A
+    cov = np.linalg.pinv(normal) * var_factor
+    share, weak = _bias_share(normal, cov, var_factor, accel_bias_sigma)
+    # second-order check of the GNSS↔IMU time alignment: one Gauss-Newton step of the
+    # solution augmented by a time offset τ (GNSS tag t_j is the pole at t_j + τ:
+    # ∂e_j/∂τ = du/dt(t_j)), from the converged solution; the solution itself is kept
+    r_all = [(eg / sg).ravel()]
+    if len(ea):
+        r_all.append((ea / (sigma_dv * s_a)).ravel())
+    r_all.append(np.concatenate([bg / gyro_bias_sigma, ba / accel_bias_sigma]))
+    tau, tau_std = _time_offset(A, np.concatenate(r_all), C, time, gnss_t, length, sg,
+                                var_factor)
     return JointResult(C0, tip, bg, ba, cov, C, it_total, converged, sigma_h * s_g,
                        sigma_dv * s_a, float(np.sqrt(np.mean(eg ** 2))), eg,
-                       int(max(bounds.size - 1, 0)))
+                       int(max(bounds.size - 1, 0)), share, weak, tau, tau_std)
+
+
+def _time_offset(A: np.ndarray, r: np.ndarray, C: np.ndarray, time: np.ndarray,
+                 gnss_t: np.ndarray, length: float, sg: np.ndarray, var_factor: float
+                 ) -> tuple[float, float]:
+    """Time offset τ (s) of the GNSS tags against the IMU and its 1σ, from the weighted
+    design *A*, residuals *r* (GNSS rows first) of the converged solution."""
+    u = C[:, :, 2] * length
+    n = time.size
+    k = np.clip(np.searchsorted(time, gnss_t, side="right") - 1, 0, n - 2)
+    rate = (u[k + 1] - u[k]) / (time[k + 1] - time[k])[:, None]
+    col = np.zeros(A.shape[0])
+    col[:rate.size] = (rate / sg).ravel()
+    Aa = np.column_stack([A, col])
+    cov = np.linalg.pinv(Aa.T @ Aa)
+    dx = -cov @ (Aa.T @ r)
+    return float(dx[-1]), float(math.sqrt(max(cov[-1, -1] * var_factor, 0.0)))
+
+
+def _bias_share(normal: np.ndarray, cov: np.ndarray, var_factor: float,
+                accel_bias_sigma: float) -> tuple[float, np.ndarray]:
+    """Share of the horizontal tip variance (weakest direction) owed to the unknown
+    accelerometer bias, and that direction (unit north/east vector)."""
+    h = cov[3:5, 3:5]
+    w, v = np.linalg.eigh(h)
+    d = v[:, 1]
+    known = normal.copy()
+    known[BA, BA] += np.eye(3) * (1e3 / accel_bias_sigma) ** 2   # bias as good as known
+    hk = np.linalg.pinv(known)[3:5, 3:5] * var_factor
+    full = float(d @ h @ d)
+    share = 1.0 - float(d @ hk @ d) / full if full > 0 else 0.0
+    return float(np.clip(share, 0.0, 1.0)), d
+

@@ -19,8 +19,10 @@ from hydrosync_core.methods.tilt_alignment.simulate import random_config, simula
 from hydrosync_core.progress import check_cancel, report
 
 
-def evaluate(sim: dict, params: TiltParams) -> dict[str, tuple[float, np.ndarray]]:
-    """Solve one simulated record; per method (heading error deg, tip error ENU m).
+def evaluate(sim: dict, params: TiltParams
+             ) -> dict[str, tuple[float, np.ndarray, np.ndarray, bool]]:
+    """Solve one simulated record; per method (heading error deg, tip error ENU m, tip σ
+    ENU m, whether the method warned that the tip is weaker than the tolerance).
 
     NaN for a method the data did not determine.
     """
@@ -31,11 +33,12 @@ def evaluate(sim: dict, params: TiltParams) -> dict[str, tuple[float, np.ndarray
     out = {}
     for name, m in sol.methods.items():
         if not m.ok or m.C0 is None:
-            out[name] = (math.nan, np.full(3, np.nan))
+            out[name] = (math.nan, np.full(3, np.nan), np.full(3, np.nan), False)
             continue
         err = m.tip - sim["truth"]["tip_ned"]
         out[name] = (math.degrees(yaw_of(m.C0 @ C_true0.T)),
-                     np.array([err[1], err[0], -err[2]]))
+                     np.array([err[1], err[0], -err[2]]), m.tip_std[[1, 0, 2]],
+                     m.warning is not None)
     return out
 
 
@@ -49,13 +52,16 @@ def run_monte_carlo(n_runs: int, params: TiltParams, seed: int = 0,
     Returns
     -------
     dict: ``run``, ``hold_tilt_deg``, ``max_tilt_deg``, ``pole_length_m`` and per method
-    ``<m>_heading_err_deg``, ``<m>_tip_err_e``, ``_n``, ``_u`` (m).
+    ``<m>_heading_err_deg``, ``<m>_tip_err_e``, ``_n``, ``_u`` (m) and the tip σ the method
+    reported, ``<m>_tip_std_e``, ``_n``, ``_u`` (m), and ``<m>_warned`` (1 when the method
+    warned that its tip is weaker than the tolerance).
     """
     rng = np.random.default_rng(seed)
     cols: dict[str, list] = {"run": [], "hold_tilt_deg": [], "max_tilt_deg": [],
                              "pole_length_m": []}
     for m in METHODS:
-        for k in ("heading_err_deg", "tip_err_e", "tip_err_n", "tip_err_u"):
+        for k in ("heading_err_deg", "tip_err_e", "tip_err_n", "tip_err_u", "tip_std_e",
+                  "tip_std_n", "tip_std_u", "warned"):
             cols[f"{m}_{k}"] = []
     for r in range(n_runs):
         check_cancel(cancel)
@@ -69,10 +75,12 @@ def run_monte_carlo(n_runs: int, params: TiltParams, seed: int = 0,
         cols["max_tilt_deg"].append(sim["truth"]["max_tilt_deg"])
         cols["pole_length_m"].append(cfg.pole_length_m)
         for m in METHODS:
-            he, te = res[m]
+            he, te, ts, warned = res[m]
             cols[f"{m}_heading_err_deg"].append(he)
+            cols[f"{m}_warned"].append(float(warned))
             for i, a in enumerate("enu"):
                 cols[f"{m}_tip_err_{a}"].append(te[i])
+                cols[f"{m}_tip_std_{a}"].append(ts[i])
         report(progress, (r + 1) / max(n_runs, 1), f"Monte-Carlo run {r + 1}/{n_runs}")
     return {k: np.asarray(v, float) for k, v in cols.items()}
 
@@ -81,7 +89,11 @@ def statistics(mc: dict[str, np.ndarray], method: str, mask: np.ndarray | None =
                ) -> dict[str, float]:
     """Heading RMS, share below 1°, horizontal tip shares within 1 and 2.5 cm, 3-D within 1 cm.
 
-    Undetermined runs count as failures in the shares (and are counted).
+    Undetermined runs count as failures in the shares (and are counted). ``coverage_e``,
+    ``_n``, ``_u``: share of the determined runs whose tip error is within 1.96 of the
+    reported σ on that axis (95 % for an honest Gaussian σ); NaN when the table has no σ.
+    ``warned``: share of the runs the method warned about (weak tip); ``h_within_1cm_quiet``:
+    share within 1 cm horizontally of the runs it did not warn about (NaN if none).
     """
     mask = np.ones(mc["run"].size, bool) if mask is None else mask
     he = mc[f"{method}_heading_err_deg"][mask]
@@ -94,7 +106,21 @@ def statistics(mc: dict[str, np.ndarray], method: str, mask: np.ndarray | None =
     def share(x, lim):
         return float(np.sum(np.where(ok, x, np.inf) <= lim)) / count
 
-    return {"runs": int(mask.sum()), "undetermined": int((~ok).sum()),
+    cover = {}
+    for a, err in zip("enu", (e, n, u), strict=True):
+        key = f"{method}_tip_std_{a}"
+        if key in mc and ok.any():
+            sd = mc[key][mask][ok]
+            cover[f"coverage_{a}"] = float(np.mean(np.abs(err[ok]) < 1.96 * sd))
+        else:
+            cover[f"coverage_{a}"] = math.nan
+    wkey = f"{method}_warned"
+    warned = (mc[wkey][mask] > 0) if wkey in mc else np.zeros(h.size, bool)
+    quiet = ok & ~warned
+    cover["warned"] = float(np.sum(warned)) / count
+    cover["h_within_1cm_quiet"] = (float(np.mean(h[quiet] <= 0.01)) if quiet.any()
+                                   else math.nan)
+    return {"runs": int(mask.sum()), "undetermined": int((~ok).sum()), **cover,
             "heading_rms_deg": float(np.sqrt(np.nanmean(he ** 2))) if ok.any() else math.nan,
             "heading_below_1deg": float(np.sum(np.abs(np.where(ok, he, 99)) < 1.0)) / count,
             "h_within_1cm": share(h, 0.01), "h_within_2_5cm": share(h, 0.025),

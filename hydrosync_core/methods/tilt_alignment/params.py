@@ -99,6 +99,12 @@ class TiltParams(Params):
         maximum=5.0, decimals=4, advanced=True,
         help="joint method: a-priori 1σ of the accelerometer bias; a swing in one plane "
              "cannot tell it from the tilt out of that plane, so this bound matters")
+    tip_tolerance_m: float = param(
+        0.01, label="Tip tolerance", unit="m", minimum=0.0, min_exclusive=True, maximum=1.0,
+        decimals=4, step=0.001,
+        help="joint method: warn when the 95 % horizontal uncertainty of the tip along its "
+             "weakest direction exceeds this (a swing nearly in one plane leaves the "
+             "accelerometer bias along the swing axis mixed with the tilt out of the plane)")
     gravity_m_s2: float | None = param(
         None, label="Gravity", unit="m/s²", minimum=9.7, maximum=9.9, decimals=5,
         advanced=True, none_label="normal gravity at the latitude (geodetic input), else "

@@ -30,6 +30,8 @@ from hydrosync_core.methods.tilt_alignment.params import METHODS, TiltParams
 from hydrosync_core.progress import check_cancel, report
 
 STANDARD_GRAVITY = 9.80665
+#: smallest GNSS↔IMU time offset (s) the joint method corrects (when also > 3σ)
+TIME_OFFSET_MIN_S = 0.002
 
 
 @dataclass
@@ -39,7 +41,8 @@ class MethodResult:
     ``psi`` is the heading misalignment (C = Rz(ψ)·C' at the start of the record), ``C0``
     the attitude estimated at the first IMU sample, ``tip``/``tip_std`` the tip and its
     1σ, ``history`` the gradient-descent iterates of ψ (empty for other methods).
-    ``undetermined`` holds the reason when the data do not determine the result.
+    ``undetermined`` holds the reason when the data do not determine the result;
+    ``warning`` says when the result is determined but weaker than the tip tolerance.
     """
 
     name: str
@@ -53,6 +56,7 @@ class MethodResult:
     history: np.ndarray = field(default_factory=lambda: np.zeros(0))
     vectors: int = 0
     undetermined: str | None = None
+    warning: str | None = None
 
     @property
     def ok(self) -> bool:
@@ -78,14 +82,44 @@ class TiltSolution:
 
 def _heading_only(name: str, R: np.ndarray, C_epochs: np.ndarray, C_imu0: np.ndarray,
                   p: np.ndarray, window: np.ndarray, length: float, sigma_h: float,
-                  sigma_v: float, psi_std: float) -> MethodResult:
+                  sigma_v: float, psi_std: float, tilt_std: float) -> MethodResult:
+    """Tip of a heading-only method: mean of the compensated shot epochs.
+
+    σ: GNSS noise of the mean, the heading error (eq. 17) and the tilt error of the
+    levelled attitude at the shot, *tilt_std* (rad, per horizontal axis: accelerometer
+    bias during levelling and gyro-bias drift since), which moves the tip by ``l·δ``
+    horizontally and ``l·sin β·δ`` vertically.
+    """
     C = np.einsum("ij,kjl->kil", R, C_epochs)
     tips = align.compensate(p, C, length)[window]
     n = max(int(window.sum()), 1)
     beta = float(np.mean(tilt_of(C[window])))
-    sh = math.hypot(sigma_h / math.sqrt(n), psi_std * length * math.sin(beta) / math.sqrt(2))
+    sh = math.hypot(sigma_h / math.sqrt(n), psi_std * length * math.sin(beta) / math.sqrt(2),
+                    length * tilt_std)
+    sv = math.hypot(sigma_v / math.sqrt(n), length * math.sin(beta) * tilt_std)
     return MethodResult(name, float(wrap(yaw_of(R))), psi_std, R @ C_imu0, tips.mean(axis=0),
-                        np.array([sh, sh, sigma_v / math.sqrt(n)]))
+                        np.array([sh, sh, sv]))
+
+
+def weak_tip_warning(joint: JointResult, tolerance_m: float) -> str | None:
+    """The warning for a tip weaker than *tolerance_m* (95 %, horizontal), else None.
+
+    The weakest horizontal direction of the tip is, for a swing nearly in one plane,
+    across the plane: there the accelerometer bias along the swing axis and the tilt out
+    of the plane are one unknown, fixed only by the bias prior (``bias_share``).
+    """
+    s95 = 1.96 * joint.weak_sigma_m
+    if not math.isfinite(s95) or s95 <= tolerance_m:
+        return None
+    d = joint.weak_direction
+    az = math.degrees(math.atan2(d[1], d[0])) % 180.0
+    head = (f"joint: the tip is uncertain to ±{1000 * s95:.0f} mm (95 %) along azimuth "
+            f"{az:.0f}°/{az + 180:.0f}°, beyond the {1000 * tolerance_m:.0f} mm tolerance")
+    if joint.bias_share >= 0.5:
+        return (f"{head}; {100 * joint.bias_share:.0f} % of it is the accelerometer bias, "
+                "which this swing cannot tell from the tilt out of its plane (a swing "
+                "nearly in one plane): swing in an ellipse or twist the pole while swinging")
+    return f"{head} (GNSS noise): swing wider or longer"
 
 
 def solve_record(time: np.ndarray, gyro: np.ndarray, accel: np.ndarray, gnss_time: np.ndarray,
@@ -140,6 +174,11 @@ def solve_record(time: np.ndarray, gyro: np.ndarray, accel: np.ndarray, gnss_tim
         longest[int(np.argmax(np.linalg.norm(vec.nav, axis=1)))] = True
         sets["sgd"] = longest
     warnings = []
+    # tilt error of the levelled attitude at the shot (per horizontal axis, rad): the
+    # accelerometer bias seen as tilt while levelling, the gyro bias integrated since
+    drift_s = max(float(np.mean(gnss_time[window])) - (time[0] + p.level_s), 0.0)
+    tilt_std = math.hypot(p.accel_bias_sigma_m_s2 / g,
+                          math.radians(p.gyro_bias_sigma_deg_s) * drift_s)
     for name in ("bgd", "sgd", "mbgd", "svd", "closed_form"):
         check_cancel(cancel)
         mask = sets.get(name)
@@ -162,8 +201,14 @@ def solve_record(time: np.ndarray, gyro: np.ndarray, accel: np.ndarray, gnss_tim
             psi, R = d.psi, rz(d.psi)
         psi_std = align.heading_sigma(nav, imu, psi, n_ep) if mask.sum() > 1 else math.nan
         m = _heading_only(name, R, C_ep, C_imu[0], gnss_ned, window, length, p.sigma_h_m,
-                          p.sigma_v_m, psi_std if math.isfinite(psi_std) else 0.0)
+                          p.sigma_v_m, psi_std if math.isfinite(psi_std) else 0.0, tilt_std)
         m.psi_std, m.vectors = psi_std, int(mask.sum())
+        s95 = 1.96 * float(m.tip_std[0])
+        if s95 > p.tip_tolerance_m:
+            m.warning = (f"{name}: the tip is uncertain to ±{1000 * s95:.0f} mm (95 %) "
+                         f"horizontally, beyond the {1000 * p.tip_tolerance_m:.0f} mm "
+                         "tolerance: a heading-only method keeps the levelling's tilt error "
+                         "(accelerometer bias, gyro drift since); the joint method estimates it")
         if name in ("bgd", "sgd", "mbgd"):
             m.iterations, m.converged, m.history = d.iterations, d.converged, d.history
             if not d.converged:
@@ -181,13 +226,33 @@ def solve_record(time: np.ndarray, gyro: np.ndarray, accel: np.ndarray, gnss_tim
         C0 = rz(start.psi) @ C_imu[0]
         tip0 = align.compensate(gnss_ned, np.einsum("ij,kjl->kil", rz(start.psi), C_ep),
                                 length).mean(axis=0)
+        def adjust(t_gnss, C_start, tip_start):
+            return joint_lsq(time, gyro, accel, t_gnss, gnss_ned, length, C_start, tip_start,
+                             sigma_h=p.sigma_h_m, sigma_v=p.sigma_v_m, g=g,
+                             block_s=p.accel_block_s,
+                             gyro_bias_sigma=math.radians(p.gyro_bias_sigma_deg_s),
+                             accel_bias_sigma=p.accel_bias_sigma_m_s2,
+                             cancel_check=(lambda: check_cancel(cancel)))
+
         try:
-            joint = joint_lsq(time, gyro, accel, gnss_time, gnss_ned, length, C0, tip0,
-                              sigma_h=p.sigma_h_m, sigma_v=p.sigma_v_m, g=g,
-                              block_s=p.accel_block_s,
-                              gyro_bias_sigma=math.radians(p.gyro_bias_sigma_deg_s),
-                              accel_bias_sigma=p.accel_bias_sigma_m_s2,
-                              cancel_check=(lambda: check_cancel(cancel)))
+            joint = adjust(gnss_time, C0, tip0)
+            # time alignment check: a GNSS↔IMU offset the residuals show (> 3σ and
+            # > TIME_OFFSET_MIN_S) is applied to the GNSS tags and the swing adjusted again
+            applied = 0.0
+            for _ in range(2):
+                tau, tau_sd = joint.time_offset_s, joint.time_offset_std_s
+                if not (joint.converged and abs(tau) > max(3 * tau_sd, TIME_OFFSET_MIN_S)):
+                    break
+                applied += tau
+                joint = adjust(np.clip(gnss_time + applied, time[0], time[-1]), joint.C0,
+                               joint.tip)
+            joint.time_offset_applied_s = applied
+            if applied:
+                warnings.append(
+                    f"GNSS time tags are {1000 * applied:+.1f} ms (±"
+                    f"{1000 * joint.time_offset_std_s:.1f}) off the IMU clock: corrected in "
+                    "the joint solution (the other methods are not); check the receiver's "
+                    "time alignment")
         except np.linalg.LinAlgError as exc:
             methods["joint"] = MethodResult("joint", undetermined=f"adjustment failed: {exc}")
         if joint is not None:
@@ -200,6 +265,8 @@ def solve_record(time: np.ndarray, gyro: np.ndarray, accel: np.ndarray, gnss_tim
             elif joint.sigma_gnss_m > 5 * p.sigma_h_m:
                 m.undetermined = (f"GNSS positions do not fit a fixed tip (σ "
                                   f"{100 * joint.sigma_gnss_m:.1f} cm): did the tip move?")
+            else:
+                m.warning = weak_tip_warning(joint, p.tip_tolerance_m)
             methods["joint"] = m
     report(progress, 0.9, "joint batch least squares")
     best = next((methods[n] for n in ("joint", "closed_form", "bgd") if methods[n].ok), None)
@@ -213,5 +280,7 @@ def solve_record(time: np.ndarray, gyro: np.ndarray, accel: np.ndarray, gnss_tim
         tilt = tilt_of(C_ep)
     if screening is not None:
         warnings.append(f"vector screening: {screening}")
+    if methods[p.method].warning:
+        warnings.append(methods[p.method].warning)
     return TiltSolution({n: methods[n] for n in METHODS}, vec, screening, C_imu, gnss_time,
                         gnss_ned, tilt, window, joint, g, warnings)

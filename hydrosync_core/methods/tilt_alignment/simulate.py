@@ -52,6 +52,7 @@ class SwingConfig:
     gnss_sigma_h_m: float = 0.01
     gnss_sigma_v_m: float = 0.02
     gap_s: float = 0.0                 # GNSS gap length inside the swing
+    gnss_time_offset_s: float = 0.0    # GNSS time tags late (+) against the IMU clock
     gyro_noise_deg_s_rthz: float = 0.008
     accel_noise_m_s2_rthz: float = 0.0012
     gyro_bias_deg_s: tuple[float, float, float] = (0.0, 0.0, 0.0)
@@ -186,7 +187,8 @@ def simulate_swing(config: SwingConfig | None = None, seed: int = 0) -> dict:
     hold = t >= duration - cfg.hold_s
     tilt = np.degrees(np.arccos(np.clip(C[:, 2, 2], -1, 1)))
     return {
-        "time": t, "gyro": gyro, "accel": f, "gnss_time": t[idx], "gnss_ned": gnss,
+        "time": t, "gyro": gyro, "accel": f, "gnss_time": t[idx] - cfg.gnss_time_offset_s,
+        "gnss_ned": gnss,
         "pole_length_m": length,
         "truth": {"C": C, "tip_ned": tip,
                   "heading_deg": math.degrees(math.atan2(C[0, 1, 0], C[0, 0, 0])),

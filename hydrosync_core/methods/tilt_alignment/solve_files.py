@@ -63,7 +63,7 @@ def result_document(sol: TiltSolution, frame: dict, length: float, params: TiltP
             "heading_misalignment_deg": math.degrees(m.psi) if m.ok else None,
             "heading_std_deg": math.degrees(m.psi_std) if m.ok else None,
             "iterations": m.iterations, "converged": m.converged, "vectors": m.vectors,
-            "undetermined": m.undetermined}
+            "undetermined": m.undetermined, "warning": m.warning}
     chosen = sol.methods[params.method]
     undetermined = [] if chosen.ok else [f"{params.method}: {chosen.undetermined}"]
     doc = {
@@ -93,7 +93,13 @@ def result_document(sol: TiltSolution, frame: dict, length: float, params: TiltP
                         "accel_bias_m_s2": j.accel_bias.tolist(),
                         "sigma_gnss_m": j.sigma_gnss_m, "rms_gnss_m": j.rms_gnss_m,
                         "sigma_dv_m_s": j.sigma_dv_m_s, "accel_blocks": j.n_blocks,
-                        "iterations": j.iterations, "converged": j.converged}
+                        "iterations": j.iterations, "converged": j.converged,
+                        "weak_azimuth_deg": math.degrees(math.atan2(
+                            j.weak_direction[1], j.weak_direction[0])) % 180.0,
+                        "weak_std_m": j.weak_sigma_m, "weak_bias_share": j.bias_share,
+                        "time_offset_ms": 1000 * (j.time_offset_applied_s + j.time_offset_s),
+                        "time_offset_std_ms": 1000 * j.time_offset_std_s,
+                        "time_offset_applied_ms": 1000 * j.time_offset_applied_s}
     if frame["form"] == "llh":
         doc["origin_llh"] = frame["origin_llh"]
     return doc

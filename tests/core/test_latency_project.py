@@ -69,7 +69,7 @@ def test_run_needs_lever_arm(demo_project):
     demo, _, _ = demo_project
     for path in ("raw/gnss", "raw/attitude", "raw/lines"):
         project.put_table(path, demo.get_table(path))
-    with pytest.raises(InputError, match="vessel sheet has no sensor"):
+    with pytest.raises(InputError, match="vessel sheet has no .gnss. and no .motion. sensor"):
         run(project, {})
     result = run(project, {"lever_arm_m": [-1.5, 2.0, -6.0], "step_s": 0.02})
     assert result.converged

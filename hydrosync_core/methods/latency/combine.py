@@ -11,7 +11,7 @@ from __future__ import annotations
 from dataclasses import asdict, dataclass
 
 import numpy as np
-from scipy import stats
+from scipy import special
 
 from hydrosync_core.methods.latency.params import WEIGHTINGS  # noqa: E402
 
@@ -105,7 +105,7 @@ def combine(
     if n >= 2:
         external = float(np.sqrt(np.sum((w * (x - mean)) ** 2) * n / (n - 1)) / w.sum())
         sigma = float(np.nanmax([internal, external]))
-        factor = float(stats.t.ppf(0.975, n - 1))
+        factor = float(special.stdtrit(n - 1, 0.975))  # Student t quantile
     else:
-        sigma, factor = internal, float(stats.norm.ppf(0.975))
+        sigma, factor = internal, float(special.ndtri(0.975))  # normal quantile
     return Combined(mean, sigma, mean - factor * sigma, mean + factor * sigma, n, weighting)

@@ -38,6 +38,12 @@ ESTIMATOR_NAMES = {
 }
 
 
+def estimator_label(name: str | None) -> str:
+    """``"qi2010 — correlation of raw series (Qi et al. 2010)"`` for the panel and the PDF."""
+    name = str(name or "qi2010")
+    return f"{name} \u2014 {ESTIMATOR_NAMES.get(name, name)}"
+
+
 @dataclass(frozen=True)
 class LatencyParams(Params):
     """Parameters of the latency estimation (Qi et al. 2010 and HydroSync's additions).

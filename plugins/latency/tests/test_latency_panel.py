@@ -53,6 +53,9 @@ def test_demo_run_table_curves_and_toggle(panel, qtbot):
     assert modified
     attrs = project.attrs("results/latency")
     assert attrs["latency_s"] == pytest.approx(truth["latency_s"], abs=0.03)
+    # Which estimator made the number, and the published one is the default choice.
+    assert "Estimator: qi2010" in panel.summary.text()
+    assert panel.form.values()["estimator"] == "qi2010"
     table = project.get_table("results/latency/lines")
     # Table contents match the stored per-line values.
     for row in range(13):

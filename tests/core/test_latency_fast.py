@@ -164,3 +164,13 @@ def test_cli_on_quiet_day_is_unchanged(tmp_path):
                                survey_csv.read_lines_csv(tmp_path / "lines.csv"),
                                cfg.lever_arm_m)
     assert res.latency_s == ref.latency_s and res.to_dict() == ref.to_dict()
+
+
+def test_total_heave_at_times_equals_whole_record_interpolation(day):
+    att = day["attitude"]
+    source = api._Attitude(att, np.asarray(DAY.lever_arm_m))
+    full = total_heave_deg(att["heave"], att["roll"], att["pitch"], DAY.lever_arm_m)
+    rng = np.random.default_rng(5)
+    times = np.concatenate([rng.uniform(att["time"][0] - 1, att["time"][-1] + 1, 500),
+                            att["time"][[0, 7, -1]]])
+    np.testing.assert_array_equal(source.at(times), np.interp(times, att["time"], full))

@@ -151,6 +151,20 @@ class _Attitude:
         return self.t[inner], fft_filter(h, self.interval, self.response)[crop]
 
 
+    def at(self, times: np.ndarray) -> np.ndarray:
+        """Total heave linearly interpolated at *times* (eq. 3), unfiltered.
+
+        Only the two records around each time are evaluated: interpolating over that
+        subset gives exactly what interpolating over the whole record gives.
+        """
+        t = self.t
+        k = np.clip(np.searchsorted(t, times, side="right"), 1, t.size - 1)
+        idx = np.unique(np.concatenate([k - 1, k]))
+        a = self.att
+        h = total_heave_deg(a["heave"][idx], a["roll"][idx], a["pitch"][idx], self.arm)
+        return np.interp(times, t[idx], h)
+
+
 def _filtered_line(line, t_g: np.ndarray, hgt: np.ndarray, response, interval: float,
                    degree: int):
     """A copy of *line* whose heights are filtered zero-phase on a padded GNSS window."""
@@ -312,8 +326,7 @@ def estimate_latency(
             # Seed eqs. 5–6 before (Δt = 0) and after (final Δt) synchronisation.
             final = float(np.nan_to_num(comb.latency_s))
             # Seed eqs. 5–6 always on the raw series (as published).
-            ta, ha = raw_source.window(ln.tags, min(final, 0.0), max(final, 0.0))
-            H0 = heave_at(ln.tags, np.array([0.0, final]), ta, ha)
+            H0 = raw_source.at(np.concatenate([ln.tags, ln.tags - final])).reshape(2, -1)
             before = sigma0(ln.h, H0[0])
             after = sigma0(ln.h, H0[1]) if np.isfinite(comb.latency_s) else float("nan")
         out_lines.append(LineResult(

@@ -45,9 +45,10 @@ def test_lines_with_incredible_sigma_are_not_used_with_a_warning():
 def test_params_estimator_choices_and_migration():
     assert LatencyParams().estimator == "qi2010"
     assert set(ESTIMATOR_CHOICES) == {"qi2010", "qi2010_antialias", "weighted", "auto"}
+    # Results stored before v2 have no estimator: they read as the published one (new
+    # fields with defaults need no schema version of their own).
     old = LatencyParams.from_dict({"step_s": 0.01}, version=1)
-    assert old.estimator == "qi2010" and old.max_line_sigma_s == 100.0
-    assert LatencyParams.SCHEMA_VERSION == 2
+    assert old.estimator == "qi2010"
 
 
 def test_default_scenario_is_the_earlier_simulator():

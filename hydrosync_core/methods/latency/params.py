@@ -52,7 +52,7 @@ class LatencyParams(Params):
     y starboard, z down).
     """
 
-    SCHEMA_VERSION: ClassVar[int] = 2
+    SCHEMA_VERSION: ClassVar[int] = 1
 
     estimator: str = param(
         "qi2010", label="Estimator", choices=ESTIMATOR_CHOICES,
@@ -108,15 +108,6 @@ class LatencyParams(Params):
         3.0, label="Gap factor", minimum=1.0, min_exclusive=True, maximum=1000.0,
         advanced=True, decimals=1,
         help="an interval longer than this many median intervals is a data gap")
-
-    @classmethod
-    def migrate(cls, values: dict, version: int) -> dict:
-        """Version 1 results were computed with the published estimator, without the σ cap."""
-        values = dict(values)
-        if version < 2:
-            values.setdefault("estimator", "qi2010")
-            values.setdefault("max_line_sigma_s", 100.0)
-        return values
 
     def validate(self) -> None:
         lo, hi = self.range_s

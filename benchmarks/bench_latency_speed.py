@@ -3,10 +3,12 @@
 500 lines of 2 minutes, 100 Hz attitude, 10 Hz GNSS, scan −1..+1 s with a 1 ms step
 (2001 candidates per line), issue #15 part 3. Measured in one run:
 
-* ``hydrosync latency`` from the CSV files to the JSON result, in a fresh process (wall
+* ``hydrosync latency --estimator qi2010`` from the CSV files to the JSON result, in a
+  fresh process (wall
   time and the process's peak resident memory) — twice: the first run may compile and
   cache the numba kernels;
-* :func:`estimate_latency` alone on the arrays in memory (the paper's estimator);
+* :func:`estimate_latency` alone on the arrays in memory (the paper's estimator, and the
+  default ``auto``, which runs it and the weighted one);
 * a straightforward per-candidate scan written here: per line and trial delay, one
   ``numpy.interp`` of the total heave at ``tags − Δt`` and one Pearson correlation, the
   grid maximum refined by a parabola — what one writes from eqs. 3–4 of Qi et al. (2010);
@@ -71,7 +73,8 @@ def run_cli(d: Path, step: float) -> tuple[float, float, dict]:
     cmd = [sys.executable, "-c", "import sys; from hydrosync_core.cli import main; "
            "sys.exit(main(sys.argv[1:]))", "latency", "--gnss", str(d / "gnss.csv"),
            "--attitude", str(d / "attitude.csv"), "--lines", str(d / "lines.csv"),
-           "--lever-arm", "-1.5", "2.0", "-6.0", "--step", str(step), "--json", str(out)]
+           "--lever-arm", "-1.5", "2.0", "-6.0", "--step", str(step), "--estimator", "qi2010",
+           "--json", str(out)]
     # Peak RSS of this child alone: a wrapper process reports its own child's.
     wrapper = ("import resource, subprocess, sys; subprocess.run(sys.argv[1:], check=True, "
                "stdout=subprocess.DEVNULL); print(resource.getrusage("
@@ -109,10 +112,13 @@ def main() -> None:
     att = read_attitude_csv(d / "attitude.csv")
     lines = read_lines_csv(d / "lines.csv")
     arm = cfg.lever_arm_m
-    params = {"range_s": (-1.0, 1.0), "step_s": args.step}
+    params = {"range_s": (-1.0, 1.0), "step_s": args.step, "estimator": "qi2010"}
     t0 = time.perf_counter()
     res = api.estimate_latency(gnss, att, lines, arm, params)
     t_est = time.perf_counter() - t0
+    t0 = time.perf_counter()
+    auto = api.estimate_latency(gnss, att, lines, arm, {**params, "estimator": "auto"})
+    t_auto = time.perf_counter() - t0
 
     dts = res.dt_grid
     t0 = time.perf_counter()
@@ -145,7 +151,9 @@ def main() -> None:
                                    "(may compile the kernels)"),
         ("CSV -> JSON", f"{cli_wall:.1f} s, peak RSS {cli_rss:.0f} MiB"),
         ("ratio CSV -> JSON / straightforward", f"1/{t_plain / cli_wall:.0f} (goal <= 1/30)"),
-        ("estimation alone", f"{t_est:.2f} s (goal <= 1 s)"),
+        ("estimation alone (qi2010)", f"{t_est:.2f} s (goal <= 1 s)"),
+        ("estimation, estimator auto", f"{t_auto:.2f} s (qi2010 + weighted; chose "
+                                       f"{auto.estimator}, {auto.latency_s:.5f} s)"),
         ("result", f"{res.latency_s:.5f} s (truth {cfg.latency_s}), 95 % "
                    f"[{res.ci95_low:.4f}, {res.ci95_high:.4f}], {res.n_used} lines used"),
         ("straightforward scan result", f"{plain:.5f} s"),

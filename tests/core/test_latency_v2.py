@@ -43,7 +43,7 @@ def test_lines_with_incredible_sigma_are_not_used_with_a_warning():
 
 
 def test_params_estimator_choices_and_migration():
-    assert LatencyParams().estimator == "qi2010"
+    assert LatencyParams().estimator == "auto"
     assert set(ESTIMATOR_CHOICES) == {"qi2010", "qi2010_antialias", "weighted", "auto"}
     # Results stored before v2 have no estimator: they read as the published one (new
     # fields with defaults need no schema version of their own).

@@ -24,9 +24,9 @@ WEIGHTINGS = ("r", "inverse_variance")
 #: ``weighted`` — anti-aliased, then both series weighted per frequency by the coherence of
 #: heights and heave pooled over the day's lines (maximum-likelihood generalised
 #: cross-correlation; near the Cramér–Rao bound when the errors are coloured).
-#: ``auto`` — runs ``qi2010`` and ``weighted`` and keeps the one with the smaller combined
-#: uncertainty (the weighted one wins with coloured sensor noise, the published one on
-#: clean data: docs/benchmarks.md).
+#: ``auto`` (default) — runs ``qi2010`` and ``weighted`` and keeps the one with the smaller
+#: combined uncertainty (the weighted one wins with coloured sensor noise, the published
+#: one on clean data; never worse than ``qi2010`` in docs/benchmarks.md).
 ESTIMATORS = ("qi2010", "qi2010_antialias", "weighted")
 ESTIMATOR_CHOICES = ESTIMATORS + ("auto",)
 
@@ -55,7 +55,7 @@ class LatencyParams(Params):
     SCHEMA_VERSION: ClassVar[int] = 1
 
     estimator: str = param(
-        "qi2010", label="Estimator", choices=ESTIMATOR_CHOICES,
+        "auto", label="Estimator", choices=ESTIMATOR_CHOICES,
         help="qi2010 = the published method (correlation of the raw series); "
              "qi2010_antialias = the same after low-passing the high-rate heave to the GNSS "
              "band; weighted = coherence-weighted cross-correlation (lower error with "
@@ -108,6 +108,14 @@ class LatencyParams(Params):
         3.0, label="Gap factor", minimum=1.0, min_exclusive=True, maximum=1000.0,
         advanced=True, decimals=1,
         help="an interval longer than this many median intervals is a data gap")
+
+    @classmethod
+    def from_dict(cls, values=None, *, version: int | None = None, strict: bool = True):
+        """As :meth:`Params.from_dict`; a *stored* dict (``version`` given) without an
+        ``estimator`` comes from a result computed before v1.2: the published one."""
+        if version is not None and "estimator" not in (values or {}):
+            values = {**(values or {}), "estimator": "qi2010"}
+        return super().from_dict(values, version=version, strict=strict)
 
     def validate(self) -> None:
         lo, hi = self.range_s

@@ -67,8 +67,9 @@ def straightforward_scan(gnss, att, lines, arm, dts) -> tuple[float, list[float]
     return float(np.average(peaks, weights=weights)), peaks
 
 
-def run_cli(d: Path, step: float) -> tuple[float, float, dict]:
-    """Wall time (s), peak RSS (MiB) and JSON of ``hydrosync latency`` in a new process."""
+def run_cli(d: Path, step: float) -> tuple[float, float, float, dict]:
+    """Wall time (s), peak RSS (MiB), CPU time (s, all threads) and JSON of
+    ``hydrosync latency`` in a new process."""
     out = d / "result.json"
     cmd = [sys.executable, "-c", "import sys; from hydrosync_core.cli import main; "
            "sys.exit(main(sys.argv[1:]))", "latency", "--gnss", str(d / "gnss.csv"),
@@ -77,13 +78,14 @@ def run_cli(d: Path, step: float) -> tuple[float, float, dict]:
            "--json", str(out)]
     # Peak RSS of this child alone: a wrapper process reports its own child's.
     wrapper = ("import resource, subprocess, sys; subprocess.run(sys.argv[1:], check=True, "
-               "stdout=subprocess.DEVNULL); print(resource.getrusage("
-               "resource.RUSAGE_CHILDREN).ru_maxrss)")
+               "stdout=subprocess.DEVNULL); r = resource.getrusage(resource.RUSAGE_CHILDREN); "
+               "print(r.ru_maxrss, r.ru_utime + r.ru_stime)")
     t0 = time.perf_counter()
     res = subprocess.run([sys.executable, "-c", wrapper, *cmd], check=True,
                          capture_output=True, text=True)
     wall = time.perf_counter() - t0
-    return wall, int(res.stdout.strip()) / 1024, json.loads(out.read_text())
+    rss, cpu = res.stdout.split()
+    return wall, int(rss) / 1024, float(cpu), json.loads(out.read_text())
 
 
 def main() -> None:
@@ -105,25 +107,25 @@ def main() -> None:
     t_sim = time.perf_counter() - t0
     size = sum(os.path.getsize(d / f"{n}.csv") for n in ("gnss", "attitude", "lines"))
 
-    cli_first, rss_first, _ = run_cli(d, args.step)
-    cli_wall, cli_rss, doc = run_cli(d, args.step)
+    cli_first, rss_first, _, _ = run_cli(d, args.step)
+    cli_wall, cli_rss, cli_cpu, doc = run_cli(d, args.step)
 
     gnss = read_gnss_csv(d / "gnss.csv")
     att = read_attitude_csv(d / "attitude.csv")
     lines = read_lines_csv(d / "lines.csv")
     arm = cfg.lever_arm_m
     params = {"range_s": (-1.0, 1.0), "step_s": args.step, "estimator": "qi2010"}
-    t0 = time.perf_counter()
+    t0, c0 = time.perf_counter(), time.process_time()
     res = api.estimate_latency(gnss, att, lines, arm, params)
-    t_est = time.perf_counter() - t0
+    t_est, c_est = time.perf_counter() - t0, time.process_time() - c0
     t0 = time.perf_counter()
     auto = api.estimate_latency(gnss, att, lines, arm, {**params, "estimator": "auto"})
     t_auto = time.perf_counter() - t0
 
     dts = res.dt_grid
-    t0 = time.perf_counter()
+    t0, c0 = time.perf_counter(), time.process_time()
     plain, _ = straightforward_scan(gnss, att, lines, arm, dts)
-    t_plain = time.perf_counter() - t0
+    t_plain, c_plain = time.perf_counter() - t0, time.process_time() - c0
 
     available = fastscan.available
     fastscan.available = lambda: False  # the pre-v2 evaluation: every candidate interpolated
@@ -145,13 +147,15 @@ def main() -> None:
         ("GNSS epochs (10 Hz)", f"{gnss['time'].size:,}"),
         ("candidates per line", f"{dts.size} (step {args.step * 1e3:g} ms)"),
         ("simulation + CSV writing", f"{t_sim:.1f} s"),
-        ("straightforward scan (reference)", f"{t_plain:.1f} s"),
+        ("straightforward scan (reference)", f"{t_plain:.1f} s (CPU {c_plain:.1f} s)"),
         ("pre-v2 estimator (all candidates)", f"{t_old:.1f} s"),
         ("CSV -> JSON, first run", f"{cli_first:.1f} s, peak RSS {rss_first:.0f} MiB "
                                    "(may compile the kernels)"),
-        ("CSV -> JSON", f"{cli_wall:.1f} s, peak RSS {cli_rss:.0f} MiB"),
-        ("ratio CSV -> JSON / straightforward", f"1/{t_plain / cli_wall:.0f} (goal <= 1/30)"),
-        ("estimation alone (qi2010)", f"{t_est:.2f} s (goal <= 1 s)"),
+        ("CSV -> JSON", f"{cli_wall:.1f} s (CPU {cli_cpu:.1f} s, all threads), peak RSS "
+                        f"{cli_rss:.0f} MiB"),
+        ("ratio CSV -> JSON / straightforward", f"1/{t_plain / cli_wall:.0f} wall, "
+                                                f"1/{c_plain / cli_cpu:.0f} CPU (goal <= 1/30)"),
+        ("estimation alone (qi2010)", f"{t_est:.2f} s, CPU {c_est:.2f} s (goal <= 1 s)"),
         ("estimation, estimator auto", f"{t_auto:.2f} s (qi2010 + weighted; chose "
                                        f"{auto.estimator}, {auto.latency_s:.5f} s)"),
         ("result", f"{res.latency_s:.5f} s (truth {cfg.latency_s}), 95 % "

@@ -53,7 +53,7 @@ def fft_filter(x: np.ndarray, dt: float, response) -> np.ndarray:
 
     The series is sampled every *dt* seconds (regular sampling assumed). Its linear trend
     is taken out before and put back after (scaled by the response at 0 Hz), and the
-    series is mirrored so that the FFT sees no jump at the ends.
+    series is mirrored on both sides so that the FFT sees no jump next to the data.
     """
     n = x.size
     if n < 4:
@@ -61,9 +61,15 @@ def fft_filter(x: np.ndarray, dt: float, response) -> np.ndarray:
     k = np.arange(n, dtype=float)
     slope, intercept = np.polyfit(k - k.mean(), x, 1)
     trend = intercept + slope * (k - k.mean())
-    y = np.concatenate([x - trend, (x - trend)[::-1]])
-    f = np.fft.rfftfreq(y.size, dt)
-    out = np.fft.irfft(np.fft.rfft(y) * response(f), y.size)[:n]
+    from scipy import fft
+
+    # Mirrored on both sides to a fast FFT length (about twice n): the wrap-around seam
+    # lies half a window away from the data.
+    size = fft.next_fast_len(2 * n, real=True)
+    left = (size - n) // 2
+    y = np.pad(x - trend, (left, size - n - left), mode="symmetric")
+    f = np.fft.rfftfreq(size, dt)
+    out = fft.irfft(fft.rfft(y) * response(f), size)[left:left + n]
     return out + trend * float(response(np.zeros(1))[0])
 
 

@@ -159,7 +159,11 @@ class _Attitude:
         """
         t = self.t
         k = np.clip(np.searchsorted(t, times, side="right"), 1, t.size - 1)
-        idx = np.unique(np.concatenate([k - 1, k]))
+        lo = int(k.min()) - 1
+        mark = np.zeros(int(k.max()) - lo + 1, dtype=bool)
+        mark[k - 1 - lo] = True
+        mark[k - lo] = True
+        idx = np.flatnonzero(mark) + lo
         a = self.att
         h = total_heave_deg(a["heave"][idx], a["roll"][idx], a["pitch"][idx], self.arm)
         return np.interp(times, t[idx], h)

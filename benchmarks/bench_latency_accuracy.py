@@ -1,64 +1,119 @@
-"""Accuracy of the latency estimate: Monte-Carlo over simulated survey days.
+"""Accuracy of the latency estimators against the truth and the Cramér–Rao bound (issue #15 part 1).
 
-For each GNSS rate (1 Hz like the seed's RTK, 10 Hz) and true delay (+0.29 s, −0.15 s),
-simulate N days of 13 two-minute lines (50 Hz attitude, R ≈ 0.85–0.95 as in the seed's
-table 1), estimate the delay with default parameters and report the bias and RMSE of the
-final Δt against the truth, the mean reported uncertainty, the coverage of the 95 %
-interval, and the lines' R range. Run: ``.venv/bin/python benchmarks/bench_latency_accuracy.py``.
+For each noise scenario (``simulate.SCENARIOS``: clean, paper-like, coloured) and GNSS rate,
+simulate N days of 13 two-minute lines (50 Hz attitude at 1 Hz GNSS, else 100 Hz),
+estimate the delay with each estimator (``qi2010`` = Qi et al. 2010 as published,
+``qi2010_antialias``, ``weighted``) and report the RMSE of the final Δt, the mean reported
+σ, the 95 % coverage, and the Cramér–Rao bound of the day computed for the simulated
+noise model: signal spectrum from the noise-free total heave, noise spectra of the
+simulated errors (white + AR(1) in the GNSS heights, AR(1) + white heave error and
+roll/pitch noise through the lever arm in the heave, in the GNSS band),
+``1/(2T ∫ (2πf)² γ²/(1−γ²) df)`` per line, lines independent.
+Run: ``.venv/bin/python benchmarks/bench_latency_accuracy.py [--days 50]``.
 """
 
 from __future__ import annotations
 
 import argparse
+import dataclasses
 import time
 
 import numpy as np
+from scipy.signal import welch
 
 from hydrosync_core.methods.latency import estimate_latency
-from hydrosync_core.methods.latency.simulate import DayConfig, simulate_day
+from hydrosync_core.methods.latency.heave import total_heave_deg
+from hydrosync_core.methods.latency.params import ESTIMATORS
+from hydrosync_core.methods.latency.prefilter import crb_variance
+from hydrosync_core.methods.latency.simulate import scenario, simulate_day
+
+ROWS = [("clean", 1.0), ("clean", 10.0), ("paper", 1.0), ("paper", 10.0),
+        ("coloured", 1.0), ("coloured", 5.0), ("coloured", 10.0), ("coloured", 20.0)]
+TRUE = 0.29
+
+REPORTED = (*ESTIMATORS, "auto")
 
 
-def run_case(gnss_hz: float, latency: float, days: int, weighting: str) -> dict:
-    errors, uncert, covered, r_all, line_err, line_unc = [], [], [], [], [], []
-    for seed in range(days):
-        cfg = DayConfig(latency_s=latency, gnss_hz=gnss_hz)
-        day = simulate_day(cfg, seed=1000 + seed)
-        res = estimate_latency(day["gnss"], day["attitude"], day["lines"], cfg.lever_arm_m,
-                               {"weighting": weighting})
-        errors.append(res.latency_s - latency)
-        uncert.append(res.uncertainty_s)
-        covered.append(res.ci95_low <= latency <= res.ci95_high)
-        r_all += [ln.r_max for ln in res.lines]
-        line_err += [ln.latency_s - latency for ln in res.lines if ln.used]
-        line_unc += [ln.uncertainty_s for ln in res.lines if ln.used]
-    e = np.array(errors)
-    le = np.array(line_err)
-    return {
-        "bias_ms": 1e3 * e.mean(), "rmse_ms": 1e3 * np.sqrt(np.mean(e**2)),
-        "unc_ms": 1e3 * np.mean(uncert), "cover": np.mean(covered),
-        "r5": np.percentile(r_all, 5), "r50": np.median(r_all), "r95": np.percentile(r_all, 95),
-        "line_rmse_ms": 1e3 * np.sqrt(np.mean(le**2)), "line_unc_ms": 1e3 * np.mean(line_unc),
-    }
+def _ar1_psd(f, fs, tau, std):
+    """One-sided PSD (m²/Hz) of a sampled first-order Gauss–Markov series."""
+    if std <= 0:
+        return np.zeros_like(f)
+    phi = np.exp(-1.0 / (fs * tau))
+    return 2 * std**2 * (1 - phi**2) / np.abs(1 - phi * np.exp(-2j * np.pi * f / fs)) ** 2 / fs
+
+
+def crb_day(cfg, seed: int) -> float:
+    """Cramér–Rao bound (s) of the day's delay under the simulated noise model."""
+    quiet = dataclasses.replace(cfg, gnss_white_m=0.0, multipath_m=0.0, heave_error_m=0.0,
+                                heave_white_m=0.0, attitude_noise_deg=0.0, squat_m=0.0)
+    day = simulate_day(quiet, seed=seed)
+    att = day["attitude"]
+    h_att = total_heave_deg(att["heave"], att["roll"], att["pitch"], cfg.lever_arm_m)
+    fs = cfg.gnss_hz
+    nper = int(64 * fs)
+    spectra = []
+    for start, end in zip(day["lines"]["start"], day["lines"]["end"], strict=True):
+        t = np.arange(start, end, 1.0 / fs)
+        f, s = welch(np.interp(t, att["time"], h_att), fs, nperseg=min(nper, t.size))
+        spectra.append(s)
+    signal = np.mean(spectra, axis=0)
+    n_h = 2 * cfg.gnss_white_m**2 / fs + _ar1_psd(f, fs, cfg.multipath_tau_s, cfg.multipath_m)
+    x, y, _ = cfg.lever_arm_m
+    white_att = (cfg.heave_white_m**2 + (x**2 + y**2) * np.radians(cfg.attitude_noise_deg)**2)
+    n_H = (2 * white_att / cfg.attitude_hz
+           + _ar1_psd(f, cfg.attitude_hz, cfg.heave_error_tau_s, cfg.heave_error_m))
+    coherence = signal**2 / ((signal + n_h) * (signal + n_H))
+    info = sum(1.0 / crb_variance(f, coherence, cfg.line_s) for _ in range(cfg.n_lines))
+    return float(np.sqrt(1.0 / info))
+
+
+def _sigma(res) -> float:
+    return res.uncertainty_s if res.converged and np.isfinite(res.uncertainty_s) else np.inf
+
+
+def run_row(name: str, hz: float, days: int) -> dict:
+    out = {e: [] for e in REPORTED}
+    crb = []
+    for k in range(days):
+        cfg = scenario(name, latency_s=TRUE, gnss_hz=hz, attitude_hz=50.0 if hz < 5 else 100.0)
+        seed = 2000 + k
+        day = simulate_day(cfg, seed=seed)
+        results = {}
+        for est in ESTIMATORS:
+            results[est] = estimate_latency(day["gnss"], day["attitude"], day["lines"],
+                                            cfg.lever_arm_m, {"estimator": est})
+        # estimator="auto" keeps the smaller-σ of qi2010 and weighted (same rule as api._auto)
+        results["auto"] = min((results["qi2010"], results["weighted"]), key=_sigma)
+        for est, res in results.items():
+            out[est].append((res.latency_s - TRUE, res.uncertainty_s,
+                             res.ci95_low <= TRUE <= res.ci95_high))
+        if k < 5:  # the bound depends on the spectra, not on the noise draw
+            crb.append(crb_day(cfg, seed))
+    return {"crb": float(np.mean(crb)),
+            **{e: np.array(v, dtype=float) for e, v in out.items()}}
 
 
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--days", type=int, default=20)
+    parser.add_argument("--days", type=int, default=50)
     args = parser.parse_args()
-    print(f"latency accuracy, {args.days} simulated days per row, 13 lines x 120 s, 50 Hz attitude")
-    print(f"{'GNSS':>5} {'true':>6} {'weights':>8} {'bias':>7} {'RMSE':>7} {'unc':>7} {'cov95':>6} "
-          f"{'line RMSE':>9} {'line unc':>8} {'R p5/p50/p95':>17} {'time':>6}")
-    print(f"{'Hz':>5} {'s':>6} {'':>8} {'ms':>7} {'ms':>7} {'ms':>7} {'':>6} {'ms':>9} {'ms':>8}")
-    for hz in (1.0, 10.0):
-        for latency in (0.29, -0.15):
-            for weighting in ("r", "inverse_variance"):
-                t0 = time.perf_counter()
-                s = run_case(hz, latency, args.days, weighting)
-                print(f"{hz:5.0f} {latency:+6.2f} {weighting[:8]:>8} {s['bias_ms']:7.2f} "
-                      f"{s['rmse_ms']:7.2f} {s['unc_ms']:7.2f} {s['cover']:6.2f} "
-                      f"{s['line_rmse_ms']:9.1f} {s['line_unc_ms']:8.1f} "
-                      f"{s['r5']:.3f}/{s['r50']:.3f}/{s['r95']:.3f} "
-                      f"{time.perf_counter() - t0:5.1f}s", flush=True)
+    print(f"latency accuracy, {args.days} simulated days per row, 13 lines x 120 s, "
+          f"true delay {TRUE} s; RMSE, mean σ and CRB in ms")
+    print(f"{'noise':>9} {'GNSS':>4} {'CRB':>6} | " + " | ".join(
+        f"{e:>16} RMSE    σ  cov /CRB" for e in REPORTED) + " | auto/qi2010   time")
+    for name, hz in ROWS:
+        t0 = time.perf_counter()
+        row = run_row(name, hz, args.days)
+        cells = []
+        rmse = {}
+        for est in REPORTED:
+            v = row[est]
+            rmse[est] = 1e3 * np.sqrt(np.nanmean(v[:, 0] ** 2))
+            cells.append(f"{'':>16} {rmse[est]:5.2f} {1e3 * np.nanmean(v[:, 1]):5.2f} "
+                         f"{np.mean(v[:, 2]):.2f} {rmse[est] / (1e3 * row['crb']):4.1f}")
+        print(f"{name:>9} {hz:4.0f} {1e3 * row['crb']:6.2f} | " + " | ".join(cells)
+              + f" | {rmse['auto'] / rmse['qi2010']:11.2f} {time.perf_counter() - t0:5.0f}s",
+              flush=True)
 
 
 if __name__ == "__main__":

@@ -1,69 +1,177 @@
-"""Speed and memory of the latency estimate on a full survey day.
+"""Speed and memory of the latency estimate on a full survey day, against a straightforward scan.
 
 500 lines of 2 minutes, 100 Hz attitude, 10 Hz GNSS, scan −1..+1 s with a 1 ms step
-(2001 candidates per line), end to end (trend removal, scan, refinement, uncertainty,
-combination, σ0, synchronised output). Peak memory of the estimation is measured with
-tracemalloc (numpy reports its allocations to it); the process's maxrss is shown too.
-Run: ``.venv/bin/python benchmarks/bench_latency_speed.py``.
+(2001 candidates per line), issue #15 part 3. Measured in one run:
+
+* ``hydrosync latency --estimator qi2010`` from the CSV files to the JSON result, in a
+  fresh process (wall
+  time and the process's peak resident memory) — twice: the first run may compile and
+  cache the numba kernels;
+* :func:`estimate_latency` alone on the arrays in memory (the paper's estimator, and the
+  default ``auto``, which runs it and the weighted one);
+* a straightforward per-candidate scan written here: per line and trial delay, one
+  ``numpy.interp`` of the total heave at ``tags − Δt`` and one Pearson correlation, the
+  grid maximum refined by a parabola — what one writes from eqs. 3–4 of Qi et al. (2010);
+* the pre-v2 estimator (every candidate interpolated: ``correlation_curve_direct``) for the
+  "identical to today's" check: final and per-line Δt must agree to 0.1 ms.
+
+Run: ``.venv/bin/python benchmarks/bench_latency_speed.py [--lines 500] [--dir DIR]``.
 """
 
 from __future__ import annotations
 
 import argparse
+import json
+import os
 import resource
+import subprocess
+import sys
+import tempfile
 import time
-import tracemalloc
+from pathlib import Path
 
-from hydrosync_core.methods.latency import estimate_latency, synchronise
-from hydrosync_core.methods.latency.simulate import DayConfig, simulate_day
+import numpy as np
+
+from hydrosync_core.importers.survey_csv import read_lines_csv
+from hydrosync_core.methods.latency import api, fastscan
+from hydrosync_core.methods.latency.fastcsv import read_attitude_csv, read_gnss_csv
+from hydrosync_core.methods.latency.heave import total_heave_deg
+from hydrosync_core.methods.latency.simulate import DayConfig, simulate_day, write_day_csv
+
+CFG = dict(latency_s=0.123, line_s=120.0, run_in_s=10.0, turn_s=30.0, gnss_hz=10.0,
+           attitude_hz=100.0)
+
+
+def straightforward_scan(gnss, att, lines, arm, dts) -> tuple[float, list[float]]:
+    """Per line, per candidate: interpolate, correlate; parabola at the grid maximum."""
+    t_g, hgt, t_att = gnss["time"], gnss["height"], att["time"]
+    h_att = total_heave_deg(att["heave"], att["roll"], att["pitch"], arm)
+    lo, hi = float(dts[0]) - 0.15, float(dts[-1]) + 0.15
+    peaks, weights = [], []
+    for start, end in zip(lines["start"], lines["end"], strict=True):
+        sel = (t_g >= start) & (t_g <= end) & (t_g - hi >= t_att[0]) & (t_g - lo <= t_att[-1])
+        tags, h = t_g[sel], hgt[sel]
+        if tags.size < 30:
+            continue
+        h = h - np.polyval(np.polyfit(tags - tags.mean(), h, 1), tags - tags.mean())
+        r = np.array([np.corrcoef(h, np.interp(tags - d, t_att, h_att))[0, 1] for d in dts])
+        k = int(np.argmax(r))
+        if 0 < k < dts.size - 1:
+            a, b, c = r[k - 1:k + 2]
+            peak = dts[k] + 0.5 * (a - c) / (a - 2 * b + c) * (dts[1] - dts[0])
+        else:
+            continue
+        if r[k] > 0.85:
+            peaks.append(float(peak))
+            weights.append(float(r[k]))
+    return float(np.average(peaks, weights=weights)), peaks
+
+
+def run_cli(d: Path, step: float) -> tuple[float, float, float, dict]:
+    """Wall time (s), peak RSS (MiB), CPU time (s, all threads) and JSON of
+    ``hydrosync latency`` in a new process."""
+    out = d / "result.json"
+    cmd = [sys.executable, "-c", "import sys; from hydrosync_core.cli import main; "
+           "sys.exit(main(sys.argv[1:]))", "latency", "--gnss", str(d / "gnss.csv"),
+           "--attitude", str(d / "attitude.csv"), "--lines", str(d / "lines.csv"),
+           "--lever-arm", "-1.5", "2.0", "-6.0", "--step", str(step), "--estimator", "qi2010",
+           "--json", str(out)]
+    # Peak RSS of this child alone: a wrapper process reports its own child's.
+    wrapper = ("import resource, subprocess, sys; subprocess.run(sys.argv[1:], check=True, "
+               "stdout=subprocess.DEVNULL); r = resource.getrusage(resource.RUSAGE_CHILDREN); "
+               "print(r.ru_maxrss, r.ru_utime + r.ru_stime)")
+    t0 = time.perf_counter()
+    res = subprocess.run([sys.executable, "-c", wrapper, *cmd], check=True,
+                         capture_output=True, text=True)
+    wall = time.perf_counter() - t0
+    rss, cpu = res.stdout.split()
+    return wall, int(rss) / 1024, float(cpu), json.loads(out.read_text())
 
 
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--lines", type=int, default=500)
     parser.add_argument("--step", type=float, default=0.001)
+    parser.add_argument("--dir", type=Path, help="keep/reuse the CSV files here")
     args = parser.parse_args()
-    cfg = DayConfig(latency_s=0.123, n_lines=args.lines, line_s=120.0, run_in_s=10.0,
-                    turn_s=30.0, gnss_hz=10.0, attitude_hz=100.0)
+    cfg = DayConfig(n_lines=args.lines, **CFG)
+    tmp = None
+    if args.dir is None:
+        tmp = tempfile.TemporaryDirectory()
+        d = Path(tmp.name)
+    else:
+        d = args.dir
     t0 = time.perf_counter()
-    day = simulate_day(cfg, seed=7)
+    if not (d / "attitude.csv").exists():
+        write_day_csv(simulate_day(cfg, seed=7), d)
     t_sim = time.perf_counter() - t0
-    n_att, n_gnss = day["attitude"]["time"].size, day["gnss"]["time"].size
+    size = sum(os.path.getsize(d / f"{n}.csv") for n in ("gnss", "attitude", "lines"))
 
-    tracemalloc.start()
-    base = tracemalloc.get_traced_memory()[0]
-    t0 = time.perf_counter()
-    res = estimate_latency(day["gnss"], day["attitude"], day["lines"], cfg.lever_arm_m,
-                           {"range_s": (-1.0, 1.0), "step_s": args.step})
-    t_est = time.perf_counter() - t0
-    peak_est = tracemalloc.get_traced_memory()[1] - base
-    tracemalloc.reset_peak()
-    base = tracemalloc.get_traced_memory()[0]
-    t0 = time.perf_counter()
-    sync = synchronise(day["gnss"], day["attitude"], cfg.lever_arm_m, res.latency_s)
-    t_sync = time.perf_counter() - t0
-    peak_sync = tracemalloc.get_traced_memory()[1] - base
-    tracemalloc.stop()
-    maxrss = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
+    cli_first, rss_first, _, _ = run_cli(d, args.step)
+    cli_wall, cli_rss, cli_cpu, doc = run_cli(d, args.step)
 
-    print("latency speed: one survey day")
+    gnss = read_gnss_csv(d / "gnss.csv")
+    att = read_attitude_csv(d / "attitude.csv")
+    lines = read_lines_csv(d / "lines.csv")
+    arm = cfg.lever_arm_m
+    params = {"range_s": (-1.0, 1.0), "step_s": args.step, "estimator": "qi2010"}
+    t0, c0 = time.perf_counter(), time.process_time()
+    res = api.estimate_latency(gnss, att, lines, arm, params)
+    t_est, c_est = time.perf_counter() - t0, time.process_time() - c0
+    t0 = time.perf_counter()
+    auto = api.estimate_latency(gnss, att, lines, arm, {**params, "estimator": "auto"})
+    t_auto = time.perf_counter() - t0
+
+    dts = res.dt_grid
+    t0, c0 = time.perf_counter(), time.process_time()
+    plain, _ = straightforward_scan(gnss, att, lines, arm, dts)
+    t_plain, c_plain = time.perf_counter() - t0, time.process_time() - c0
+
+    available = fastscan.available
+    fastscan.available = lambda: False  # the pre-v2 evaluation: every candidate interpolated
+    try:
+        t0 = time.perf_counter()
+        old = api.estimate_latency(gnss, att, lines, arm, params)
+        t_old = time.perf_counter() - t0
+    finally:
+        fastscan.available = available
+    line_diff = max(abs(a.latency_s - b.latency_s) for a, b in zip(res.lines, old.lines,
+                                                                  strict=True)
+                    if np.isfinite(a.latency_s))
+    final_diff = abs(doc["latency_s"] - old.latency_s)
+
+    print("latency speed: one survey day (issue #15 part 3)")
     rows = [
-        ("lines", f"{args.lines} x {cfg.line_s:.0f} s"),
-        ("attitude samples (100 Hz)", f"{n_att:,}"),
-        ("GNSS epochs (10 Hz)", f"{n_gnss:,}"),
-        ("candidates per line", f"{res.dt_grid.size} (step {args.step * 1e3:g} ms)"),
-        ("simulation time", f"{t_sim:.1f} s"),
-        ("estimate time", f"{t_est:.1f} s ({1e3 * t_est / args.lines:.0f} ms per line)"),
-        ("synchronise time", f"{t_sync:.2f} s ({sync['time'].size:,} epochs)"),
-        ("peak memory, estimate", f"{peak_est / 2**20:.0f} MiB above the input (tracemalloc)"),
-        ("peak memory, synchronise", f"{peak_sync / 2**20:.0f} MiB above the input"),
-        ("process maxrss", f"{maxrss:.0f} MiB (incl. simulated data)"),
-        ("result", f"{res.latency_s:.4f} s (truth {cfg.latency_s}), 95 % "
+        ("lines", f"{args.lines} x {cfg.line_s:.0f} s, CSV files {size / 2**20:.0f} MiB"),
+        ("attitude records (100 Hz)", f"{att['time'].size:,}"),
+        ("GNSS epochs (10 Hz)", f"{gnss['time'].size:,}"),
+        ("candidates per line", f"{dts.size} (step {args.step * 1e3:g} ms)"),
+        ("simulation + CSV writing", f"{t_sim:.1f} s"),
+        ("straightforward scan (reference)", f"{t_plain:.1f} s (CPU {c_plain:.1f} s)"),
+        ("pre-v2 estimator (all candidates)", f"{t_old:.1f} s"),
+        ("CSV -> JSON, first run", f"{cli_first:.1f} s, peak RSS {rss_first:.0f} MiB "
+                                   "(may compile the kernels)"),
+        ("CSV -> JSON", f"{cli_wall:.1f} s (CPU {cli_cpu:.1f} s, all threads), peak RSS "
+                        f"{cli_rss:.0f} MiB"),
+        ("ratio CSV -> JSON / straightforward", f"1/{t_plain / cli_wall:.0f} wall, "
+                                                f"1/{c_plain / cli_cpu:.0f} CPU (goal <= 1/30)"),
+        ("estimation alone (qi2010)", f"{t_est:.2f} s, CPU {c_est:.2f} s (goal <= 1 s)"),
+        ("estimation, estimator auto", f"{t_auto:.2f} s (qi2010 + weighted; chose "
+                                       f"{auto.estimator}, {auto.latency_s:.5f} s)"),
+        ("result", f"{res.latency_s:.5f} s (truth {cfg.latency_s}), 95 % "
                    f"[{res.ci95_low:.4f}, {res.ci95_high:.4f}], {res.n_used} lines used"),
+        ("straightforward scan result", f"{plain:.5f} s"),
+        ("|CLI - pre-v2| final", f"{final_diff * 1e3:.2e} ms (goal <= 0.1 ms)"),
+        ("max |new - pre-v2| per line", f"{line_diff * 1e3:.2e} ms"),
+        ("machine", f"{os.cpu_count()} cores, load {os.getloadavg()[0]:.1f} at the end"),
+        ("this process maxrss", f"{resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024:.0f}"
+                                " MiB (incl. benchmark data)"),
     ]
     width = max(len(k) for k, _ in rows)
     for key, value in rows:
         print(f"{key:<{width}}  {value}")
+    if tmp is not None:
+        tmp.cleanup()
 
 
 if __name__ == "__main__":

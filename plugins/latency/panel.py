@@ -23,7 +23,7 @@ from PySide6.QtWidgets import (
 
 from hydrosync_core.errors import InputError
 from hydrosync_core.methods.latency.api import line_series
-from hydrosync_core.methods.latency.params import LatencyParams
+from hydrosync_core.methods.latency.params import LatencyParams, estimator_label
 from hydrosync_core.methods.latency.project_run import RESULT, recombine, run, stored_params
 from hydrosync_core.project.vessel import lever_arm as vessel_lever_arm
 from hydrosync_gui.plugin_panel import PluginPanel
@@ -143,6 +143,7 @@ class LatencyPanel(PluginPanel):
         if np.isfinite(a["latency_s"]):
             text = (f"<b>Δt = {a['latency_s']:.3f} s</b> ± {a['uncertainty_s']:.3f} s<br>"
                     f"95 % interval {a['ci95_low']:.3f} … {a['ci95_high']:.3f} s<br>"
+                    f"Estimator: {estimator_label(a.get('estimator', 'qi2010'))}<br>"
                     f"{a['message']}")
         else:
             text = f"<b>No latency</b>: {a['message']}"

@@ -42,7 +42,8 @@ def test_cli_csv_writes_result_json(csv_dir, tmp_path, capsys):
                 "used"} <= set(line)
     assert doc["params"]["range_s"] == [-0.5, 0.5]
     table = capsys.readouterr().out
-    assert "L01" in table and "latency -0.15" in table
+    assert "L01" in table and f"latency {doc['latency_s']:.3f}" in table
+    assert doc["estimator"] in ("qi2010", "weighted") and doc["params"]["estimator"] == "auto"
 
 
 def _bad(tmp_path, capsys, argv):

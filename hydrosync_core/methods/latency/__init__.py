@@ -14,7 +14,7 @@ from __future__ import annotations
 import importlib
 
 #: Version of the analysis (stored with its results; ``PluginSpec.version``).
-VERSION = "1.1.0"
+VERSION = "1.2.0"
 
 _PUBLIC = {
     "LatencyParams": "params", "LatencyResult": "result", "LineResult": "result",

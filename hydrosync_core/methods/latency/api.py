@@ -9,6 +9,7 @@ tags) and ``height`` (m); attitude ``time`` (s, strictly increasing), ``roll``, 
 
 from __future__ import annotations
 
+import dataclasses
 from collections.abc import Mapping
 
 import numpy as np
@@ -19,11 +20,16 @@ from hydrosync_core.methods.latency.correlation import heave_at
 from hydrosync_core.methods.latency.detrend import detrend
 from hydrosync_core.methods.latency.diagnose import diagnose
 from hydrosync_core.methods.latency.heave import total_heave, total_heave_deg
-from hydrosync_core.methods.latency.lines import line_epochs, prepare_line, scan_line
+from hydrosync_core.methods.latency.lines import (
+    attitude_window,
+    line_epochs,
+    prepare_line,
+    scan_line,
+)
 from hydrosync_core.methods.latency.params import LatencyParams
 from hydrosync_core.methods.latency.quality import sigma0
 from hydrosync_core.methods.latency.result import LatencyResult, LineResult
-from hydrosync_core.progress import check_cancel, report
+from hydrosync_core.progress import check_cancel, report, sub_progress
 from hydrosync_core.timespan import span_of
 
 
@@ -41,15 +47,27 @@ def _check_inputs(gnss: Mapping, attitude: Mapping, lever_arm) -> tuple:
     att = {c: _column(attitude, c, "attitude") for c in ("time", "roll", "pitch", "heave")}
     if t_g.size < 2 or att["time"].size < 2:
         raise InputError("gnss" if t_g.size < 2 else "attitude", "fewer than 2 epochs")
-    if np.any(np.diff(t_g) <= 0):
+    if np.any(t_g[1:] <= t_g[:-1]):
         raise InputError("gnss", "time tags are not strictly increasing", field="time")
-    if np.any(np.diff(att["time"]) <= 0):
+    if np.any(att["time"][1:] <= att["time"][:-1]):
         raise InputError("attitude", "time tags are not strictly increasing", field="time")
     arm = np.asarray(lever_arm, dtype=float).ravel()
     if arm.size != 3 or not np.all(np.isfinite(arm)):
         raise InputError(None, "lever arm must be three finite numbers (x y z, m)",
                          field="lever_arm")
     return t_g, hgt, att, arm
+
+
+def median_interval(times: np.ndarray, block: int = 4096, blocks: int = 64) -> float:
+    """Median sampling interval (s) of increasing *times*.
+
+    Long records (a day of 100 Hz attitude) use the intervals of *blocks* evenly spaced
+    runs of *block* samples: the median of 8 million intervals costs more than the scan.
+    """
+    if times.size <= 2 * block * blocks:
+        return float(np.median(np.diff(times)))
+    starts = np.linspace(0, times.size - block - 1, blocks).astype(int)
+    return float(np.median(np.concatenate([np.diff(times[s:s + block + 1]) for s in starts])))
 
 
 def _span_text(times: np.ndarray) -> str:
@@ -73,6 +91,142 @@ def _joint_peak(curves: np.ndarray, weights: np.ndarray, dts: np.ndarray) -> flo
     return float(dts[k])
 
 
+RELATIVE_SIGMA_LIMIT = 10.0
+"""A line whose σ exceeds this many times the median σ of the selected lines is not used."""
+
+
+def implausible_uncertainty(unc: np.ndarray, used: np.ndarray, limit_s: float) -> np.ndarray:
+    """Mask of selected lines whose own uncertainty (s) cannot be trusted.
+
+    Not finite or not positive (R is not curved downwards at the peak), above *limit_s*,
+    or above RELATIVE_SIGMA_LIMIT times the median of the other selected lines (with 3
+    or more). Such a σ would dominate the combined uncertainty — one flat line made a
+    day's 95 % interval 7 s wide although the answer was 18 ms from the truth.
+    """
+    unc = np.asarray(unc, dtype=float)
+    used = np.asarray(used, dtype=bool)
+    ok = np.isfinite(unc) & (unc > 0) & (unc <= limit_s)
+    bad = used & ~ok
+    good = used & ok
+    if good.sum() >= 3:
+        bad |= good & (unc > RELATIVE_SIGMA_LIMIT * np.median(unc[good]))
+    return bad
+
+
+SCAN_THREADS = 2
+"""Lines scanned concurrently (the compiled kernel releases the GIL)."""
+
+
+class _Attitude:
+    """Total heave (eq. 2) of the attitude records, computed per line window on demand.
+
+    A day of 100 Hz attitude is ~10⁷ records: the whole-day total heave would be one more
+    80 MB array; the windows the lines need are computed when a line needs them. With a
+    *response* (callable of f in Hz) the window is padded by ``prefilter.PAD_S`` seconds
+    of records, filtered zero-phase and cropped back (anti-alias / coherence weighting).
+    """
+
+    def __init__(self, att: dict, arm: np.ndarray, response=None, interval: float = 0.0):
+        self.t, self.att, self.arm = att["time"], att, arm
+        self.response, self.interval = response, interval
+
+    def window(self, tags: np.ndarray, lo: float, hi: float) -> tuple[np.ndarray, np.ndarray]:
+        """(times, total heave) of the records needed for ``tags − Δt``, Δt in [lo, hi]."""
+        if tags.size == 0:
+            return self.t[:0], self.t[:0]
+        win = attitude_window(self.t, tags, lo, hi)
+        if self.response is not None:
+            from hydrosync_core.methods.latency.prefilter import PAD_S
+
+            pad = int(round(PAD_S / self.interval))
+            win = slice(max(win.start - pad, 0), min(win.stop + pad, self.t.size))
+        a = self.att
+        h = total_heave_deg(a["heave"][win], a["roll"][win], a["pitch"][win], self.arm)
+        if self.response is None:
+            return self.t[win], h
+        from hydrosync_core.methods.latency.prefilter import fft_filter
+
+        inner = attitude_window(self.t, tags, lo, hi)
+        crop = slice(inner.start - win.start, inner.stop - win.start)
+        return self.t[inner], fft_filter(h, self.interval, self.response)[crop]
+
+
+    def at(self, times: np.ndarray) -> np.ndarray:
+        """Total heave linearly interpolated at *times* (eq. 3), unfiltered.
+
+        Only the two records around each time are evaluated: interpolating over that
+        subset gives exactly what interpolating over the whole record gives.
+        """
+        t = self.t
+        k = np.clip(np.searchsorted(t, times, side="right"), 1, t.size - 1)
+        lo = int(k.min()) - 1
+        mark = np.zeros(int(k.max()) - lo + 1, dtype=bool)
+        mark[k - 1 - lo] = True
+        mark[k - lo] = True
+        idx = np.flatnonzero(mark) + lo
+        a = self.att
+        h = total_heave_deg(a["heave"][idx], a["roll"][idx], a["pitch"][idx], self.arm)
+        return np.interp(times, t[idx], h)
+
+
+def _filtered_line(line, t_g: np.ndarray, hgt: np.ndarray, response, interval: float,
+                   degree: int):
+    """A copy of *line* whose heights are filtered zero-phase on a padded GNSS window."""
+    from hydrosync_core.methods.latency.prefilter import PAD_S, fft_filter
+
+    if not line.usable:
+        return line
+    i0 = int(np.searchsorted(t_g, line.tags[0] - PAD_S, side="left"))
+    i1 = int(np.searchsorted(t_g, line.tags[-1] + PAD_S, side="right"))
+    k0 = int(np.searchsorted(t_g, line.tags[0], side="left")) - i0
+    filtered = fft_filter(hgt[i0:i1], interval, response)[k0:k0 + line.tags.size]
+    h, _ = detrend(line.tags, filtered, degree)
+    return dataclasses.replace(line, h=h, warnings=line.warnings)
+
+
+def _pooled_weighting(prepared: list, peaks: list, source: _Attitude, min_r: float,
+                      g_int: float):
+    """Coherence weighting from all usable lines, aligned at the median first-pass delay."""
+    from hydrosync_core.methods.latency.prefilter import pooled_weighting
+
+    good = [i for i, (ln, pk) in enumerate(zip(prepared, peaks, strict=True))
+            if ln.usable and np.isfinite(pk.latency_s) and not pk.at_edge]
+    if not good:
+        return None
+    sel = [i for i in good if peaks[i].r_max > min_r] or good
+    dt0 = float(np.median([peaks[i].latency_s for i in sel]))
+    pairs = []
+    for i in good:
+        ln = prepared[i]
+        ta, ha = source.window(ln.tags, dt0, dt0)
+        pairs.append((ln.h, heave_at(ln.tags, np.array([dt0]), ta, ha)[0]))
+    return pooled_weighting(pairs, g_int)
+
+
+def _scan_one(line, source: _Attitude, dts: np.ndarray):
+    ta, ha = source.window(line.tags, float(dts[0]), float(dts[-1]))
+    return scan_line(line, ta, ha, dts)
+
+
+def _scan_lines(prepared: list, source: _Attitude, dts: np.ndarray, progress, cancel) -> list:
+    """:func:`scan_line` of every line, in order, on up to SCAN_THREADS threads."""
+    from concurrent.futures import ThreadPoolExecutor
+
+    peaks = []
+    with ThreadPoolExecutor(SCAN_THREADS) as pool:
+        futures = [pool.submit(_scan_one, line, source, dts) for line in prepared]
+        try:
+            for i, future in enumerate(futures):
+                check_cancel(cancel)
+                report(progress, i / len(futures), f"line {prepared[i].name}")
+                peaks.append(future.result())
+        except BaseException:
+            for future in futures:
+                future.cancel()
+            raise
+    return peaks
+
+
 def estimate_latency(
     gnss: Mapping, attitude: Mapping, lines: Mapping, lever_arm,
     params: LatencyParams | Mapping | None = None, progress=None, cancel=None,
@@ -84,13 +238,15 @@ def estimate_latency(
     line has enough epochs.
     """
     p = params if isinstance(params, LatencyParams) else LatencyParams.from_dict(params)
+    if p.estimator == "auto":
+        return _auto(gnss, attitude, lines, lever_arm, p, progress, cancel)
     t_g, hgt, att, arm = _check_inputs(gnss, attitude, lever_arm)
     t_att = att["time"]
-    # Seed eq. 2: total heave at the antenna, at attitude rate.
-    h_att = total_heave_deg(att["heave"], att["roll"], att["pitch"], arm)
+    # Seed eq. 2: total heave at the antenna, at attitude rate (per line window).
+    source = _Attitude(att, arm)
     lo, hi = p.range_s
     dts = np.linspace(lo, hi, int(round((hi - lo) / p.step_s)) + 1)
-    g_int, a_int = float(np.median(np.diff(t_g))), float(np.median(np.diff(t_att)))
+    g_int, a_int = median_interval(t_g), median_interval(t_att)
     for column in ("name", "start", "end"):
         if column not in lines:
             raise InputError("lines", f"missing column {column}", field=column)
@@ -100,13 +256,38 @@ def estimate_latency(
     if not names:
         raise InputError("lines", "no survey lines")
 
-    prepared, peaks = [], []
-    for i, name in enumerate(names):
-        check_cancel(cancel)
-        report(progress, 0.9 * i / len(names), f"line {name}")
-        line = prepare_line(name, starts[i], ends[i], t_g, hgt, t_att, p, g_int, a_int)
-        prepared.append(line)
-        peaks.append(scan_line(line, t_att, h_att, dts))
+    prepared = [prepare_line(name, starts[i], ends[i], t_g, hgt, t_att, p, g_int, a_int)
+                for i, name in enumerate(names)]
+    raw_source = source
+    weighting = None
+    if p.estimator != "qi2010":
+        from hydrosync_core.methods.latency import prefilter
+
+        cutoff = prefilter.ANTIALIAS_FRACTION * 0.5 / g_int
+        source = _Attitude(att, arm, lambda f: prefilter.antialias_response(f, cutoff), a_int)
+    peaks = _scan_lines(prepared, source, dts,
+                        sub_progress(progress, 0, 0.45 if p.estimator == "weighted" else 0.9),
+                        cancel)
+    if p.estimator == "weighted":
+        weighting = _pooled_weighting(prepared, peaks, source, p.min_r, g_int)
+        if weighting is None:
+            warnings_pre = ["coherence weighting not possible (too few epochs): "
+                            "the anti-aliased correlation is used"]
+        else:
+            warnings_pre = []
+            source = _Attitude(att, arm, weighting.response, a_int)
+            scan_input = [_filtered_line(ln, t_g, hgt, weighting.response, g_int,
+                                         int(p.detrend_degree)) for ln in prepared]
+            first = peaks
+            peaks = _scan_lines(scan_input, source, dts, sub_progress(progress, 0.45, 0.9),
+                                cancel)
+            # R (the selection threshold, the curves shown) stays on the scale of the
+            # published R: the anti-aliased correlation; Δt and σ come from the weighted one.
+            for pk, pk1 in zip(peaks, first, strict=True):
+                pk.curve, pk.r_max = pk1.curve, pk1.r_max
+                pk.at_edge = pk.at_edge or pk1.at_edge
+    else:
+        warnings_pre = []
     if not any(line.usable for line in prepared):
         raise InputError("lines", f"no line has {p.min_epochs} or more GNSS epochs with attitude "
                          "data: lines span " + _span_text(np.r_[starts, ends])
@@ -119,6 +300,13 @@ def estimate_latency(
     usable = np.array([ln.usable and not pk.at_edge
                        for ln, pk in zip(prepared, peaks, strict=True)])
     used = select_lines(r_max, p.min_r, usable)
+    not_credible = implausible_uncertainty(unc, used, p.max_line_sigma_s)
+    for i in np.flatnonzero(not_credible):
+        prepared[i].warnings.append(
+            f"line {names[i]}: its uncertainty {unc[i]:.3g} s is not credible (R peak too "
+            f"flat to locate; limit {p.max_line_sigma_s:g} s or {RELATIVE_SIGMA_LIMIT:g}x the "
+            "median line): not used (tick it to use it anyway)")
+    used &= ~not_credible
     outliers = find_outliers(lat, unc, used, p.outlier_k)
     if outliers.any():
         median = float(np.median(lat[used]))
@@ -140,14 +328,16 @@ def estimate_latency(
         before = after = float("nan")
         if ln.usable:
             # Seed eqs. 5–6 before (Δt = 0) and after (final Δt) synchronisation.
-            H0 = heave_at(ln.tags, np.array([0.0, np.nan_to_num(comb.latency_s)]), t_att, h_att)
+            final = float(np.nan_to_num(comb.latency_s))
+            # Seed eqs. 5–6 always on the raw series (as published).
+            H0 = raw_source.at(np.concatenate([ln.tags, ln.tags - final])).reshape(2, -1)
             before = sigma0(ln.h, H0[0])
             after = sigma0(ln.h, H0[1]) if np.isfinite(comb.latency_s) else float("nan")
         out_lines.append(LineResult(
             ln.name, float(ln.start), float(ln.end), int(ln.tags.size), pk.r_max, pk.latency_s,
             pk.uncertainty_s, before, after, bool(u), pk.at_edge, tuple(ln.warnings)))
 
-    warnings = [w for ln in prepared for w in ln.warnings]
+    warnings = warnings_pre + [w for ln in prepared for w in ln.warnings]
     n_low = int(np.sum(usable & ~used))
     if n_low:
         warnings.append(f"{n_low} line(s) with R_max <= {p.min_r} not used")
@@ -161,13 +351,35 @@ def estimate_latency(
         warnings += more
     converged = comb.n_used > 0
     best = f"{np.nanmax(r_max):.3f}" if np.any(np.isfinite(r_max)) else "none"
-    message = (f"{comb.n_used} of {len(names)} lines used ({p.weighting} weights)" if converged
+    message = (f"{comb.n_used} of {len(names)} lines used ({p.weighting} weights, "
+               f"{p.estimator} estimator)" if converged
                else f"no line with R_max > {p.min_r}: best R_max {best}")
     report(progress, 1.0, "done")
     return LatencyResult(
         comb.latency_s, comb.uncertainty_s, comb.ci95_low, comb.ci95_high, comb.n_used,
         p.weighting, joint, tuple(out_lines), dts, curves, tuple(float(v) for v in arm),
-        p.to_dict(), converged, message, tuple(warnings), diagnostics)
+        p.to_dict(), converged, message, tuple(warnings), diagnostics, p.estimator)
+
+
+def _auto(gnss, attitude, lines, lever_arm, p: LatencyParams, progress, cancel
+          ) -> LatencyResult:
+    """``estimator = auto``: qi2010 and weighted, the one with the smaller uncertainty."""
+    runs = {}
+    for k, name in enumerate(("qi2010", "weighted")):
+        runs[name] = estimate_latency(gnss, attitude, lines, lever_arm,
+                                      dataclasses.replace(p, estimator=name),
+                                      sub_progress(progress, 0.5 * k, 0.5 * k + 0.5), cancel)
+
+    def key(r: LatencyResult) -> float:
+        return r.uncertainty_s if r.converged and np.isfinite(r.uncertainty_s) else np.inf
+
+    best = min(runs.values(), key=key)
+    other = runs["weighted" if best.estimator == "qi2010" else "qi2010"]
+    note = (f"auto: {best.estimator} (σ {best.uncertainty_s * 1e3:.2f} ms; {other.estimator} "
+            f"{other.uncertainty_s * 1e3:.2f} ms, Δt {other.latency_s:+.4f} s)")
+    return dataclasses.replace(best, params=p.to_dict(),
+                               message=f"{best.message}; {note}" if best.converged
+                               else best.message)
 
 
 def _attitude_at(attitude: Mapping, times: np.ndarray) -> dict[str, np.ndarray]:

@@ -39,12 +39,9 @@ def _rename(exc: InputError, files: dict) -> InputError:
 
 
 def _run_csv(args: argparse.Namespace) -> int:
-    from hydrosync_core.importers.survey_csv import (
-        read_attitude_csv,
-        read_gnss_csv,
-        read_lines_csv,
-    )
+    from hydrosync_core.importers.survey_csv import read_lines_csv
     from hydrosync_core.methods.latency.api import estimate_latency
+    from hydrosync_core.methods.latency.fastcsv import read_attitude_csv, read_gnss_csv
 
     missing = [o for o, v in (("--gnss", args.gnss), ("--attitude", args.attitude),
                               ("--lines", args.lines), ("--lever-arm", args.param_lever_arm_m),
@@ -59,7 +56,10 @@ def _run_csv(args: argparse.Namespace) -> int:
         try:
             params = _params(args)
             gnss = read_gnss_csv(args.gnss)
-            attitude = read_attitude_csv(args.attitude, args.heave_positive)
+            # The heading is only needed for the synchronised data set.
+            attitude = read_attitude_csv(
+                args.attitude, args.heave_positive,
+                None if args.sync_csv is not None else ("time", "roll", "pitch", "heave"))
             lines = read_lines_csv(args.lines)
             result = estimate_latency(gnss, attitude, lines, params.lever_arm_m, params)
         except InputError as exc:

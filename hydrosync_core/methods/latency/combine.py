@@ -11,7 +11,7 @@ from __future__ import annotations
 from dataclasses import asdict, dataclass
 
 import numpy as np
-from scipy import stats
+from scipy import special
 
 from hydrosync_core.methods.latency.params import WEIGHTINGS  # noqa: E402
 
@@ -80,8 +80,10 @@ def combine(
 
     The standard uncertainty is the larger of the *internal* one (propagated from the
     per-line uncertainties) and the *external* one (from the scatter of the lines about
-    the mean, a weighted sandwich estimate); the interval uses Student's t with n − 1
-    degrees of freedom (normal when only the internal figure exists).
+    the mean, a weighted sandwich estimate). The 95 % interval uses the normal factor
+    when the internal figure is the larger (it rests on all the lines' residuals) and
+    Student's t with n − 1 degrees of freedom when the scatter of the n lines is (until
+    v1.2 always Student's t, which over-covered: 0.986 over 240 simulated days).
     """
     if weighting not in WEIGHTINGS:
         raise ValueError(f"weighting must be one of {WEIGHTINGS}, not '{weighting}'")
@@ -104,8 +106,13 @@ def combine(
     internal = float(np.sqrt(np.nansum((w * s) ** 2)) / w.sum()) if np.any(np.isfinite(s)) else nan
     if n >= 2:
         external = float(np.sqrt(np.sum((w * (x - mean)) ** 2) * n / (n - 1)) / w.sum())
-        sigma = float(np.nanmax([internal, external]))
-        factor = float(stats.t.ppf(0.975, n - 1))
+        if np.isfinite(internal) and internal >= external:
+            # The lines agree within their own uncertainties: the internal figure, built
+            # from every line's residuals (many degrees of freedom), with the normal factor.
+            sigma, factor = internal, float(special.ndtri(0.975))
+        else:
+            # The scatter of n lines says more: Student's t with n − 1 degrees of freedom.
+            sigma, factor = external, float(special.stdtrit(n - 1, 0.975))
     else:
-        sigma, factor = internal, float(stats.norm.ppf(0.975))
+        sigma, factor = internal, float(special.ndtri(0.975))  # normal quantile
     return Combined(mean, sigma, mean - factor * sigma, mean + factor * sigma, n, weighting)

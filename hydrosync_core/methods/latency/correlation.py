@@ -10,6 +10,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from hydrosync_core.methods.latency import fastscan
+
 CHUNK_ELEMENTS = 2_000_000
 """Candidates x epochs interpolated per chunk (16 MB of float64)."""
 
@@ -27,6 +29,49 @@ def correlation_curve(
     tags: np.ndarray, h: np.ndarray, t_att: np.ndarray, h_att: np.ndarray, dts: np.ndarray
 ) -> np.ndarray:
     """Pearson correlation R(Δt) of *h* with total heave at ``tags − Δt`` (seed eq. 4).
+
+    Parameters
+    ----------
+    tags : ndarray (n,)
+        GNSS time tags of the line, s.
+    h : ndarray (n,)
+        Detrended GNSS heights, m.
+    t_att, h_att : ndarray (m,)
+        Attitude times (s, increasing) and total heave there (m, up).
+    dts : ndarray (k,)
+        Candidate delays Δt, s.
+
+    Returns
+    -------
+    ndarray (k,)
+        R for every candidate (NaN where the heave is constant).
+
+    On a uniform grid the sums are exact closed forms over the attitude segments
+    (:mod:`.fastscan`); the result equals :func:`correlation_curve_direct` to rounding.
+    """
+    dts = np.asarray(dts, dtype=float)
+    step = fastscan.uniform_step(dts) if fastscan.available() else None
+    if step is None or tags.size < 2:
+        return correlation_curve_direct(tags, h, t_att, h_att, dts)
+    hc = h - h.mean()
+    hn = hc / max(float(np.linalg.norm(hc)), 1e-300)
+    F, S1, S2 = fastscan.correlation_sums(tags, hn, t_att, h_att, dts, step)
+    n = tags.size
+    var = S2 - S1 * S1 / n
+    # Seed eq. 4 from the sums: Σ hn·(H − H̄) / sqrt(Σ (H − H̄)²).
+    with np.errstate(invalid="ignore", divide="ignore"):
+        r = (F - S1 * (hn.sum() / n)) / np.sqrt(var)
+    r[~(var > 1e-12 * np.abs(S2) + 1e-300)] = np.nan
+    return r
+
+
+def correlation_curve_direct(
+    tags: np.ndarray, h: np.ndarray, t_att: np.ndarray, h_att: np.ndarray, dts: np.ndarray
+) -> np.ndarray:
+    """R(Δt) by interpolating every (candidate, epoch) pair: the straightforward evaluation.
+
+    The reference for :func:`correlation_curve` (same arguments and result); used when the
+    compiled kernel is not available or the grid is not uniform.
 
     Parameters
     ----------

@@ -60,9 +60,31 @@ def line_epochs(t_g: np.ndarray, start: float, end: float, skip_s: float, t_att:
     ``T − Δt`` stays inside ``t_att`` for every Δt in ``[dt_low, dt_high]`` (no
     extrapolation of the attitude).
     """
-    sel = (t_g >= start + skip_s) & (t_g <= end)
-    sel &= (t_g - dt_high >= t_att[0]) & (t_g - dt_low <= t_att[-1])
+    sel = np.zeros(t_g.size, dtype=bool)
+    sel[line_slice(t_g, start, end, skip_s, t_att, dt_low, dt_high)] = True
     return sel
+
+
+def line_slice(t_g: np.ndarray, start: float, end: float, skip_s: float, t_att: np.ndarray,
+               dt_low: float, dt_high: float) -> slice:
+    """:func:`line_epochs` as a slice of the increasing tags *t_g* (same epochs, no mask).
+
+    The conditions are monotone in the tag, so the epochs are contiguous: a binary search
+    finds their neighbourhood and the exact tests of :func:`line_epochs` decide its ends.
+    """
+    pad = 1e-6 * (1.0 + abs(dt_low) + abs(dt_high))
+    lo = max(start + skip_s, t_att[0] + dt_high) - pad
+    hi = min(end, t_att[-1] + dt_low) + pad
+    i0 = int(np.searchsorted(t_g, lo, side="left"))
+    i1 = int(np.searchsorted(t_g, hi, side="right"))
+    if i1 <= i0:
+        return slice(0, 0)
+    t = t_g[i0:i1]
+    ok = (t >= start + skip_s) & (t <= end) & (t - dt_high >= t_att[0]) & (t - dt_low <= t_att[-1])
+    idx = np.flatnonzero(ok)
+    if idx.size == 0:
+        return slice(0, 0)
+    return slice(i0 + int(idx[0]), i0 + int(idx[-1]) + 1)
 
 
 def prepare_line(
@@ -71,7 +93,7 @@ def prepare_line(
 ) -> LineData:
     """Select the line's epochs (after *skip_s*, inside the attitude coverage) and detrend."""
     lo, hi = params.range_s
-    sel = line_epochs(t_g, start, end, params.skip_s, t_att, lo - MARGIN_S, hi + MARGIN_S)
+    sel = line_slice(t_g, start, end, params.skip_s, t_att, lo - MARGIN_S, hi + MARGIN_S)
     tags, hgt = t_g[sel], height[sel]
     line = LineData(name, start, end, tags, hgt)
     if tags.size < params.min_epochs:

@@ -16,6 +16,33 @@ from hydrosync_core.params import Params, param
 #: How the per-line delays are combined (Qi et al. 2010 weight by R).
 WEIGHTINGS = ("r", "inverse_variance")
 
+#: How each line's delay is estimated (docs/methods.md section 1):
+#: ``qi2010`` — the published method: Pearson R of the detrended heights and the total heave
+#: interpolated from the raw high-rate records (Qi et al. 2010, eqs. 1–4);
+#: ``qi2010_antialias`` — the same with the high-rate total heave first low-passed to the
+#: GNSS band (zero-phase), so its sensor noise is not aliased into the comparison;
+#: ``weighted`` — anti-aliased, then both series weighted per frequency by the coherence of
+#: heights and heave pooled over the day's lines (maximum-likelihood generalised
+#: cross-correlation; near the Cramér–Rao bound when the errors are coloured).
+#: ``auto`` (default) — runs ``qi2010`` and ``weighted`` and keeps the one with the smaller
+#: combined uncertainty (the weighted one wins with coloured sensor noise, the published
+#: one on clean data; never worse than ``qi2010`` in docs/benchmarks.md).
+ESTIMATORS = ("qi2010", "qi2010_antialias", "weighted")
+ESTIMATOR_CHOICES = ESTIMATORS + ("auto",)
+
+ESTIMATOR_NAMES = {
+    "qi2010": "correlation of raw series (Qi et al. 2010)",
+    "qi2010_antialias": "correlation after anti-alias low-pass (Qi et al. 2010 + filter)",
+    "weighted": "coherence-weighted cross-correlation (maximum likelihood)",
+    "auto": "the estimator with the smaller uncertainty of qi2010 and weighted",
+}
+
+
+def estimator_label(name: str | None) -> str:
+    """``"qi2010 — correlation of raw series (Qi et al. 2010)"`` for the panel and the PDF."""
+    name = str(name or "qi2010")
+    return f"{name} \u2014 {ESTIMATOR_NAMES.get(name, name)}"
+
 
 @dataclass(frozen=True)
 class LatencyParams(Params):
@@ -27,6 +54,13 @@ class LatencyParams(Params):
 
     SCHEMA_VERSION: ClassVar[int] = 1
 
+    estimator: str = param(
+        "auto", label="Estimator", choices=ESTIMATOR_CHOICES,
+        help="qi2010 = the published method (correlation of the raw series); "
+             "qi2010_antialias = the same after low-passing the high-rate heave to the GNSS "
+             "band; weighted = coherence-weighted cross-correlation (lower error with "
+             "coloured sensor noise); auto = qi2010 or weighted, whichever has the smaller "
+             "uncertainty (see docs/benchmarks.md)")
     range_s: tuple[float, float] = param(
         (-1.0, 1.0), label="Scan range", unit="s", minimum=-10.0, maximum=10.0,
         cli="--range", metavar=("MIN", "MAX"),
@@ -62,6 +96,11 @@ class LatencyParams(Params):
         none_label="vessel sheet (gnss − motion)",
         help="GNSS antenna phase centre relative to the motion sensor, body frame "
              "x forward, y starboard, z down; default: from the vessel sheet")
+    max_line_sigma_s: float = param(
+        0.2, label="Largest credible line σ", unit="s", minimum=0.0, min_exclusive=True,
+        maximum=100.0, decimals=3, step=0.05, advanced=True,
+        help="a line whose own uncertainty exceeds this, or 10x the median of the selected "
+             "lines, is not used (its R peak is too flat to locate); a warning names it")
     min_epochs: int = param(
         30, label="Minimum epochs per line", minimum=5, maximum=1_000_000, advanced=True,
         help="lines with fewer GNSS epochs are not used")
@@ -69,6 +108,14 @@ class LatencyParams(Params):
         3.0, label="Gap factor", minimum=1.0, min_exclusive=True, maximum=1000.0,
         advanced=True, decimals=1,
         help="an interval longer than this many median intervals is a data gap")
+
+    @classmethod
+    def from_dict(cls, values=None, *, version: int | None = None, strict: bool = True):
+        """As :meth:`Params.from_dict`; a *stored* dict (``version`` given) without an
+        ``estimator`` comes from a result computed before v1.2: the published one."""
+        if version is not None and "estimator" not in (values or {}):
+            values = {**(values or {}), "estimator": "qi2010"}
+        return super().from_dict(values, version=version, strict=strict)
 
     def validate(self) -> None:
         lo, hi = self.range_s

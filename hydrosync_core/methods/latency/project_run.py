@@ -11,7 +11,9 @@ Stored layout (stable; the PDF report section reads it) — ``/results/latency``
   ``lever_arm_m`` null when taken from the vessel sheet), ``params_schema_version``,
   ``software_version``, ``run_utc`` (ISO 8601); ``latency_s``, ``uncertainty_s``,
   ``ci95_low``, ``ci95_high`` (s, NaN when no line was used); ``joint_latency_s`` (s);
-  ``n_used`` (int); ``weighting`` ("r" or "inverse_variance"); ``converged`` (bool);
+  ``n_used`` (int); ``weighting`` ("r" or "inverse_variance"); ``estimator`` (the
+  estimator that produced ``latency_s``: "qi2010", "qi2010_antialias" or "weighted";
+  absent in results of versions before 1.2, which are "qi2010"); ``converged`` (bool);
   ``message`` (str); ``warnings`` (JSON list of str); ``diagnostics`` (JSON object);
   ``lever_arm_m`` (JSON list [x, y, z], body FRD, m).
 * table ``lines`` (one row per survey line): ``name`` (str), ``start``, ``end`` (s),
@@ -43,7 +45,7 @@ from hydrosync_core.methods.latency.combine import combine
 from hydrosync_core.methods.latency.correlation import heave_at
 from hydrosync_core.methods.latency.detrend import detrend
 from hydrosync_core.methods.latency.heave import total_heave_deg
-from hydrosync_core.methods.latency.lines import line_epochs
+from hydrosync_core.methods.latency.lines import line_slice
 from hydrosync_core.methods.latency.params import LatencyParams
 from hydrosync_core.methods.latency.quality import sigma0
 from hydrosync_core.methods.latency.result import LatencyResult
@@ -134,7 +136,8 @@ def store(project: Project, result: LatencyResult, sync: dict | None,
         latency_s=float(result.latency_s), uncertainty_s=float(result.uncertainty_s),
         ci95_low=float(result.ci95_low), ci95_high=float(result.ci95_high),
         joint_latency_s=float(result.joint_latency_s), n_used=int(result.n_used),
-        weighting=result.weighting, converged=bool(result.converged), message=result.message,
+        weighting=result.weighting, estimator=result.estimator,
+        converged=bool(result.converged), message=result.message,
         warnings=json.dumps(list(result.warnings)),
         diagnostics=json.dumps(result.to_dict()["diagnostics"]),
         lever_arm_m=json.dumps(list(result.lever_arm_m)),
@@ -167,8 +170,8 @@ def recombine(project: Project, used: np.ndarray, weighting: str | None = None) 
     after = np.full(table["name"].size, np.nan)
     if comb.n_used:
         for i, (start, end) in enumerate(zip(table["start"], table["end"], strict=True)):
-            sel = line_epochs(t_g, start, end, p.skip_s, t_att, comb.latency_s, comb.latency_s)
-            if sel.sum() >= 3:
+            sel = line_slice(t_g, start, end, p.skip_s, t_att, comb.latency_s, comb.latency_s)
+            if sel.stop - sel.start >= 3:
                 h, _ = detrend(t_g[sel], hgt[sel], int(p.detrend_degree))
                 # Seed eqs. 5–6 at the new final Δt.
                 after[i] = sigma0(h, heave_at(t_g[sel], np.array([comb.latency_s]), t_att,
@@ -186,6 +189,7 @@ def recombine(project: Project, used: np.ndarray, weighting: str | None = None) 
         RESULT, latency_s=comb.latency_s, uncertainty_s=comb.uncertainty_s,
         ci95_low=comb.ci95_low, ci95_high=comb.ci95_high, n_used=comb.n_used,
         weighting=weighting, converged=bool(comb.n_used),
-        message=f"{comb.n_used} of {used.size} lines used ({weighting} weights, chosen by hand)",
+        message=f"{comb.n_used} of {used.size} lines used ({weighting} weights, "
+                f"{attrs.get('estimator', 'qi2010')} estimator, chosen by hand)",
     )
     return values

@@ -15,7 +15,7 @@ import json
 import numpy as np
 from reportlab.platypus import Flowable, Paragraph
 
-from hydrosync_core.methods.latency.params import LatencyParams
+from hydrosync_core.methods.latency.params import LatencyParams, estimator_label
 from hydrosync_core.params import stored
 from hydrosync_core.report.context import ReportContext, esc, fmt, fmt_pm, utc_text
 from hydrosync_core.report.styles import INK, MUTED, SERIES
@@ -53,6 +53,11 @@ def ci_text(attrs: dict) -> str:
     return "\u2014" if "\u2014" in (lo, hi) else f"{lo} \u2026 {hi} s"
 
 
+def estimator_text(attrs: dict) -> str:
+    """Which estimator produced the final Δt (results before v1.2: the published one)."""
+    return estimator_label(attrs.get("estimator", "qi2010"))
+
+
 def line_row(table: dict, i: int) -> list[str]:
     """Formatted cells of line *i*: name, epochs, R_max, Δt, σΔt, σ0 before, σ0 after, used."""
     return [
@@ -75,6 +80,7 @@ def summary(project) -> list[tuple[str, str]]:
     n = len(table["name"])
     rows = [("Latency \u0394t (GNSS tags late), 1\u03c3", final_value_text(attrs)),
             ("95 % interval of \u0394t", ci_text(attrs)),
+            ("Latency estimator", estimator_text(attrs)),
             ("Lines used", f"{int(attrs.get('n_used', 0))} of {n} "
                            f"(R_max > {params.min_r:g})")]
     used = np.asarray(table["used"], bool)
@@ -106,10 +112,12 @@ def section(project, ctx: ReportContext) -> list[Flowable]:
             "corrected GNSS times (eq. 3), and the correlation R (eq. 4) is scanned over "
             "\u0394t. Lines with R<sub>max</sub> above the threshold are combined by a "
             "weighted mean. \u0394t is how late the GNSS time tags are relative to the "
-            "attitude time tags: synchronised heights use <i>tag \u2212 \u0394t</i>."),
+            "attitude time tags: synchronised heights use <i>tag \u2212 \u0394t</i>."
+            + _estimator_note(attrs)),
     ]
     pairs = [
         ("Final latency \u0394t (1\u03c3)", final_value_text(attrs)),
+        ("Estimator", estimator_text(attrs)),
         ("95 % interval", ci_text(attrs)),
         ("Joint estimate (all used lines at once)",
          fmt(attrs.get("joint_latency_s"), DT_DECIMALS, "s")),
@@ -131,6 +139,21 @@ def section(project, ctx: ReportContext) -> list[Flowable]:
     out += _curves_figure(project, ctx, table, attrs)
     out += _before_after_figures(project, ctx, table, attrs, params, arm)
     return out
+
+
+def _estimator_note(attrs: dict) -> str:
+    name = str(attrs.get("estimator", "qi2010"))
+    if name == "qi2010":
+        return " Estimator: the published one (raw series), as in Qi et al. (2010)."
+    text = (" Estimator: <b>" + esc(name) + "</b>, beyond the publication: the high-rate "
+            "total heave is low-passed to the GNSS band (zero-phase) before eq. 3")
+    if name == "weighted":
+        text += (", and both series are weighted per frequency by their coherence pooled "
+                 "over the day's lines (maximum-likelihood generalised cross-correlation, "
+                 "Knapp and Carter 1976); R<sub>max</sub> and the curves are the "
+                 "anti-aliased correlation, \u0394t and \u03c3 come from the weighted one")
+    return text + ". The published estimator stays available (parameter <i>estimator</i> = "\
+        "qi2010)."
 
 
 def _line_table(ctx: ReportContext, table: dict, attrs: dict) -> list[Flowable]:

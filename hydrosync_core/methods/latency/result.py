@@ -61,6 +61,8 @@ class LatencyResult:
     message: str
     warnings: tuple[str, ...] = ()
     diagnostics: dict = field(default_factory=dict)
+    estimator: str = "qi2010"
+    """The estimator that produced ``latency_s`` (``params.ESTIMATORS``; "auto" resolved)."""
 
     def to_dict(self, curves: bool = False) -> dict:
         """JSON-ready dict (``formats.md`` result.json); *curves* adds the R curves."""
@@ -70,6 +72,7 @@ class LatencyResult:
             "ci95_s": [self.ci95_low, self.ci95_high],
             "n_used": self.n_used,
             "weighting": self.weighting,
+            "estimator": self.estimator,
             "joint_latency_s": self.joint_latency_s,
             "converged": self.converged,
             "message": self.message,

@@ -57,6 +57,36 @@ class DayConfig:
     heave_error_tau_s: float = 5.0
     squat_m: float = 0.08
     t0: float = 345600.0
+    heave_white_m: float = 0.0
+    attitude_noise_deg: float = 0.0
+
+
+SCENARIOS: dict[str, dict] = {
+    # Almost noiseless: 1 cm white RTK noise, nothing else.
+    "clean": dict(gnss_white_m=0.01, multipath_m=0.0, heave_error_m=0.0, squat_m=0.0),
+    # The simulator's defaults: R 0.85–0.95 at 1 Hz as in table 1 of Qi et al. (2010).
+    "paper": {},
+    # Coloured errors (issue #15): the motion sensor's heave with 5 cm white noise at its
+    # own rate and a long-period error (AR(1), τ 30 s: its high-pass heave filter settling),
+    # RTK heights with white noise and a correlated part (τ 60 s: multipath, troposphere),
+    # 0.03° roll/pitch noise.
+    "coloured": dict(gnss_white_m=0.03, multipath_m=0.04, multipath_tau_s=60.0,
+                     heave_error_m=0.06, heave_error_tau_s=30.0, heave_white_m=0.05,
+                     attitude_noise_deg=0.03),
+}
+"""Noise scenarios of the benchmarks (overrides of :class:`DayConfig`)."""
+
+SEA_STATES: dict[str, dict] = {
+    "calm": dict(hs_m=0.3, tp_s=5.0, roll_amp_deg=1.5, pitch_amp_deg=0.6),
+    "moderate": {},
+    "rough": dict(hs_m=1.5, tp_s=8.0, roll_amp_deg=5.0, pitch_amp_deg=2.0),
+}
+"""Sea states of the benchmarks (overrides of :class:`DayConfig`)."""
+
+
+def scenario(name: str = "paper", sea: str = "moderate", **overrides) -> DayConfig:
+    """A :class:`DayConfig` from a noise scenario, a sea state and further overrides."""
+    return DayConfig(**{**SCENARIOS[name], **SEA_STATES[sea], **overrides})
 
 
 def _jonswap(f: np.ndarray, tp: float, gamma: float = 3.3) -> np.ndarray:
@@ -144,6 +174,14 @@ def simulate_day(config: DayConfig | None = None, seed: int = 0) -> dict:
     tags = t_meas + cfg.latency_s
 
     heave_meas = heave + _gauss_markov(rng, n, 1.0 / fs, cfg.heave_error_tau_s, cfg.heave_error_m)
+    # Coloured-noise additions (drawn last, so the defaults reproduce earlier days exactly).
+    if cfg.heave_white_m > 0:
+        heave_meas += rng.standard_normal(n) * cfg.heave_white_m
+    roll_meas, pitch_meas = roll, pitch
+    if cfg.attitude_noise_deg > 0:
+        noise = np.radians(cfg.attitude_noise_deg)
+        roll_meas = roll + rng.standard_normal(n) * noise
+        pitch_meas = pitch + rng.standard_normal(n) * noise
 
     starts = cfg.t0 + np.arange(cfg.n_lines) * period
     if not cfg.lines_include_run_in:
@@ -154,7 +192,7 @@ def simulate_day(config: DayConfig | None = None, seed: int = 0) -> dict:
     return {
         "gnss": {"time": tags, "height": height},
         "attitude": {
-            "time": t, "roll": np.degrees(roll), "pitch": np.degrees(pitch),
+            "time": t, "roll": np.degrees(roll_meas), "pitch": np.degrees(pitch_meas),
             "heading": heading, "heave": heave_meas,
         },
         "lines": {"name": names, "start": starts, "end": ends},

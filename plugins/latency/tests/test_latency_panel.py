@@ -53,6 +53,12 @@ def test_demo_run_table_curves_and_toggle(panel, qtbot):
     assert modified
     attrs = project.attrs("results/latency")
     assert attrs["latency_s"] == pytest.approx(truth["latency_s"], abs=0.03)
+    # Which estimator made the number; the published one is one choice away.
+    assert f"Estimator: {attrs['estimator']}" in panel.summary.text()
+    assert panel.form.values()["estimator"] == "auto"
+    box = panel.form.editors["estimator"].parts[0]
+    assert [box.itemText(i) for i in range(box.count())] == [
+        "qi2010", "qi2010_antialias", "weighted", "auto"]
     table = project.get_table("results/latency/lines")
     # Table contents match the stored per-line values.
     for row in range(13):

@@ -1,0 +1,176 @@
+"""Latency v2 speed paths: exact closed-form scan, line slices, fast CSV reading.
+
+Each fast path is checked against the straightforward evaluation it replaces.
+"""
+
+from __future__ import annotations
+
+from dataclasses import replace
+
+import numpy as np
+import pytest
+
+from hydrosync_core.errors import InputError
+from hydrosync_core.importers import survey_csv
+from hydrosync_core.methods.latency import api, fastcsv, fastscan
+from hydrosync_core.methods.latency.correlation import (
+    correlation_curve,
+    correlation_curve_direct,
+)
+from hydrosync_core.methods.latency.heave import total_heave, total_heave_deg
+from hydrosync_core.methods.latency.lines import line_epochs, line_slice
+from hydrosync_core.methods.latency.simulate import DayConfig, simulate_day, write_day_csv
+
+DAY = DayConfig(n_lines=3, line_s=60.0, turn_s=10.0, run_in_s=5.0, gnss_hz=10.0,
+                attitude_hz=50.0)
+
+
+@pytest.fixture(scope="module")
+def day():
+    return simulate_day(DAY, seed=4)
+
+
+def test_fast_scan_equals_direct_interpolation_on_irregular_data():
+    rng = np.random.default_rng(0)
+    # Jittered attitude (logger time tags) and jittered GNSS tags, a grid that starts and
+    # ends outside the attitude record (np.interp holds the end values there).
+    t_att = np.cumsum(rng.uniform(0.005, 0.015, 3000))
+    h_att = np.sin(t_att * 1.3) + 0.1 * rng.standard_normal(t_att.size)
+    tags = np.sort(rng.uniform(0.5, 29.5, 200))
+    h = np.sin(tags * 1.3 - 0.4) + 0.05 * rng.standard_normal(tags.size)
+    for dts in (np.linspace(-1, 1, 2001), np.linspace(-0.6, 0.7, 27), np.linspace(0.1, 0.1002, 41),
+                np.linspace(-3, 3, 61)):
+        fast = correlation_curve(tags, h, t_att, h_att, dts)
+        direct = correlation_curve_direct(tags, h, t_att, h_att, dts)
+        np.testing.assert_allclose(fast, direct, rtol=0, atol=1e-10)
+    # A non-uniform grid takes the direct path.
+    dts = np.array([-0.3, -0.1, 0.0, 0.4])
+    np.testing.assert_array_equal(correlation_curve(tags, h, t_att, h_att, dts),
+                                  correlation_curve_direct(tags, h, t_att, h_att, dts))
+    assert fastscan.uniform_step(dts) is None and fastscan.available()
+
+
+def test_fast_scan_constant_heave_is_nan():
+    tags = np.linspace(1, 9, 50)
+    r = correlation_curve(tags, np.sin(tags), np.linspace(0, 10, 500), np.full(500, 0.3),
+                          np.linspace(-0.5, 0.5, 11))
+    assert np.all(np.isnan(r))
+
+
+def test_line_slice_matches_mask(day):
+    t_g, t_att = day["gnss"]["time"], day["attitude"]["time"]
+    for start, end in zip(day["lines"]["start"], day["lines"]["end"], strict=True):
+        for skip, lo, hi in ((0.0, -1.15, 1.15), (7.0, 0.3, 0.3), (0.0, -5.0, 0.0)):
+            mask = (t_g >= start + skip) & (t_g <= end)
+            mask &= (t_g - hi >= t_att[0]) & (t_g - lo <= t_att[-1])
+            sl = line_slice(t_g, start, end, skip, t_att, lo, hi)
+            np.testing.assert_array_equal(np.flatnonzero(mask), np.arange(t_g.size)[sl])
+            np.testing.assert_array_equal(line_epochs(t_g, start, end, skip, t_att, lo, hi), mask)
+    assert line_slice(t_g, t_att[-1] + 10, t_att[-1] + 20, 0.0, t_att, -1, 1) == slice(0, 0)
+
+
+def test_compiled_total_heave_equals_numpy():
+    rng = np.random.default_rng(2)
+    for n in (1000, 250_000):  # serial and parallel kernels
+        heave, roll, pitch = rng.normal(size=n), rng.normal(size=n) * 5, rng.normal(size=n) * 2
+        np.testing.assert_allclose(
+            total_heave_deg(heave, roll, pitch, (-1.5, 2.0, -6.0)),
+            total_heave(heave, np.radians(roll), np.radians(pitch), (-1.5, 2.0, -6.0)),
+            rtol=0, atol=1e-13)
+
+
+def test_estimate_equals_the_straightforward_method(day, monkeypatch):
+    """The whole estimate with the closed-form scan equals the pre-v2 direct scan."""
+    params = {"step_s": 0.002}
+    fast = api.estimate_latency(day["gnss"], day["attitude"], day["lines"], DAY.lever_arm_m,
+                                params)
+    monkeypatch.setattr(fastscan, "available", lambda: False)
+    slow = api.estimate_latency(day["gnss"], day["attitude"], day["lines"], DAY.lever_arm_m,
+                                params)
+    assert fast.latency_s == pytest.approx(slow.latency_s, abs=1e-7)
+    for a, b in zip(fast.lines, slow.lines, strict=True):
+        assert a.latency_s == pytest.approx(b.latency_s, abs=1e-7)
+        assert a.r_max == pytest.approx(b.r_max, abs=1e-9)
+        assert a.uncertainty_s == pytest.approx(b.uncertainty_s, rel=1e-6)
+        assert a.sigma0_after_m == pytest.approx(b.sigma0_after_m, abs=1e-12)
+    np.testing.assert_allclose(fast.r_curves, slow.r_curves, atol=1e-9)
+
+
+def test_fast_csv_reads_what_the_generic_reader_reads(day, tmp_path):
+    write_day_csv(day, tmp_path)
+    for name in ("gnss", "attitude"):
+        fast = getattr(fastcsv, f"read_{name}_csv")(tmp_path / f"{name}.csv")
+        slow = getattr(survey_csv, f"read_{name}_csv")(tmp_path / f"{name}.csv")
+        assert list(fast) == list(slow)
+        for key in slow:
+            np.testing.assert_array_equal(fast[key], slow[key])
+    down = fastcsv.read_attitude_csv(tmp_path / "attitude.csv", "down", ("time", "heave"))
+    assert list(down) == ["time", "heave"]
+    np.testing.assert_array_equal(down["heave"], -slow["heave"])
+
+
+def test_fast_csv_small_pieces_and_optional_columns(tmp_path, monkeypatch):
+    monkeypatch.setattr(fastcsv, "PIECE_BYTES", 64)  # many pieces, rows cut at piece ends
+    path = tmp_path / "gnss.csv"
+    rows = "".join(f"{100 + i * 0.1:.1f},{42 + 0.001 * i:.3f},7,x,{i % 5}\r\n"
+                   for i in range(300))
+    path.write_text("Time,height,extra,note,quality\r\n" + rows + "\r\n", newline="")
+    fast = fastcsv.read_gnss_csv(path)
+    slow = survey_csv.read_gnss_csv(path)
+    assert list(fast) == list(slow) == ["time", "height", "quality"]
+    for key in slow:
+        np.testing.assert_array_equal(fast[key], slow[key])
+
+
+@pytest.mark.parametrize("body, where", [
+    ("time,height\n1,42.0\n2,abc\n3,42.1\n", ":3"),           # not a number
+    ("time,height\n1,42.0\n2,nan\n3,42.1\n", ":3"),           # not finite
+    ("time,height\n1,42.0\n2,42.1,7\n3,42.1\n", ":3"),        # extra field
+    ("time,height\n1,42.0\n1,42.1\n3,42.1\n", ":3"),          # duplicate time
+    ("time,height\n1,42.0\n2,1e9\n3,42.1\n", ":3"),           # implausible height
+    ("time,hgt\n1,42.0\n2,42.1\n", ":1"),                     # missing column
+])
+def test_fast_csv_bad_files_give_the_generic_error(tmp_path, body, where):
+    path = tmp_path / "gnss.csv"
+    path.write_text(body)
+    with pytest.raises(InputError) as slow:
+        survey_csv.read_gnss_csv(path)
+    with pytest.raises(InputError) as fast:
+        fastcsv.read_gnss_csv(path)
+    assert fast.value.one_line() == slow.value.one_line()
+    assert where in fast.value.one_line()
+
+
+def test_fast_csv_unsorted_and_commented_files_match(tmp_path):
+    path = tmp_path / "gnss.csv"
+    path.write_text("# logger export\ntime,height\n3,42.3\n1,42.1\n2,42.2\n")
+    fast, slow = fastcsv.read_gnss_csv(path), survey_csv.read_gnss_csv(path)
+    np.testing.assert_array_equal(fast["time"], [1, 2, 3])
+    np.testing.assert_array_equal(fast["height"], slow["height"])
+
+
+def test_cli_on_quiet_day_is_unchanged(tmp_path):
+    """The quiet test day gives the same numbers through the CLI's fast readers."""
+    cfg = replace(DAY, latency_s=0.21)
+    d = simulate_day(cfg, seed=9)
+    write_day_csv(d, tmp_path)
+    g = fastcsv.read_gnss_csv(tmp_path / "gnss.csv")
+    a = fastcsv.read_attitude_csv(tmp_path / "attitude.csv", "up", ("time", "roll", "pitch",
+                                                                    "heave"))
+    res = api.estimate_latency(g, a, survey_csv.read_lines_csv(tmp_path / "lines.csv"),
+                               cfg.lever_arm_m)
+    ref = api.estimate_latency(survey_csv.read_gnss_csv(tmp_path / "gnss.csv"),
+                               survey_csv.read_attitude_csv(tmp_path / "attitude.csv"),
+                               survey_csv.read_lines_csv(tmp_path / "lines.csv"),
+                               cfg.lever_arm_m)
+    assert res.latency_s == ref.latency_s and res.to_dict() == ref.to_dict()
+
+
+def test_total_heave_at_times_equals_whole_record_interpolation(day):
+    att = day["attitude"]
+    source = api._Attitude(att, np.asarray(DAY.lever_arm_m))
+    full = total_heave_deg(att["heave"], att["roll"], att["pitch"], DAY.lever_arm_m)
+    rng = np.random.default_rng(5)
+    times = np.concatenate([rng.uniform(att["time"][0] - 1, att["time"][-1] + 1, 500),
+                            att["time"][[0, 7, -1]]])
+    np.testing.assert_array_equal(source.at(times), np.interp(times, att["time"], full))

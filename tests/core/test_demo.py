@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import json
 import os
 import re
 import subprocess
@@ -85,6 +86,13 @@ def test_demo_end_to_end(tmp_path):
         attrs = project.attrs("results/pool_calibration")
         truth = load_object(get_spec("pool_calibration").demo)(
             Project.new("truth"), seed=DEMO_SEED, progress=None)
+        # The demo target is the patent's: below-water twins referenced to the laser planes
+        # of their above-water blocks, moved by the design translation.
+        faces = project.get_table("results/pool_calibration/faces")
+        refs = {str(n): str(r) for n, r in zip(faces["face"], faces["reference"], strict=True)}
+        assert refs["wall"] == "own" and refs["N1_dn_oblique"] == "N1_up_oblique"
+        assert "Reference planes" in text and "N1_up_oblique" in text
+        assert json.loads(attrs["undetermined"]) == {}
         for key in ("roll", "pitch", "yaw"):
             # The published pool calibration reaches < 0.015°; so does the demo pass, and
             # the error stays within 4 reported σ.

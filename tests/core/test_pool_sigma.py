@@ -170,15 +170,17 @@ def test_ins_accuracy_enters_the_joint_sigma():
 
 def test_build_tolerance_enters_the_joint_sigma():
     """On the patent's target the below-water faces are compared with their above-water
-    twins moved by the design translation, known only to the build tolerance: it must widen
-    σ (not the solution), most for the vertical lever arm that rests on the block tops."""
+    twins moved by the design translation, known only to the build tolerance. Each twin's
+    as-built displacement is estimated with the tolerance as prior: σ widens, most for the
+    vertical lever arm that rests on the block tops, and the solution moves within σ."""
     cfg = PoolPassConfig(**dict(FAST, target_kind="patent", ping_rate_hz=10.0, speed_m_s=0.8))
     sim = simulate_pool_pass(cfg, seed=5)
     args = (sim["lidar"], sim["mbes"], sim["ins"], sim["setup"], sim["target"])
     exact = calibrate(*args, PoolParams(build_tol_m=0.0, build_tol_deg=0.0)).joint
     built = calibrate(*args).joint                      # default ±2 mm, ±0.01°
-    assert built.lever_arm_m == exact.lever_arm_m
-    assert built.sigma_lever_arm_m["z"] > 1.5 * exact.sigma_lever_arm_m["z"]
+    for k in "xyz":
+        assert abs(built.lever_arm_m[k] - exact.lever_arm_m[k]) < built.sigma_lever_arm_m[k]
+    assert built.sigma_lever_arm_m["z"] > 1.3 * exact.sigma_lever_arm_m["z"]
     # Four block tops, each off by a uniform ±2 mm: σ(z) >= 2 mm/√3/√4.
     assert built.sigma_lever_arm_m["z"] > 0.002 / np.sqrt(3) / 2
     for k in ("roll", "pitch", "yaw"):

@@ -96,13 +96,15 @@ class PoolParams(Params):
         help="ping-time block of the cluster-robust check that inflates σ when residuals "
              "of neighbouring soundings are correlated")
     max_sigma_deg: float = param(
-        0.02, label="Warn above σ (angles)", unit="°", minimum=0.0, min_exclusive=True,
+        0.01, label="Flag above σ (angles)", unit="°", minimum=0.0, min_exclusive=True,
         maximum=10.0, decimals=4, group=SOLVE, advanced=True,
-        help="an angle whose σ exceeds this is flagged as poorly determined")
+        help="an angle whose σ exceeds this is flagged as poorly determined (default: half "
+             "an accuracy target of 0.02°, so an unflagged angle meets it at about 2σ)")
     max_sigma_m: float = param(
-        0.005, label="Warn above σ (lever arm)", unit="m", minimum=0.0, min_exclusive=True,
+        0.001, label="Flag above σ (lever arm)", unit="m", minimum=0.0, min_exclusive=True,
         maximum=10.0, decimals=4, group=SOLVE, advanced=True,
-        help="a lever-arm component whose σ exceeds this is flagged as poorly determined")
+        help="a lever-arm component whose σ exceeds this is flagged as poorly determined "
+             "(default: half an accuracy target of 2 mm)")
     max_corr: float = param(
         0.9, label="Warn above |correlation|", minimum=0.0, maximum=1.0, group=SOLVE,
         advanced=True, help="pairs of parameters more correlated than this are flagged")

@@ -10,13 +10,14 @@ from __future__ import annotations
 
 import json
 import os
+from dataclasses import replace
 
 import numpy as np
 import pytest
 from PySide6.QtCore import Qt
 
 from hydrosync_core.methods.pool_calibration import project_run
-from hydrosync_core.methods.pool_calibration.demo import fill_demo
+from hydrosync_core.methods.pool_calibration.demo import DEMO_CONFIG, fill_demo
 from hydrosync_core.project import Project
 from plugins.pool_calibration.cloud_views import ProjectionView, gl_available
 from plugins.pool_calibration.panel import PoolCalibrationPanel
@@ -32,7 +33,9 @@ PLAN = ("laser_xyz", "laser_face", "mbes_before_xyz", "mbes_after_xyz", "mbes_fa
 def demo():
     """(project with a stored calibration, truth) — computed once for the module."""
     project = Project.new("pool demo")
-    truth = fill_demo(project, seed=0)
+    # The demo target (patent kind, three block pairs a side), two passes at 10 Hz: faster.
+    truth = fill_demo(project, seed=0, config=replace(
+        DEMO_CONFIG, ranges_m=(4.0, 6.0), headings_deg=(3.0, -3.0), ping_rate_hz=10.0))
     _thin(project)  # a third of the soundings: ~3x faster, still well determined
     project_run.run(project, {})
     return project, truth
@@ -124,8 +127,8 @@ def test_demo_results_shown(panel, demo, qtbot):
     # Face table: one row per stored face, every cell equal to the stored value.
     faces = project.get_table(f"{RESULT}/faces")
     model = panel.face_table.model()
-    # The demo target is the patent's: wall + 4 blocks above water + 4 twins below.
-    assert model.rowCount() == len(faces["face"]) == 33
+    # The demo target is the patent's: wall + 6 blocks above water + 6 twins below.
+    assert model.rowCount() == len(faces["face"]) == 49
     headers = [model.headerData(c, Qt.Orientation.Horizontal)
                for c in range(model.columnCount())]
     for col, key in enumerate(FACE_COLUMNS):
@@ -296,7 +299,7 @@ def test_segment_then_run_in_worker(panel, demo, qtbot, tmp_path):
         assert panel.values.value(row, 0) == panel.values.value(row, 2)
         assert float(panel.values.value(row, 0)) == pytest.approx(result["seed"][group][key],
                                                                   abs=5e-5)
-    assert panel.face_table.model().rowCount() == 33
+    assert panel.face_table.model().rowCount() == 49
     assert panel.after_radio.isEnabled()
     assert any(s.startswith("Pool calibration: ") for s in statuses)
 
@@ -315,7 +318,7 @@ def test_cancel_right_after_start_keeps_project(panel, demo, qtbot, tmp_path):
     assert not modified
     assert _same(before, _snapshot(project))
     assert panel.run_button.isEnabled() and panel.segment_button.isEnabled()
-    assert panel.face_table.model().rowCount() == 33  # still showing the stored run
+    assert panel.face_table.model().rowCount() == 49  # still showing the stored run
 
 
 @pytest.mark.gl

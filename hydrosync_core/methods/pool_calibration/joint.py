@@ -214,7 +214,8 @@ def _augmented(jf, bcols, weights, sigma0_sq, prior_sig):
     if bcols.shape[1]:
         k = jf.shape[1]
         prior = np.tile(prior_sig, bcols.shape[1] // 6)
-        diag = np.where(prior > 0, sigma0_sq / np.maximum(prior, 1e-300) ** 2, 1.0)
+        safe = np.where(prior > 0, prior, 1.0)
+        diag = np.where(prior > 0, sigma0_sq / safe**2, 1.0)
         normal[k:, k:] += np.diag(diag)
     return a, normal
 
@@ -248,8 +249,8 @@ def _gauss_newton(ctx, obs, theta, free, huber_m, max_iter, tol, cancel, refs=No
         if nb:
             # The prior pulls the displacements towards zero.
             prior = np.tile(prior_sig, len(groups))
-            rhs[-nb:] -= np.where(prior > 0, sigma0_sq / np.maximum(prior, 1e-300) ** 2,
-                                  0.0) * disp
+            safe = np.where(prior > 0, prior, 1.0)
+            rhs[-nb:] -= np.where(prior > 0, sigma0_sq / safe**2, 0.0) * disp
         step = np.linalg.solve(normal, rhs)
         theta[free] += step[:int(free.sum())]
         disp += step[int(free.sum()):]

@@ -36,7 +36,8 @@ def _summary(result) -> str:
 EPILOG = ("exit codes: 0 success; 2 bad input (one line on stderr naming the file and what "
           "is wrong); 3 finished, but some parameters are not determined by the data (one "
           "line on stderr naming them; in the JSON under 'undetermined' with the reason; "
-          "their coarse values are kept); 1 anything else (an interrupt too).")
+          "their coarse values are kept); 130 interrupted (one line saying what was saved); "
+          "1 anything else.")
 
 
 def _exit_code(result) -> int:

@@ -60,24 +60,40 @@ class AnalysisPanel(PluginPanel):
 
     def build(self, before_run: Iterable[QWidget | QLayout] = (),
               after_summary: Iterable[QWidget | QLayout] = ()) -> None:
-        """Lay the panel out once the subclass has made its widgets and tabs."""
-        left = QWidget()
-        lay = QVBoxLayout(left)
-        lay.addWidget(self.form)
-        for item in (*before_run, self.run_button, self.summary, *after_summary):
+        """Lay the panel out once the subclass has made its widgets and tabs.
+
+        The form (and *before_run* controls) scroll in a column of their own, so the panel
+        fits a 1366×768 screen however many parameters the analysis has; Run, the summary
+        and *after_summary* stay below it, outside the scroll area — a word-wrapped label
+        inside it makes the scroll bars and the wrapping chase each other forever.
+        """
+        controls = QWidget()
+        inner = QVBoxLayout(controls)
+        inner.setContentsMargins(0, 0, 0, 0)
+        inner.addWidget(self.form)
+        for item in before_run:
             if isinstance(item, QLayout):
-                lay.addLayout(item)
+                inner.addLayout(item)
             else:
-                lay.addWidget(item)
-        # The controls scroll in a column of their own, so the views keep the width and the
-        # panel fits a 1366×768 screen however many parameters the analysis has.
+                inner.addWidget(item)
+        inner.addStretch(1)
         scroll = QScrollArea()
-        scroll.setWidget(left)
+        scroll.setWidget(controls)
         scroll.setWidgetResizable(True)
         scroll.setFrameShape(QScrollArea.Shape.NoFrame)
         scroll.setMinimumWidth(300)
+        left = QWidget()
+        lay = QVBoxLayout(left)
+        lay.setContentsMargins(0, 0, 0, 0)
+        lay.addWidget(scroll, 3)
+        for item in (self.run_button, self.summary, *after_summary):
+            if isinstance(item, QLayout):
+                lay.addLayout(item)
+            else:
+                lay.addWidget(item, 2 if item is not self.run_button and
+                              item is not self.summary else 0)
         split = QSplitter(Qt.Orientation.Horizontal)
-        split.addWidget(scroll)
+        split.addWidget(left)
         split.addWidget(self.tabs)
         split.setStretchFactor(0, 2)
         split.setStretchFactor(1, 3)

@@ -105,6 +105,9 @@ class PluginSpec:
         of the PDF section. Empty for a generic listing.
     order : int
         Position among the tabs and report sections (lower first).
+    report_appendix : str
+        Dotted path of ``appendix(project, ctx) -> list`` for long tables placed at the end
+        of the PDF (after the data-sources appendix). Empty for none.
     apply : str
         Dotted path of ``apply_to_vessel(project) -> str`` writing the analysis's
         calibrated values into the vessel sheet (``hydrosync vessel P --apply <id>``);
@@ -128,6 +131,7 @@ class PluginSpec:
     demo: str = ""
     report_section: str = ""
     order: int = 100
+    report_appendix: str = ""
     apply: str = ""
     api_version: int = API_VERSION
     version: str = "1.0.0"

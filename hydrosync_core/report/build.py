@@ -156,6 +156,15 @@ def build_report(project, pdf_path: str | os.PathLike, progress=None, cancel=Non
             problems.append(f"data-sources appendix could not be produced: {reason}")
             story += [ctx.heading("Appendix: data sources"),
                       ctx.warning(f"The data-sources appendix could not be produced: {reason}.")]
+        for status in with_results:
+            if not status.spec.report_appendix:
+                continue
+            try:
+                story += list(load_object(status.spec.report_appendix)(project, ctx))
+            except Exception as exc:  # an appendix must not sink the report
+                reason = failure_reason(exc)
+                problems.append(f"appendix of '{status.spec.name}' could not be produced: "
+                                f"{reason}")
         check_cancel(cancel)
         report(progress, 0.75, "laying out pages")
         canvas = type("ReportCanvas", (NumberedCanvas,), {

@@ -39,6 +39,7 @@ SPEC = PluginSpec(
     demo=f"{CORE}.demo:fill_demo",
     report_section=f"{CORE}.report_section:section",
     order=20,
+    report_appendix=f"{CORE}.report_section:appendix",
     apply=f"{CORE}.apply:apply_to_vessel",
     version=VERSION,
 )

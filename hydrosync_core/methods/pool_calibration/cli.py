@@ -24,13 +24,33 @@ def _read_lidar(path: str):
     return read_point_cloud(path)
 
 
-def _summary(result) -> str:
+def _summary(result, stored_in: str | None = None) -> str:
+    """Final values with their 1σ (joint solution), one per line, and where they went."""
     b, la = result.boresight_deg, result.lever_arm_m
-    text = (f"boresight roll {b['roll']:.4f} pitch {b['pitch']:.4f} yaw {b['yaw']:.4f} deg; "
-            f"lever arm x {la['x']:.4f} y {la['y']:.4f} z {la['z']:.4f} m "
-            f"({result.method}, {result.iterations} patent iterations, "
-            f"{'converged' if result.converged else 'NOT converged'})")
-    return text + "".join(f"\nwarning: {w}" for w in result.warnings)
+    joint = result.joint if result.method == "joint" else None
+    sb = joint.sigma_boresight_deg if joint else {}
+    sl = joint.sigma_lever_arm_m if joint else {}
+
+    def pm(value, sigma, scale, decimals, unit):
+        text = f"{value * scale:+.{decimals}f}"
+        if sigma is not None and sigma == sigma:  # NaN: not determined
+            text += f" ± {sigma * scale:.{decimals}f}"
+        elif joint is not None:
+            text += " (not determined: coarse value kept)"
+        return f"{text} {unit}"
+
+    lines = [f"pool calibration, final values from the "
+             f"{'joint adjustment' if result.method == 'joint' else 'patent method'} "
+             f"({result.iterations} patent iterations, "
+             f"{'converged' if result.converged else 'NOT converged'}), 1σ:"]
+    for k in ("roll", "pitch", "yaw"):
+        lines.append(f"  boresight {k:<5} {pm(b[k], sb.get(k), 1.0, 4, 'deg')}")
+    for k, name in (("x", "forward"), ("y", "starboard"), ("z", "down")):
+        lines.append(f"  lever arm {k} ({name:<9}) {pm(la[k], sl.get(k), 1.0, 4, 'm')}")
+    if stored_in:
+        lines.append(f"stored in {stored_in} under /results/pool_calibration")
+    lines += [f"warning: {w}" for w in result.warnings]
+    return "\n".join(lines)
 
 
 EPILOG = ("exit codes: 0 success; 2 bad input (one line on stderr naming the file and what "
@@ -75,7 +95,7 @@ def cmd_pool(args: argparse.Namespace) -> int:
                 out.write_json(args.json, result.to_dict())
             project.save()
             out.publish()
-        print(_summary(result))
+        print(_summary(result, str(args.project)))
         return _exit_code(result)
     missing = [f"--{n}" for n in ("lidar", "mbes", "ins", "setup", "target", "json")
                if not getattr(args, n)]
@@ -96,7 +116,7 @@ def cmd_pool(args: argparse.Namespace) -> int:
     with out:
         out.write_json(args.json, result.to_dict())
         out.publish()
-    print(_summary(result))
+    print(_summary(result) + f"\nwritten to {args.json}")
     return _exit_code(result)
 
 

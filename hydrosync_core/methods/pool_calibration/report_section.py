@@ -59,8 +59,18 @@ def summary(project) -> list[tuple[str, str]]:
     method = {"joint": "joint adjustment", "seed": "patent iteration"}.get(
         str(attrs.get("method")), str(attrs.get("method")))
     state = "converged" if attrs.get("converged") else "NOT converged"
-    return [(f"{label} (final, 1\u03c3)", value) for label, value in parameter_rows(attrs)] + [
+    rows = [(f"{label} (final, 1\u03c3)", value) for label, value in parameter_rows(attrs)] + [
         ("Final values from", f"{method}, {state}")]
+    # Caveats that change what the σ mean: on the summary page, not only in the section.
+    params = stored(PoolParams, project, RESULT)
+    if params is not None and not any(params.ins_sigma_deg):
+        rows.append(("Caveat", "INS attitude taken as exact (no INS accuracy given): the "
+                               "\u03c3 are a lower bound"))
+    undetermined = json.loads(attrs.get("undetermined") or "{}")
+    if undetermined:
+        rows.append(("Caveat", "not determined by the data (coarse values kept): "
+                               + ", ".join(sorted(undetermined))))
+    return rows
 
 
 def section(project, ctx: ReportContext) -> list[Flowable]:
@@ -262,16 +272,38 @@ def _iterations(project, ctx) -> list[Flowable]:
     out.append(ctx.figure(chart, "Convergence of the patent's iteration (steps 3.1\u20133.6): the "
                           "largest angle between corresponding plane normals after each "
                           "boresight update."))
+    # The last iteration of each round here; every iteration in the appendix.
+    rounds = np.asarray(t["round"])
+    last = [i for i in range(n) if i == n - 1 or rounds[i + 1] != rounds[i]]
+    out += _iteration_table(ctx, t, last, "Patent iteration, last iteration of each round: "
+                            "the accumulated angles and the largest remaining normal angle. "
+                            "A new round starts after the lever arm has been re-estimated; "
+                            f"all {n} iterations are listed in the appendix.")
+    return out
+
+
+def _iteration_table(ctx, t: dict, rows_idx: list[int], caption: str) -> list[Flowable]:
     rows = [[str(int(t["iteration"][i])), str(int(t["round"][i])),
              *(fmt(t[c][i], 4) for c in ("d_roll_deg", "d_pitch_deg", "d_yaw_deg")),
              *(fmt(t[c][i], ANGLE_DECIMALS) for c in ("roll_deg", "pitch_deg", "yaw_deg")),
-             fmt(t["max_normal_angle_deg"][i], 4)] for i in range(n)]
-    out += ctx.table(
+             fmt(t["max_normal_angle_deg"][i], 4)] for i in rows_idx]
+    return ctx.table(
         ["Iteration", "Round", "\u03b4roll [\u00b0]", "\u03b4pitch [\u00b0]",
          "\u03b4yaw [\u00b0]", "Roll [\u00b0]", "Pitch [\u00b0]", "Yaw [\u00b0]",
          "Max normal angle [\u00b0]"], rows,
         col_widths=[0.11, 0.08, 0.11, 0.11, 0.11, 0.11, 0.11, 0.11, 0.15], numeric_from=0,
-        caption="Patent iteration: boresight corrections of each iteration (about the body "
-        "axes), the accumulated angles and the largest remaining normal angle. A new round "
-        "starts after the lever arm has been re-estimated.")
-    return out
+        caption=caption)
+
+
+def appendix(project, ctx) -> list[Flowable]:
+    """Every iteration of the patent method (the section shows one row per round)."""
+    if not project.exists(f"{RESULT}/iterations"):
+        return []
+    t = project.get_table(f"{RESULT}/iterations")
+    n = len(t["iteration"])
+    if n == 0:
+        return []
+    return [ctx.heading("Appendix: pool calibration, every patent iteration", 2)] + \
+        _iteration_table(ctx, t, list(range(n)), "Boresight corrections of each iteration "
+                         "(about the body axes), the accumulated angles and the largest "
+                         "remaining normal angle.")

@@ -61,12 +61,17 @@ def test_cli_bad_input_exit_2_and_no_output(files, tmp_path, capsys):
     assert main(["pool-calibrate", "--lidar", str(paths["lidar"])]) == 2
 
 
-def test_project_run_layout_and_cli_positional(tmp_path):
+def test_project_run_layout_and_cli_positional(tmp_path, capsys):
     project = Project.new("pool")
     truth = fill_demo(project, seed=3, config=SMALL)
     path = tmp_path / "p.h5"
     project.save(path)
+    capsys.readouterr()
     assert main(["pool-calibrate", str(path)]) == 0
+    out = capsys.readouterr().out
+    # Final values with their σ and where they were stored (#11 item 8).
+    assert "boresight roll" in out and "±" in out and "lever arm z (down" in out
+    assert f"stored in {path} under /results/pool_calibration" in out
     with Project.open(path) as p:
         attrs = p.attrs(RESULT)
         assert attrs["method"] == "joint" and isinstance(attrs["converged"], (bool, np.bool_))

@@ -188,3 +188,23 @@ def test_report_when_no_line_passes_the_threshold(tmp_path):
     table = project.get_table("results/latency/lines")
     for i in range(len(table["name"])):
         assert " ".join(lat.line_row(table, i)) in text
+
+
+def test_unsaved_project_report_says_never_saved_and_pool_appendix(tmp_path):
+    """An unsaved project's cover says "never" saved (not a date); the pool iteration table
+    is one row per round in the section and complete in the appendix (#11 item 10)."""
+    from pypdf import PdfReader
+
+    from hydrosync_core.methods.pool_calibration.demo import fill_demo as fill_pool
+    from hydrosync_core.methods.pool_calibration.project_run import run as run_pool
+    from tests.core.test_pool_cli_project import SMALL
+
+    project = Project.new("unsaved")
+    fill_pool(project, seed=3, config=SMALL)
+    run_pool(project)
+    pdf = tmp_path / "r.pdf"
+    build_report(project, pdf)
+    text = " ".join(page.extract_text() for page in PdfReader(pdf).pages)
+    assert "never (the project exists only in memory)" in text
+    assert "last iteration of each round" in text
+    assert "every patent iteration" in text

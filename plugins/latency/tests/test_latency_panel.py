@@ -111,3 +111,20 @@ def test_wrong_lever_arm_shows_no_latency_and_the_likely_cause(panel, qtbot):
     assert "y sign is probably wrong" in panel.summary.text()
     assert not panel.r_plot.final_line.isVisible()
     assert all(not panel.table.used()[r] for r in range(13))
+
+
+def test_no_run_with_a_silent_zero_lever_arm(panel):
+    """Without a vessel sheet and with no lever arm typed, Run says what is missing and how
+    to fix it, and starts nothing (#11 item 5)."""
+    project = Project.new("no vessel")
+    demo = Project.new("demo")
+    fill_demo(demo, seed=0)
+    for path in ("raw/gnss", "raw/attitude", "raw/lines"):
+        project.put_table(path, demo.get_table(path))
+    panel.set_project(project)
+    panel.run_button.click()
+    assert panel.worker is None  # nothing started
+    text = panel.summary.text()
+    assert "Lever arm needed" in text and "'gnss'" in text and "'motion'" in text
+    assert "Vessel offsets" in text
+    assert not project.exists("results/latency")

@@ -39,6 +39,9 @@ def plot_widget(ylabel: str, xlabel: str, equal: bool = False) -> pg.PlotWidget:
     w.setLabel("bottom", xlabel)
     for side in ("left", "bottom"):
         w.getAxis(side).enableAutoSIPrefix(False)
+    # A fixed axis width: with the aspect locked, tick labels that change width as the
+    # range changes would resize the view, which changes the range again — for ever.
+    w.getAxis("left").setWidth(58)
     w.showGrid(x=True, y=True, alpha=0.3)
     w.addLegend(offset=(10, 2), labelTextColor="k")
     if equal:
@@ -111,6 +114,22 @@ class AnalysisPanel(PluginPanel):
                 layout.addWidget(w)
         self.tabs.addTab(page, title)
         return page
+
+    # ------------------------------------------------------------------ drawing
+    def refresh(self) -> None:
+        """Redraw from the project (:meth:`redraw`), then fix the range of every plot whose
+        aspect is locked: pyqtgraph's auto-range and aspect lock can chase each other
+        forever (the view never stops repainting) for some widget sizes."""
+        self.redraw()
+        for plot in self.findChildren(pg.PlotWidget):
+            box = plot.getViewBox()
+            if box.state.get("aspectLocked"):
+                box.enableAutoRange()
+                box.autoRange()
+                box.disableAutoRange()
+
+    def redraw(self) -> None:  # pragma: no cover - overridden
+        """Draw everything from ``self.project``."""
 
     # ------------------------------------------------------------------ running
     def _on_run(self) -> None:

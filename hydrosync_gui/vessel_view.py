@@ -40,6 +40,9 @@ class _View(pg.PlotWidget):
         self.setLabel("left", y_label)
         self.showGrid(x=True, y=True, alpha=0.25)
         self.setAspectLocked(True)  # true shape: a metre is a metre both ways
+        # Fixed axis width: tick labels changing width would resize the aspect-locked view,
+        # which changes the range and the labels again.
+        self.getAxis("left").setWidth(48)
         self.getPlotItem().invertY(invert_y)
         self.setMenuEnabled(False)
         self.setMinimumSize(220, 200)

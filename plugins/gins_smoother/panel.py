@@ -80,7 +80,7 @@ class GinsPanel(AnalysisPanel):
     def _all_plots(self):
         return [self.map, *self.errors.values(), *self.series.values(), *self.sigma.values()]
 
-    def refresh(self) -> None:
+    def redraw(self) -> None:
         project = self.project
         missing = self.spec.missing_inputs(project) if project is not None else ["a project"]
         self.run_button.setEnabled(not missing and not self.busy)

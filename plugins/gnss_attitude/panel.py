@@ -133,7 +133,7 @@ class GnssAttitudePanel(AnalysisPanel):
             self.sig_status.emit(f"statistics interval {start:.1f}–{end:.1f} s "
                                  f"({end - start:.0f} s) stored")
 
-    def refresh(self) -> None:
+    def redraw(self) -> None:
         project = self.project
         missing = self.spec.missing_inputs(project) if project is not None else ["a project"]
         self.run_button.setEnabled(not missing and not self.busy)

@@ -86,6 +86,9 @@ class ProjectionView(QWidget):
         # The section keeps true shape; the plan stretches east so that a misfit of a few
         # centimetres across the wall and the blocks is visible at the scale of the target.
         self.section.setAspectLocked(True)
+        # Fixed axis width: changing tick-label widths would resize the aspect-locked view
+        # and change its range again, without end.
+        self.section.getAxis("left").setWidth(52)
         lay = QHBoxLayout(self)
         lay.setContentsMargins(0, 0, 0, 0)
         lay.addWidget(self.plan, 1)

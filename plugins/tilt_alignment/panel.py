@@ -50,7 +50,7 @@ class TiltAlignmentPanel(AnalysisPanel):
             w.clear()
         self.table.set_columns({})
 
-    def refresh(self) -> None:
+    def redraw(self) -> None:
         project = self.project
         missing = self.spec.missing_inputs(project) if project is not None else ["a project"]
         self.run_button.setEnabled(not missing and not self.busy)

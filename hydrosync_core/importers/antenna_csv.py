@@ -30,7 +30,7 @@ import numpy as np
 
 from hydrosync_core.errors import InputError, quote
 from hydrosync_core.geodesy import ecef_to_geodetic
-from hydrosync_core.importers.csv_table import _data_line_numbers, _read_text, read_numeric_csv
+from hydrosync_core.importers.csv_table import _data_line_numbers, read_numeric_csv, read_text_file
 
 #: NMEA GGA fix quality → RTKLIB Q (1 fix, 2 float, 4 dgps, 5 single, 7 dead reckoning).
 GGA_TO_Q = {4: 1, 5: 2, 2: 4, 3: 4, 1: 5, 6: 7, 7: 7, 8: 7}
@@ -80,7 +80,7 @@ def read_antenna_csv(path: str | os.PathLike) -> dict[str, dict[str, np.ndarray]
     p = Path(path)
     cols = read_numeric_csv(p, ("time", "x", "y", "z", "quality"), ("sdx", "sdy", "sdz"),
                             time_column=None)
-    text = _read_text(p)
+    text = read_text_file(p)
     ids, lines = _antenna_ids(p, text)
     if len(ids) != cols["time"].size:  # pragma: no cover - both skip the same lines
         raise InputError(str(p), "could not match antenna ids to rows")

@@ -41,7 +41,10 @@ def cells(path: Path, line: str, number: int) -> list[str]:
         raise InputError(str(path), f"unreadable CSV line: {text[:80]}", line=number) from None
 
 
-def _read_text(path: Path) -> str:
+def read_text_file(path: str | os.PathLike, allow_empty: bool = False) -> str:
+    """The text of *path*, or one-line ``InputError`` naming it: missing, a folder, not
+    UTF-8, or (unless *allow_empty*) empty. Shared by every text importer."""
+    path = Path(path)
     if not path.exists():
         raise InputError(str(path), "no such file")
     if path.is_dir():
@@ -50,9 +53,10 @@ def _read_text(path: Path) -> str:
         text = path.read_text(encoding="utf-8-sig", errors="strict")
     except UnicodeDecodeError as exc:
         raise InputError(str(path), f"not a text file (byte {exc.start} is not UTF-8)") from None
-    if not text.strip():
+    if not allow_empty and not text.strip():
         raise InputError(str(path), "file is empty")
     return text
+
 
 
 def _header(path: Path, text: str) -> tuple[list[str], int]:
@@ -177,7 +181,7 @@ def read_numeric_csv(
         With file, line and field for every problem.
     """
     path = Path(path)
-    text = _read_text(path)
+    text = read_text_file(path)
     names, header_line = _header(path, text)
     missing = [c for c in required if c not in names]
     if missing:

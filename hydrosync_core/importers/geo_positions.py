@@ -33,6 +33,7 @@ import numpy as np
 
 from hydrosync_core.errors import InputError, quote
 from hydrosync_core.geodesy import geodetic_to_ecef
+from hydrosync_core.importers.csv_table import read_text_file
 
 GPS_EPOCH = datetime(1980, 1, 6)
 WEEK_S = 604800.0
@@ -93,14 +94,7 @@ def read_geo_with_info(path: str | os.PathLike,
     """:func:`read_geo` plus an info dict (``epochs``, ``rounded``, ``first``, ``last``)."""
     p = Path(path)
     name = str(p)
-    if not p.exists():
-        raise InputError(name, "no such file")
-    if p.is_dir():
-        raise InputError(name, "is a folder, not a file")
-    try:
-        text = p.read_text(encoding="utf-8-sig")
-    except UnicodeDecodeError as exc:
-        raise InputError(name, f"not a text file (byte {exc.start} is not UTF-8)") from None
+    text = read_text_file(p, allow_empty=True)
     numbers: list[int] = []
     rows: list[list[float]] = []
     for number, line in enumerate(text.splitlines(), start=1):

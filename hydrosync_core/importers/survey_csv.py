@@ -19,10 +19,10 @@ from hydrosync_core import plausible
 from hydrosync_core.errors import InputError, quote
 from hydrosync_core.importers.csv_table import (
     _header,
-    _read_text,
     cells,
     header_text,
     read_numeric_csv,
+    read_text_file,
 )
 
 
@@ -58,7 +58,7 @@ def read_lines_csv(path: str | os.PathLike) -> dict[str, np.ndarray]:
     would be counted twice and the 95 % interval of the latency narrowed falsely.
     """
     path = Path(path)
-    text = _read_text(path)
+    text = read_text_file(path)
     names, header_line = _header(path, text)
     for column in ("name", "start", "end"):
         if column not in names:

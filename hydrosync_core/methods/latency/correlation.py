@@ -25,6 +25,12 @@ def heave_at(tags: np.ndarray, dts: np.ndarray, t_att: np.ndarray, h_att: np.nda
     return np.interp(corrected.ravel(), t_att, h_att).reshape(corrected.shape)
 
 
+def _unit_centred(h: np.ndarray) -> np.ndarray:
+    """*h* minus its mean, scaled to unit norm (the heights' side of eq. 4)."""
+    hc = h - h.mean()
+    return hc / max(float(np.linalg.norm(hc)), 1e-300)
+
+
 def correlation_curve(
     tags: np.ndarray, h: np.ndarray, t_att: np.ndarray, h_att: np.ndarray, dts: np.ndarray
 ) -> np.ndarray:
@@ -53,8 +59,7 @@ def correlation_curve(
     step = fastscan.uniform_step(dts) if fastscan.available() else None
     if step is None or tags.size < 2:
         return correlation_curve_direct(tags, h, t_att, h_att, dts)
-    hc = h - h.mean()
-    hn = hc / max(float(np.linalg.norm(hc)), 1e-300)
+    hn = _unit_centred(h)
     F, S1, S2 = fastscan.correlation_sums(tags, hn, t_att, h_att, dts, step)
     n = tags.size
     var = S2 - S1 * S1 / n
@@ -72,25 +77,8 @@ def correlation_curve_direct(
 
     The reference for :func:`correlation_curve` (same arguments and result); used when the
     compiled kernel is not available or the grid is not uniform.
-
-    Parameters
-    ----------
-    tags : ndarray (n,)
-        GNSS time tags of the line, s.
-    h : ndarray (n,)
-        Detrended GNSS heights, m.
-    t_att, h_att : ndarray (m,)
-        Attitude times (s, increasing) and total heave there (m, up).
-    dts : ndarray (k,)
-        Candidate delays Δt, s.
-
-    Returns
-    -------
-    ndarray (k,)
-        R for every candidate (NaN where the heave is constant).
     """
-    hc = h - h.mean()
-    hn = hc / max(float(np.linalg.norm(hc)), 1e-300)
+    hn = _unit_centred(h)
     out = np.empty(len(dts))
     per = max(1, CHUNK_ELEMENTS // max(1, tags.size))
     for lo in range(0, len(dts), per):

@@ -73,14 +73,18 @@ def section(project, ctx) -> list:
             f"{a['present']} / {a['not_accepted_quality']} / {a['length_rejected']} / "
             f"{a['used']}") for n, a in counts["antennas"].items()],
         caption="Epoch screening.")
+    static = params.static_start_s is not None or params.static_end_s is not None
     rows = []
     for m, s in stats.items():
         row = [LABELS.get(m, m), str(s["epochs"])]
         for a in ("heading", "pitch", "roll"):
-            row += [fmt(s[a]["std"], 4), fmt(s[a]["predicted"], 4)]
+            # Without a static interval the spread is the platform's motion, not precision.
+            row += [fmt(s[a]["std"], 4) if static else "\u2014", fmt(s[a]["predicted"], 4)]
         rows.append(row)
-    interval = ("the whole record" if params.static_start_s is None and params.static_end_s
-                is None else f"{fmt(params.static_start_s, 1)} … {fmt(params.static_end_s, 1)} s")
+    interval = (f"{fmt(params.static_start_s, 1)} … {fmt(params.static_end_s, 1)} s" if static
+                else "no static interval (the measured scatter of a moving platform is its "
+                "motion, so only the prediction is given; set static_start_s/static_end_s "
+                "to a period when it stood still)")
     out += ctx.table(["Method", "Epochs", "σ heading", "pred.", "σ pitch", "pred.", "σ roll",
                       "pred."], rows, col_widths=[0.22, 0.1] + [0.113] * 6,
                      caption=f"Standard deviation of the angles over {interval} and the "

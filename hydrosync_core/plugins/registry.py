@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import functools
 import logging
 from dataclasses import dataclass
 from importlib.metadata import entry_points
@@ -31,10 +32,18 @@ def check_spec(spec: object, where: str) -> PluginSpec:
     return spec
 
 
+@functools.lru_cache(maxsize=8)
+def _entry_points(group: str) -> tuple:
+    """The installed entry points of *group*, read once per process: the metadata scan
+    costs milliseconds on every parser build and import, and the set of installed packages
+    does not change while HydroSync runs."""
+    return tuple(entry_points(group=group))
+
+
 def discover(group: str = ENTRY_POINT_GROUP) -> list[Discovered]:
     """Load every plugin spec of *group*; broken ones come back with their error."""
     found: list[Discovered] = []
-    for ep in entry_points(group=group):
+    for ep in _entry_points(group):
         try:
             spec = check_spec(ep.load(), ep.value)
             found.append(Discovered(ep.name, ep.value, spec, None))

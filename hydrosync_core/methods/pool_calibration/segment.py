@@ -4,7 +4,7 @@ Guided by the design (target ENU, m): for each face, crop the points within ``to
 its plane, inside its polygon shrunk by ``margin`` and on the sensor's side of the water
 level (laser above, multibeam below, ``water_margin`` away from the surface, which
 removes water-surface returns); the pool floor, self-returns and strays fall outside the
-crops. Then open3d RANSAC (``segment_plane``) keeps the plane's inliers and DBSCAN keeps
+crops. Then RANSAC (:func:`ransac_plane`, seeded) keeps the plane's inliers and DBSCAN keeps
 the largest cluster, removing remaining strays that happen to lie near the plane. Large
 clouds are first cropped to the target's bounding box; per-face point sets are capped
 (random subset) so that RANSAC/DBSCAN cost stays bounded. For the final (refined)
@@ -21,6 +21,9 @@ import numpy as np
 
 from hydrosync_core.methods.pool_calibration.design import DesignFace, inside_polygon
 from hydrosync_core.progress import check_cancel, report
+
+#: Largest point set clustered by DBSCAN directly (:func:`_dbscan_labels`).
+DBSCAN_MAX_POINTS = 3000
 
 
 @dataclass(frozen=True)
@@ -51,6 +54,37 @@ def bbox_mask(points: np.ndarray, faces: list[DesignFace], pad: float) -> np.nda
     return np.all((points >= lo) & (points <= hi), axis=1)
 
 
+def ransac_plane(pts: np.ndarray, thresh: float, iterations: int,
+                 rng: np.random.Generator, chunk: int = 32) -> tuple[np.ndarray, np.ndarray]:
+    """RANSAC plane of *pts* (n, 3, m): unit normal (3,) and indices of the points within
+    *thresh* m of the plane with most such points.
+
+    numpy rather than open3d's ``segment_plane``: that one draws its samples in several
+    threads, so the same cloud can give another plane on another run, and the selected
+    points (hence the calibration) were not repeatable. Here the draws come from *rng*
+    and ties go to the first hypothesis.
+    """
+    n = len(pts)
+    pick = rng.integers(0, n, (iterations, 3))
+    a, b, c = pts[pick[:, 0]], pts[pick[:, 1]], pts[pick[:, 2]]
+    normals = np.cross(b - a, c - a)
+    length = np.linalg.norm(normals, axis=1)
+    ok = length > 1e-12
+    normals, a = normals[ok] / length[ok, None], a[ok]
+    if not len(normals):
+        return np.array([0.0, 0.0, 1.0]), np.arange(0)
+    offsets = np.einsum("ij,ij->i", normals, a)
+    centre = pts.mean(axis=0)    # distances from a centred cloud: no cancellation
+    local = pts - centre
+    offsets = offsets - normals @ centre
+    counts = np.concatenate([
+        (np.abs(local @ normals[k:k + chunk].T - offsets[k:k + chunk]) < thresh).sum(axis=0)
+        for k in range(0, len(normals), chunk)])
+    best = int(np.argmax(counts))
+    inliers = np.flatnonzero(np.abs(local @ normals[best] - offsets[best]) < thresh)
+    return normals[best], inliers
+
+
 def _ransac_dbscan(pts: np.ndarray, thresh: float, eps: float, min_points: int,
                    normal: np.ndarray, max_angle_deg: float, attempts: int = 4) -> np.ndarray:
     """Indices into *pts* of the RANSAC plane inliers' largest DBSCAN cluster.
@@ -59,21 +93,15 @@ def _ransac_dbscan(pts: np.ndarray, thresh: float, eps: float, min_points: int,
     face or the pool floor that dominates a wide crop): its inliers are set aside and
     RANSAC is run again on the rest, up to *attempts* times.
     """
-    import open3d as o3d
-
     if len(pts) < max(3, min_points):
         return np.arange(0)
-    o3d.utility.random.seed(0)
+    rng = np.random.default_rng(0)
     left = np.arange(len(pts))
     inliers = None
     for _ in range(attempts):
         if len(left) < max(3, min_points):
             return np.arange(0)
-        cloud = o3d.geometry.PointCloud(o3d.utility.Vector3dVector(pts[left]))
-        model, found = cloud.segment_plane(distance_threshold=thresh, ransac_n=3,
-                                           num_iterations=300)
-        found = np.asarray(found, dtype=np.int64)
-        n_fit = np.asarray(model[:3]) / np.linalg.norm(model[:3])
+        n_fit, found = ransac_plane(pts[left], thresh, 300, rng)
         if np.degrees(np.arccos(min(1.0, abs(n_fit @ normal)))) <= max_angle_deg:
             inliers = left[found]
             break
@@ -82,12 +110,39 @@ def _ransac_dbscan(pts: np.ndarray, thresh: float, eps: float, min_points: int,
         return np.arange(0)
     if len(inliers) < min_points:
         return inliers
-    cloud = o3d.geometry.PointCloud(o3d.utility.Vector3dVector(pts[inliers]))
-    labels = np.asarray(cloud.cluster_dbscan(eps=eps, min_points=min_points))
+    labels = _dbscan_labels(pts[inliers], eps, min_points)
     if (labels >= 0).sum() == 0:
         return np.arange(0)
     biggest = np.bincount(labels[labels >= 0]).argmax()
     return inliers[labels == biggest]
+
+
+def _dbscan_labels(pts: np.ndarray, eps: float, min_points: int,
+                   max_points: int = DBSCAN_MAX_POINTS) -> np.ndarray:
+    """DBSCAN cluster labels (-1: noise) of *pts* (n, 3, m).
+
+    DBSCAN's cost grows with the number of neighbours within *eps*, and a densely sampled
+    face has thousands per point (minutes for one oblique face). Above *max_points* the
+    clusters are found on an evenly spread subset (every k-th point of a random order, so
+    the density drops by k but stays far above *min_points* on a face) and every other
+    point takes the label of its nearest subset point within *eps* (noise if none or if
+    that point is noise): isolated strays stay noise, a face stays one cluster.
+    """
+    import open3d as o3d
+
+    if len(pts) <= max_points:
+        cloud = o3d.geometry.PointCloud(o3d.utility.Vector3dVector(pts))
+        return np.asarray(cloud.cluster_dbscan(eps=eps, min_points=min_points))
+    from scipy.spatial import cKDTree
+
+    order = np.random.default_rng(0).permutation(len(pts))
+    sub = np.sort(order[:max_points])
+    sub_labels = _dbscan_labels(pts[sub], eps, min_points, max_points)
+    dist, near = cKDTree(pts[sub]).query(pts, distance_upper_bound=eps)
+    found = np.isfinite(dist)
+    labels = np.full(len(pts), -1, dtype=np.int64)
+    labels[found] = sub_labels[near[found]]
+    return labels
 
 
 def band_refit(pts: np.ndarray, start: np.ndarray, k_sigma: float, limit: float,

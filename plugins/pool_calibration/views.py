@@ -177,6 +177,8 @@ class ValuesTable(QTableWidget):
                     item.setForeground(QColor("#b00020"))
                     item.setToolTip(f"not determined by the data: {undetermined}; the coarse "
                                     "value is kept" if undetermined else flagged)
+                elif col == 1:
+                    item.setToolTip(_budget_text(result, name, unit))
                 self.setItem(row, col, item)
 
     def clear_values(self) -> None:
@@ -184,6 +186,16 @@ class ValuesTable(QTableWidget):
 
     def value(self, row: int, column: int) -> str:
         return self.item(row, column).text()
+
+
+def _budget_text(result: dict, name: str, unit: str) -> str:
+    """Tooltip: the σ budget of one parameter (which source gives how much)."""
+    budget = (result.get("joint") or {}).get("sigma_budget") or {}
+    scale, shown = (1.0, "°") if unit == "°" else (1000.0, " mm")
+    parts = [(src, v[name]) for src, v in budget.items() if v.get(name) is not None]
+    if not parts:
+        return ""
+    return "σ from: " + ", ".join(f"{src} {v * scale:.4g}{shown}" for src, v in parts)
 
 
 def convergence_legend() -> str:

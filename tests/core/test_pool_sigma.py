@@ -185,3 +185,33 @@ def test_build_tolerance_enters_the_joint_sigma():
     assert built.sigma_lever_arm_m["z"] > 0.002 / np.sqrt(3) / 2
     for k in ("roll", "pitch", "yaw"):
         assert built.sigma_boresight_deg[k] >= exact.sigma_boresight_deg[k]
+
+
+def test_sigma_budget_adds_up_and_names_its_sources():
+    """The σ budget (data, build, laser planes, INS) holds each source's share: their
+    squares add up to σ², a source that is off gives nothing, and a flagged parameter's
+    message names its largest source and what would reduce it."""
+    cfg = PoolPassConfig(**dict(FAST, target_kind="patent", ping_rate_hz=10.0, speed_m_s=0.8,
+                                ins_attitude_noise_deg=0.01))
+    sim = simulate_pool_pass(cfg, seed=5)
+    args = (sim["lidar"], sim["mbes"], sim["ins"], sim["setup"], sim["target"])
+    res = calibrate(*args, PoolParams(ins_sigma_deg=(0.01, 0.01, 0.01), ins_tau_s=1.0))
+    joint = res.joint
+    budget = joint.sigma_budget
+    assert {"data", "build", "reference", "ins"} <= set(budget)
+    for k, name in [("roll", "roll"), ("pitch", "pitch"), ("yaw", "yaw")]:
+        total = np.sqrt(sum(b[name] ** 2 for b in budget.values() if b[name] is not None))
+        np.testing.assert_allclose(total, joint.sigma_boresight_deg[k], rtol=1e-9)
+    for k in "xyz":
+        total = np.sqrt(sum(b[f"lever_{k}"] ** 2 for b in budget.values()
+                            if b[f"lever_{k}"] is not None))
+        np.testing.assert_allclose(total, joint.sigma_lever_arm_m[k], rtol=1e-9)
+    # The vertical lever arm rests on four block tops each built to ±2 mm: build dominates
+    # it, while INS attitude noise is what limits yaw on a short pass.
+    assert budget["build"]["lever_z"] > budget["data"]["lever_z"]
+    assert budget["ins"]["yaw"] > 0.0
+    for name, text in res.flagged.items():
+        assert "% of its variance from" in text and "helps:" in text, (name, text)
+    exact = calibrate(*args, PoolParams(build_tol_m=0.0, build_tol_deg=0.0)).joint
+    assert all(v in (None, 0.0) or v < 1e-12 for v in exact.sigma_budget["build"].values())
+    assert all(v in (None, 0.0) for v in exact.sigma_budget["ins"].values())

@@ -20,7 +20,10 @@ not pull roll and pitch) and ``σ0² [N_aug⁻¹]_θθ`` carries the build toler
 Gauss-Newton with Huber iteratively reweighted least squares (outliers left by the
 segmentation get small weights). Covariance ``σ0² [N_aug⁻¹]_θθ``, plus the part propagated
 from the laser reference planes' own fit uncertainty (faces sharing a laser plane — a
-crossing face and the twins moved from it — share its error), plus the INS accuracy.
+crossing face and the twins moved from it — share its error), plus the INS accuracy. Each
+part is kept (``JointFit.budget``) so that a user told "pitch is poorly determined" also
+learns what would help: more passes (data), a surveyed as-built target (build), a denser
+laser scan (reference) or a better INS.
 
 Undetermined parameters. A parameter whose column of the normal matrix is (nearly) in its
 null space, that the caller names in ``fix`` (with a reason), or whose σ from the data
@@ -86,6 +89,13 @@ class JointFit:
     variance_factor: np.ndarray | None = None
     #: Parameters not determined by the data -> the reason (held at their start value).
     undetermined: dict[str, str] = field(default_factory=dict)
+    #: σ budget: source -> (6,) 1-σ of each parameter from that source alone (NAMES order,
+    #: rad / m; NaN for held parameters). Sources: ``data`` (soundings' noise, incl. the
+    #: ping-block factor), ``build`` (twins' build tolerance), ``reference`` (laser planes'
+    #: fit), ``ins`` (INS attitude accuracy), ``held`` (coarse error of held parameters).
+    #: Their variances add up to the diagonal of ``covariance``; correlations between
+    #: parameters are in ``covariance`` only.
+    budget: dict[str, np.ndarray] = field(default_factory=dict)
 
 
 def _axes(theta: np.ndarray) -> np.ndarray:
@@ -320,6 +330,7 @@ def adjust(ctx: GeorefContext, obs: dict[str, tuple[np.ndarray, PlaneFit]], r_m0
         if not covariance:
             cov = np.full((6, 6), np.nan)
             factor = np.ones(int(free.sum()))
+            budget = {}
             break
         jf = jac[:, free]
         kf = int(free.sum())
@@ -334,18 +345,21 @@ def adjust(ctx: GeorefContext, obs: dict[str, tuple[np.ndarray, PlaneFit]], r_m0
         root = np.sqrt(factor)
         # Formal σ0² N_aug⁻¹; its data part σ0² N⁻¹ inflated by the block-sandwich factors;
         # + laser reference planes and INS accuracy.
-        cov_f = sigma0_sq * n_aug_inv[:kf, :kf] + \
-            sigma0_sq * n_inv * (np.outer(root, root) - 1.0) + \
-            _reference_cov(ctx, obs, r_m, lever, a_aug, weights, g_theta, refs) + \
-            ins_covariance(ctx, obs, r_m, lever, a_aug, weights, n_aug_inv,
-                           np.asarray(ins_sigma_rad), ins_tau_s)[:kf, :kf]
+        parts = {
+            "data": sigma0_sq * n_inv * np.outer(root, root),
+            "build": sigma0_sq * (n_aug_inv[:kf, :kf] - n_inv),
+            "reference": _reference_cov(ctx, obs, r_m, lever, a_aug, weights, g_theta, refs),
+            "ins": ins_covariance(ctx, obs, r_m, lever, a_aug, weights, n_aug_inv,
+                                  np.asarray(ins_sigma_rad), ins_tau_s)[:kf, :kf],
+        }
         held = ~free
         if c_sig is not None and held.any():
             # A held parameter keeps its coarse error e_c: the free ones move by
             # -[N_aug⁻¹ A_augᵀ W J_held]_θ e_c.
             jh = jac[:, held]
             k_mat = g_theta @ (a_aug.T @ (jh * weights[:, None]))
-            cov_f = cov_f + k_mat @ np.diag(c_sig[held] ** 2) @ k_mat.T
+            parts["held"] = k_mat @ np.diag(c_sig[held] ** 2) @ k_mat.T
+        cov_f = sum(parts.values())
         sig = np.sqrt(np.clip(np.diag(cov_f), 0, None))
         if c_sig is not None and coarse is not None:
             ratio = sig / c_sig[free]
@@ -360,6 +374,10 @@ def adjust(ctx: GeorefContext, obs: dict[str, tuple[np.ndarray, PlaneFit]], r_m0
                 continue
         cov = np.full((6, 6), np.nan)
         cov[np.ix_(free, free)] = cov_f
+        budget = {}
+        for source, part in parts.items():
+            budget[source] = np.full(6, np.nan)
+            budget[source][free] = np.sqrt(np.clip(np.diag(part), 0, None))
         break
     rms = {str(n): float(np.sqrt(np.mean(res[lab == n] ** 2))) for n in obs}
     vf = np.full(6, np.nan)
@@ -367,7 +385,7 @@ def adjust(ctx: GeorefContext, obs: dict[str, tuple[np.ndarray, PlaneFit]], r_m0
     s0 = float(np.sqrt(np.sum(weights * res**2) / max(1, len(res) - int(free.sum()))))
     fixed = tuple(n for n, f in zip(NAMES, free, strict=True) if not f)
     return JointFit(r_m, lever, cov, s0, len(res), it, converged, fixed, rms, vf,
-                    {n: undetermined[n] for n in fixed})
+                    {n: undetermined[n] for n in fixed}, budget)
 
 
 def correlation(cov: np.ndarray) -> np.ndarray:

@@ -92,6 +92,7 @@ def section(project, ctx: ReportContext) -> list[Flowable]:
             "the lever arm is in the body frame (x forward, y starboard, z down)."),
     ]
     out += _parameter_table(ctx, attrs, res)
+    out += _budget_table(ctx, res)
     params = stored(PoolParams, project, RESULT)
     out += _run_info(ctx, attrs, res, params)
     for text in json.loads(attrs.get("warnings") or "[]"):
@@ -133,13 +134,50 @@ def _parameter_table(ctx, attrs, res) -> list[Flowable]:
     out = ctx.table(
         ["Parameter", "Coarse (setup)", "Patent method", "Joint adjustment \u00b1 1\u03c3",
          f"Final ({method})", "Correction (final \u2212 coarse)", "Status"], rows,
-        col_widths=[0.18, 0.11, 0.11, 0.18, 0.12, 0.13, 0.17], extra_style=style,
+        col_widths=[0.25, 0.1, 0.09, 0.18, 0.1, 0.12, 0.16], extra_style=style,
         caption="Boresight angles and lever arm: the coarse values of the installation "
         "drawing, the patent method's and the joint adjustment's solutions, and the final "
         "values to enter in the acquisition software. An undetermined parameter keeps its "
         "coarse value (no \u03c3); a parameter whose \u03c3 exceeds the warning threshold is "
         "flagged.")
     return out
+
+
+#: σ-budget sources as the report names them, in column order.
+BUDGET_SOURCES = (("data", "Soundings (data)"), ("build", "Build tolerance"),
+                  ("reference", "Laser planes"), ("ins", "INS attitude"),
+                  ("held", "Held parameters"))
+
+
+def _budget_table(ctx, res) -> list[Flowable]:
+    """Where each parameter's σ comes from: one column per source, and the total."""
+    joint = res.get("joint") or {}
+    budget = joint.get("sigma_budget") or {}
+    if not budget:
+        return []
+    sources = [(k, label) for k, label in BUDGET_SOURCES if k in budget]
+    rows, style = [], []
+    for i, (key, label, unit) in enumerate(ANGLES + LEVERS):
+        name = key if unit == "\u00b0" else f"lever_{key}"
+        scale, dec, shown = (1.0, 4, "\u00b0") if unit == "\u00b0" else (1000.0, 2, "mm")
+        values = [budget[k].get(name) for k, _ in sources]
+        if all(v is None for v in values):
+            rows.append([f"{label} [{shown}]"] + ["\u2014"] * (len(sources) + 1))
+            continue
+        total = float(np.sqrt(sum(v * v for v in values if v is not None)))
+        rows.append([f"{label} [{shown}]"] + [fmt(None if v is None else v * scale, dec)
+                                                for v in values] + [fmt(total * scale, dec)])
+        top = int(np.nanargmax([np.nan if v is None else v for v in values]))
+        style.append(("FONTNAME", (top + 1, i + 1), (top + 1, i + 1), "Helvetica-Bold"))
+    return ctx.table(
+        ["Parameter", *(label for _, label in sources), "Total \u03c3"], rows,
+        col_widths=[0.22] + [0.65 / len(sources)] * len(sources) + [0.13], numeric_from=1,
+        extra_style=style,
+        caption="\u03c3 budget of the joint adjustment: the 1\u03c3 each source alone gives "
+        "each parameter (their squares add up to the total; the largest in bold). Soundings: "
+        "more passes, slower, at other ranges; build tolerance: survey the as-built "
+        "below-water blocks; laser planes: a denser scan of the above-water faces; INS: a "
+        "more accurate INS; held parameters: the coarse error of undetermined ones.")
 
 
 def _twin_table(project, ctx) -> list[Flowable]:

@@ -62,6 +62,9 @@ class JointSolution:
     variance_factor: dict = field(default_factory=dict)
     #: Undetermined parameter -> reason (held at its coarse value, σ NaN).
     undetermined_reasons: dict = field(default_factory=dict)
+    #: σ budget: source (data, build, reference, ins, held) -> parameter -> 1-σ from that
+    #: source alone (° / m; null for undetermined parameters); the squares add up to σ².
+    sigma_budget: dict = field(default_factory=dict)
 
 
 @dataclass(frozen=True)

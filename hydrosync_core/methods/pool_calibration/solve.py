@@ -55,7 +55,27 @@ def _joint_obs(seg, mfaces, min_points):
             if len(idx) >= min_points and name in seg.refs}
 
 
-def _flags(cov, fixed, p) -> dict[str, str]:
+#: What reduces each σ-budget source (the advice of a flagged parameter).
+REMEDY = {
+    "data": "more passes, slower, at other ranges",
+    "build": "survey the as-built below-water blocks (smaller build tolerance)",
+    "reference": "a denser laser scan of the above-water faces",
+    "ins": "a more accurate INS",
+    "held": "passes that determine the held parameters",
+}
+
+
+def _budget(fit) -> dict[str, dict[str, float | None]]:
+    """σ budget of the joint fit in user units (° for angles, m for the lever arm)."""
+    out = {}
+    for source, sig in fit.budget.items():
+        scale = np.array([np.degrees(1.0)] * 3 + [1.0] * 3)
+        out[source] = {n: (None if not np.isfinite(v) else float(v * f))
+                       for n, v, f in zip(NAMES, sig, scale, strict=True)}
+    return out
+
+
+def _flags(cov, fixed, p, budget: dict | None = None) -> dict[str, str]:
     out = {}
     sig = np.sqrt(np.clip(np.nan_to_num(np.diag(cov)), 0, None))
     for k, name in enumerate(NAMES):
@@ -65,6 +85,13 @@ def _flags(cov, fixed, p) -> dict[str, str]:
             (sig[k], p.max_sigma_m, " m")
         if s > lim:
             out[name] = f"σ = {s:.4g}{unit} exceeds {lim:g}{unit}: poorly determined"
+            shares = {src: v[name] ** 2 for src, v in (budget or {}).items()
+                      if v.get(name) is not None}
+            total = sum(shares.values())
+            if total > 0:
+                top = max(shares, key=shares.get)
+                out[name] += (f"; {100 * shares[top] / total:.0f} % of its variance from "
+                              f"{top} (helps: {REMEDY[top]})")
     return out
 
 
@@ -199,7 +226,8 @@ def solve(seg, params: PoolParams | None = None, progress=None, cancel=None) -> 
     if fit is not None:
         corr = correlation(fit.covariance)
         sig = np.sqrt(np.diag(fit.covariance))
-        flagged = _flags(fit.covariance, fit.fixed, p)
+        budget = _budget(fit)
+        flagged = _flags(fit.covariance, fit.fixed, p, budget)
         warnings += _corr_warnings(corr, p)
         joint = JointSolution(
             _angles(fit.r_m), _lever(fit.lever),
@@ -207,7 +235,7 @@ def solve(seg, params: PoolParams | None = None, progress=None, cancel=None) -> 
             _lever(sig[3:]), list(NAMES), corr.tolist(), fit.sigma0_m, fit.n_obs,
             fit.iterations, fit.converged, list(fit.fixed), fit.residual_rms,
             dict(zip(NAMES, map(float, fit.variance_factor), strict=True)),
-            dict(fit.undetermined))
+            dict(fit.undetermined), budget)
         usage = face_usage(seg.ctx, obs, fit)
         if p.final == "joint" and fit.converged:
             r_final, l_final, method = fit.r_m, fit.lever, "joint"

@@ -193,7 +193,7 @@ def _initial_state(imu: ImuData, gnss: GnssData, cfg: SensorConfig, i0: int,
     # moving alignment: heading from the GNSS course
     vg = _gnss_velocity(gnss)
     gt, llh = gnss.time, gnss.llh
-    c_bv = euler_matrix(*np.radians(np.asarray(p.mounting_deg, float)))  # vehicle ← body
+    c_vb = euler_matrix(*np.radians(np.asarray(p.mounting_deg, float)))  # vehicle ← body
     for k in range(1, gt.size - 1):
         if gt[k] < t[i0] or not np.isfinite(vg[k]).all():
             continue
@@ -206,7 +206,7 @@ def _initial_state(imu: ImuData, gnss: GnssData, cfg: SensorConfig, i0: int,
             break
         # vehicle attitude from the course (roll 0), then the body by the mounting
         c_vn = euler_matrix(0.0, math.atan2(-v[2], speed), math.atan2(v[1], v[0]))
-        roll, pitch, yaw = _euler_of(c_vn @ c_bv.T)
+        roll, pitch, yaw = _euler_of(c_vn @ c_vb)
         info["levelling"] = "GNSS course and mounting angles"
         lev = _moving_levelling(imu, gt, vg, i_start, yaw, gnss.llh[k])
         if lev is not None:
@@ -480,7 +480,9 @@ def run_gins(imu: ImuData, gnss: GnssData, cfg: SensorConfig, params: GinsParams
     innov = np.full((tg.size, 3), np.nan)
     used = np.zeros(tg.size, np.int8)
     mount = np.radians(np.asarray(p.mounting_deg, float))
-    c_vb = euler_matrix(*mount).T  # vehicle ← body
+    # The mounting angles are the IMU's attitude in the vehicle frame, as the boresight
+    # angles elsewhere: C(vehicle ← body) = Rz(yaw)·Ry(pitch)·Rx(roll).
+    c_vb = euler_matrix(*mount)  # vehicle ← body
     nominal_dt = 1.0 / cfg.imu_rate_hz
     prop_n = max(1, int(round(p.propagation_interval_s * cfg.imu_rate_hz)))
     state = np.zeros(18)

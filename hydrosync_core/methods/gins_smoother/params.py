@@ -71,8 +71,9 @@ class GinsParams(Params):
     mounting_deg: tuple[float, float, float] = param(
         (0.0, 0.0, 0.0), label="IMU mounting angles", unit="°", metavar=("ROLL", "PITCH", "YAW"),
         group="Motion constraints",
-        help="roll, pitch, yaw of the IMU body frame relative to the vehicle frame (the "
-             "NHC applies in the vehicle frame)")
+        help="roll, pitch, yaw of the IMU body frame relative to the vehicle frame: "
+             "C(vehicle ← IMU) = Rz(yaw)·Ry(pitch)·Rx(roll), e.g. yaw 90 when the IMU's x "
+             "axis points to the vehicle's starboard (the NHC applies in the vehicle frame)")
     gnss_std_scale: float = param(
         1.0, label="GNSS σ scale", minimum=0.0, min_exclusive=True, maximum=1000.0,
         decimals=2, help="factor on the std of the GNSS file")

@@ -208,3 +208,20 @@ def test_mounting_angles_are_the_imu_attitude_in_the_vehicle_frame(drive):
     ref = evaluate(aligned, sim["truth"])["smoothed"]["all"]["horizontal"]["rms"]
     assert h_rms["mount"] < 1.2 * ref + 1e-3, (h_rms, ref)
     assert h_rms["inverse"] > 5 * h_rms["mount"], h_rms
+
+
+def test_options_given_equal_to_the_default_still_override_a_recording():
+    """A recording brings its recommended options (the rtkexplorer drive: NHC on); an
+    option the user gives wins even when it equals the schema default (--no-nhc), and only
+    the options given are passed on."""
+    from hydrosync_core.cli import build_parser
+    from hydrosync_core.methods.gins_smoother.cli import _given
+    from hydrosync_core.params import from_cli
+
+    args = build_parser().parse_args(["gins", "--recording", "x", "--no-nhc",
+                                      "--nhc-std", "0.2"])
+    given = _given(args, from_cli(args, GinsParams))
+    assert given == {"nhc": False, "nhc_std": 0.2}
+    assert GinsParams.from_dict({"nhc": True, "zupt": True, **given}).nhc is False
+    args = build_parser().parse_args(["gins", "--recording", "x"])
+    assert _given(args, from_cli(args, GinsParams)) == {}

@@ -109,10 +109,9 @@ def _run_files(args, params: GinsParams) -> int:
         cfg = read_config(args.config) if args.config else rec.config
         imu, gnss = rec.imu, rec.gnss
         truth = truth if truth is not None else rec.reference
-        # the recording's options replace the schema defaults the user left alone
-        given = {k: v for k, v in params.to_dict().items()
-                 if v != GinsParams.from_dict({}).to_dict()[k]}
-        params = GinsParams.from_dict({**rec.params, **given})
+        # the recording's options replace the options the user did not give (a value
+        # given equal to the schema default still wins over the recording's)
+        params = GinsParams.from_dict({**rec.params, **_given(args, params)})
     else:
         cfg = read_config(args.config)
         imu = read_imu(args.imu, cfg.imu_rate_hz)
@@ -132,6 +131,14 @@ def _run_files(args, params: GinsParams) -> int:
     return 0
 
 
+def _given(args, params: GinsParams) -> dict:
+    """The options given on the command line (validated values of *params*)."""
+    from hydrosync_core.params import cli_values
+
+    values = params.to_dict()
+    return {k: values[k] for k in cli_values(args, GinsParams)}
+
+
 def _run_project(args, params: GinsParams) -> int:
     from hydrosync_core.atomic import write_json_atomic
     from hydrosync_core.cli.terminal import TerminalProgress
@@ -146,10 +153,8 @@ def _run_project(args, params: GinsParams) -> int:
     project = Project.open(args.project)
     progress = TerminalProgress("gins")
     try:
-        # schema defaults the user left alone give way to an imported recording's options
-        defaults = GinsParams.from_dict({}).to_dict()
-        given = {k: v for k, v in params.to_dict().items() if v != defaults[k]}
-        res = run(project, given, progress, None)
+        # options the user did not give leave an imported recording's options in place
+        res = run(project, _given(args, params), progress, None)
     except InputError as exc:
         raise InputError(f"{args.project}{exc.file or ''}", exc.message, line=exc.line,
                          field=exc.field) from None

@@ -92,7 +92,27 @@ def _flags(cov, fixed, p, budget: dict | None = None) -> dict[str, str]:
                 top = max(shares, key=shares.get)
                 out[name] += (f"; {100 * shares[top] / total:.0f} % of its variance from "
                               f"{top} (helps: {REMEDY[top]})")
+                out[name] += "; " + _passes_needed(shares, lim, unit)
     return out
+
+
+#: Budget sources that average down with more passes like these (independent noise and
+#: INS errors of a few seconds' correlation); the others are fixed by the target and setup.
+SCALABLE = ("data", "ins")
+
+
+def _passes_needed(shares: dict[str, float], limit: float, unit: str) -> str:
+    """How many times the passes (soundings) would bring σ to *limit*, or why none can.
+
+    *shares* are the variances per source (in the unit of *limit*, squared)."""
+    scalable = sum(v for k, v in shares.items() if k in SCALABLE)
+    fixed = sum(v for k, v in shares.items() if k not in SCALABLE)
+    if fixed >= limit**2:
+        worst = max((k for k in shares if k not in SCALABLE), key=shares.get)
+        return (f"more passes cannot bring it to {limit:g}{unit}: the {worst} part alone "
+                f"gives {np.sqrt(fixed):.3g}{unit}")
+    factor = scalable / (limit**2 - fixed)
+    return f"about {factor:.1f}× the passes like these would bring it to {limit:g}{unit}"
 
 
 def _corr_warnings(corr, p) -> list[str]:

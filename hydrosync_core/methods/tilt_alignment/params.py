@@ -88,8 +88,8 @@ class TiltParams(Params):
                          "point after the swing)")
     accel_block_s: float = param(
         0.25, label="Accelerometer block", unit="s", minimum=0.02, maximum=5.0, decimals=3,
-        advanced=True, help="joint method: accelerometers enter as velocity increments "
-                            "over blocks of this length")
+        advanced=True, help="joint method: accelerometers enter in Hann windows twice this "
+                            "long, one every this many seconds (overlapping by half)")
     gyro_bias_sigma_deg_s: float = param(
         0.2, label="Gyro bias σ", unit="°/s", minimum=0.0, min_exclusive=True, maximum=10.0,
         decimals=3, advanced=True,

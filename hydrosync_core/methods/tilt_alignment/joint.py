@@ -98,6 +98,11 @@ class JointResult:
             return float("nan")
         return float(np.sqrt(max(d @ self.cov[3:5, 3:5] @ d, 0.0)))
 
+    def horizontal_radius_m(self, probability: float) -> float:
+        """Radius (m) of the horizontal circle about the estimate holding the tip with
+        *probability* (from the 2×2 covariance, :func:`horizontal_radius`)."""
+        return horizontal_radius(self.cov[3:5, 3:5], probability)
+
     @property
     def tip_std(self) -> np.ndarray:
         return np.sqrt(np.clip(np.diag(self.cov)[TIP], 0.0, None))
@@ -106,6 +111,37 @@ class JointResult:
     def attitude_std(self) -> np.ndarray:
         """1σ (rad) of the initial attitude about north, east and down."""
         return np.sqrt(np.clip(np.diag(self.cov)[TH], 0.0, None))
+
+
+def horizontal_radius(cov2: np.ndarray, probability: float) -> float:
+    """Radius r with ``P(|e| ≤ r) = probability`` for a 2-D Gaussian error e ~ N(0, cov2).
+
+    With eigenvalues λ_big ≥ λ_small, ``P(r) = ∫ φ(z)·erf(√((r² − λ_big·z²)/(2·λ_small)))
+    dz`` over ``|z| ≤ r/√λ_big``; solved by bisection. For a circular error this is
+    ``σ·√(−2·ln(1 − p))`` (3.03 σ at 99 %), for a thin one ``z_p·σ_max`` (2.58 σ at 99 %).
+    """
+    from scipy.special import erf
+
+    lam = np.linalg.eigvalsh(np.asarray(cov2, float))
+    if not np.all(np.isfinite(lam)):
+        return float("nan")
+    small, big = (max(float(v), 0.0) for v in lam)
+    if big <= 0:
+        return 0.0
+    x = np.linspace(-1.0, 1.0, 2001)
+
+    def cdf(r):
+        z = x * r / math.sqrt(big)
+        inner = np.clip(r * r - big * z * z, 0.0, None)
+        term = erf(np.sqrt(inner / (2 * small))) if small > 0 else (inner > 0).astype(float)
+        f = np.exp(-0.5 * z * z) / math.sqrt(2 * math.pi) * term
+        return float(np.sum(0.5 * (f[1:] + f[:-1]) * np.diff(z)))
+
+    lo, hi = 0.0, 10.0 * math.sqrt(big + small)
+    for _ in range(50):
+        mid = 0.5 * (lo + hi)
+        lo, hi = (mid, hi) if cdf(mid) < probability else (lo, mid)
+    return 0.5 * (lo + hi)
 
 
 def _windows(time: np.ndarray, block_s: float, overlap: bool = True

@@ -374,7 +374,9 @@ def joint_lsq(time: np.ndarray, gyro: np.ndarray, accel: np.ndarray, gnss_t: np.
             red_i = float(np.sum(Pm * S))                  # tr(P·Σ_i), Σ_i symmetric
             if red_i > 1.0:
                 new[i] = theta[i] * float(v @ S @ v) / red_i
-        lo = np.array([0.05, 0.05, 0.05, 0.05]) ** 2
+        # the GNSS σ may grow from the a-priori values, not shrink below them: a dozen
+        # epochs (2 Hz) estimate it to ±20 %, and a receiver's stated RTK σ is a floor
+        lo = np.array([1.0, 1.0, 0.05, 0.05]) ** 2
         hi = np.array([50.0, 50.0, 20.0, 20.0]) ** 2
         theta = np.clip(new, lo, hi)
     e, A = linearise()

@@ -49,6 +49,8 @@ import numpy as np
 from hydrosync_core.methods.tilt_alignment.geometry import E_DOWN, exp_so3, propagate, skew
 
 NPAR = 12
+#: Huber threshold on a GNSS epoch's standardised 3-D residual (√χ²₃ at 99 %)
+HUBER_K = 3.37
 TH, TIP, BG, BA = slice(0, 3), slice(3, 6), slice(6, 9), slice(9, 12)
 
 
@@ -65,7 +67,8 @@ class JointResult:
     accelerometer window (m/s, its white noise); ``rms_gnss_m`` the RMS of the GNSS residuals;
     ``sigma_gnss_v_m`` the a-posteriori vertical GNSS σ; ``gyro_noise_rad_s`` and
     ``accel_noise_m_s2`` the per-sample white-noise σ of the IMU (from the record, scaled by
-    their variance components).
+    their variance components); ``gnss_downweighted`` the GNSS epochs the robust (Huber)
+    weights took to less than half their weight (residual beyond twice the threshold).
     """
 
     C0: np.ndarray
@@ -89,6 +92,7 @@ class JointResult:
     gyro_noise_rad_s: float = float("nan")
     accel_noise_m_s2: float = float("nan")
     sigma_gnss_v_m: float = float("nan")
+    gnss_downweighted: int = 0
 
     @property
     def weak_sigma_m(self) -> float:
@@ -269,7 +273,8 @@ def joint_lsq(time: np.ndarray, gyro: np.ndarray, accel: np.ndarray, gnss_t: np.
     windows, and the gyros' white noise, which the attitude integrates into a random walk
     common to every later observation (angle random walk: it correlates all of them and
     is the limit of what a short swing can tell). Its four scale factors are re-estimated
-    from the residuals (variance components, Förstner's redundancy form).
+    from the residuals (variance components, Förstner's redundancy form), and each GNSS
+    epoch gets a robust (Huber) weight from its standardised residual.
 
     Parameters
     ----------
@@ -330,8 +335,9 @@ def joint_lsq(time: np.ndarray, gyro: np.ndarray, accel: np.ndarray, gnss_t: np.
     it_total, converged = 0, False
     C = propagate(C0, time, gyro, bg)
     Qw = gyro_cov()
+    infl = np.ones(R)          # Huber: variance inflation of each GNSS epoch (1 = full weight)
     for rnd in range(vce_rounds + 1):
-        Sigma = np.diag(theta[0] * Qh + theta[1] * Qv) + theta[2] * Qa + theta[3] * Qw
+        Sigma = np.diag(infl * (theta[0] * Qh + theta[1] * Qv)) + theta[2] * Qa + theta[3] * Qw
         Sigma[np.diag_indices(R)] += 1e-12 * np.max(np.diag(Sigma))
         L = np.linalg.cholesky(Sigma)
         converged = False
@@ -365,7 +371,7 @@ def joint_lsq(time: np.ndarray, gyro: np.ndarray, accel: np.ndarray, gnss_t: np.
         We, WA = cho_solve(cf, e), cho_solve(cf, A)
         Ninv = np.linalg.pinv(A.T @ WA + Pr.T @ Pr)
         v = We - WA @ (Ninv @ (WA.T @ e + Pr.T @ rp))     # W·v at the solution
-        comps = (np.diag(theta[0] * Qh), np.diag(theta[1] * Qv), theta[2] * Qa,
+        comps = (np.diag(infl * theta[0] * Qh), np.diag(infl * theta[1] * Qv), theta[2] * Qa,
                  theta[3] * Qw)
         Wm = cho_solve(cf, np.eye(R))
         Pm = Wm - WA @ Ninv @ WA.T
@@ -379,6 +385,11 @@ def joint_lsq(time: np.ndarray, gyro: np.ndarray, accel: np.ndarray, gnss_t: np.
         lo = np.array([1.0, 1.0, 0.05, 0.05]) ** 2
         hi = np.array([50.0, 50.0, 20.0, 20.0]) ** 2
         theta = np.clip(new, lo, hi)
+        # robust weights (Huber) per GNSS epoch, from its residual standardised by the
+        # white GNSS σ: beyond HUBER_K (χ²₃ 99 %) the variance grows with the residual
+        sd = np.sqrt(theta[0] * Qh[:3 * m] + theta[1] * Qv[:3 * m]).reshape(m, 3)
+        d = np.sqrt(np.sum((e[:3 * m].reshape(m, 3) / sd) ** 2, axis=1))
+        infl[:3 * m] = np.repeat(np.maximum(1.0, d / HUBER_K), 3)
     e, A = linearise()
     P, rp = prior_rows()
     Aw = np.vstack([solve_triangular(L, A, lower=True), P])
@@ -399,7 +410,8 @@ def joint_lsq(time: np.ndarray, gyro: np.ndarray, accel: np.ndarray, gnss_t: np.
                        float(np.sqrt(np.mean(eg ** 2))), eg, int(nb), share, weak, tau,
                        tau_std, gyro_noise_rad_s=sw * math.sqrt(theta[3]),
                        accel_noise_m_s2=sf * math.sqrt(theta[2]),
-                       sigma_gnss_v_m=sigma_v * math.sqrt(theta[1]))
+                       sigma_gnss_v_m=sigma_v * math.sqrt(theta[1]),
+                       gnss_downweighted=int(np.sum(infl[:3 * m:3] > 2.0)))
 
 
 def _time_offset(Aw: np.ndarray, rw: np.ndarray, L: np.ndarray, C: np.ndarray,

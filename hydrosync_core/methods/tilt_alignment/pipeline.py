@@ -214,7 +214,8 @@ def solve_record(time: np.ndarray, gyro: np.ndarray, accel: np.ndarray, gnss_tim
         r_h = float(m.tip_std[0]) * math.sqrt(-2.0 * math.log(1.0 - WARN_PROBABILITY))
         if r_h > p.tip_tolerance_m:
             m.warning = (f"{name}: the tip is uncertain to {1000 * r_h:.0f} mm horizontally "
-                         f"({100 * WARN_PROBABILITY:.0f} %), beyond the {1000 * p.tip_tolerance_m:.0f} mm "
+                         f"({100 * WARN_PROBABILITY:.0f} %), beyond the "
+                         f"{1000 * p.tip_tolerance_m:.0f} mm "
                          "tolerance: a heading-only method keeps the levelling's tilt error "
                          "(accelerometer bias, gyro drift since); the joint method estimates it")
         if name in ("bgd", "sgd", "mbgd"):
@@ -255,6 +256,11 @@ def solve_record(time: np.ndarray, gyro: np.ndarray, accel: np.ndarray, gnss_tim
                 joint = adjust(np.clip(gnss_time + applied, time[0], time[-1]), joint.C0,
                                joint.tip)
             joint.time_offset_applied_s = applied
+            if joint.gnss_downweighted:
+                warnings.append(
+                    f"joint: {joint.gnss_downweighted} GNSS epoch(s) far off the swing "
+                    "(residual beyond twice the robust limit) were down-weighted: multipath "
+                    "or a bad fix?")
             if applied:
                 warnings.append(
                     f"GNSS time tags are {1000 * applied:+.1f} ms (±"

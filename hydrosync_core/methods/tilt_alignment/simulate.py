@@ -59,6 +59,7 @@ class SwingConfig:
     gyro_bias_deg_s: tuple[float, float, float] = (0.0, 0.0, 0.0)
     accel_bias_m_s2: tuple[float, float, float] = (0.0, 0.0, 0.0)
     gravity_m_s2: float = 9.80665
+    gnss_outliers: int = 0             # epochs with a 5-15 cm error (multipath, a bad fix)
     imu_noise_taps: int = 1            # IMU noise through a moving average of this many
                                        # samples (a sensor's digital low-pass), same ARW
     wobble: tuple = field(default=(), compare=False)   # (freqs, phases) filled by random
@@ -204,6 +205,11 @@ def simulate_swing(config: SwingConfig | None = None, seed: int = 0) -> dict:
         idx = idx[(t[idx] < t_gap) | (t[idx] >= t_gap + cfg.gap_s)]
     sig = np.array([cfg.gnss_sigma_h_m, cfg.gnss_sigma_h_m, cfg.gnss_sigma_v_m])
     gnss = p[idx] + rng.normal(0, 1, (idx.size, 3)) * sig
+    if cfg.gnss_outliers:
+        bad = rng.choice(idx.size, size=min(cfg.gnss_outliers, idx.size), replace=False)
+        jump = rng.normal(0, 1, (bad.size, 3))
+        jump /= np.linalg.norm(jump, axis=1)[:, None]
+        gnss[bad] += jump * rng.uniform(0.05, 0.15, (bad.size, 1))
     hold = t >= duration - cfg.hold_s
     tilt = np.degrees(np.arccos(np.clip(C[:, 2, 2], -1, 1)))
     return {

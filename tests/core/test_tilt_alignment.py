@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+import re
 from dataclasses import replace
 
 import numpy as np
@@ -210,10 +211,126 @@ def test_a_gnss_time_offset_is_found_corrected_and_named():
     sol = _solve(sim)
     j = sol.joint
     assert j.time_offset_applied_s + j.time_offset_s == pytest.approx(0.03, abs=0.003)
-    assert any("time tags are +30" in w for w in sol.warnings)
+    said = [re.search(r"time tags are ([+-][0-9.]+) ms", w) for w in sol.warnings]
+    said = [float(x.group(1)) for x in said if x]
+    assert len(said) == 1 and abs(said[0] - 30.0) < 3.0
     err = sol.methods["joint"].tip - sim["truth"]["tip_ned"]
     assert np.hypot(*err[:2]) < 0.005
     # tags right: nothing applied, nothing said
     sol = _solve(simulate_swing(replace(cfg, gnss_time_offset_s=0.0), seed=3))
     assert sol.joint.time_offset_applied_s == 0.0
     assert not any("time tags" in w for w in sol.warnings)
+
+
+def test_accelerometer_windows_are_exact_for_the_discrete_record():
+    from hydrosync_core.methods.tilt_alignment.joint import _model, _windows
+
+    cfg = noise_free(SwingConfig(tilt_deg=50.0, shape_ratio=0.3, gravity_m_s2=9.79))
+    sim = simulate_swing(cfg, seed=5)
+    t, C = sim["time"], sim["truth"]["C"]
+    Wq, D = _windows(t, 0.25)
+    assert Wq.shape[0] > 15 and np.allclose(D.sum(axis=1), 0.0, atol=1e-9)
+    # overlapping Hann windows sum to one inside the record
+    inner = (t > t[0] + 0.5) & (t < t[-1] - 0.5)
+    assert np.allclose((Wq / np.maximum(Wq.sum(axis=0), 1e-300)).sum(axis=0)[inner], 1.0)
+    args = (C, t, sim["accel"], sim["gnss_time"], sim["pole_length_m"], np.zeros(3),
+            np.zeros(3))
+    _, _, ea, _ = _model(*args, 9.79, (Wq, D))
+    assert np.max(np.abs(ea)) < 1e-9
+    _, _, ea, _ = _model(*args, 9.80, (Wq, D))          # 0.01 m/s² of gravity is seen
+    assert np.max(np.abs(ea)) > 1e-3
+
+
+def test_gyro_noise_covariance_matches_a_monte_carlo_of_the_noise():
+    """The random-walk covariance σ²·H·Hᵀ against perturbed gyro records."""
+    from hydrosync_core.methods.tilt_alignment.joint import (
+        _gyro_noise_design,
+        _model,
+        _windows,
+    )
+
+    cfg = noise_free(SwingConfig(tilt_deg=40.0, shape_ratio=0.4, level_s=0.4, hold_s=0.4,
+                                 swing_s=1.5))
+    sim = simulate_swing(cfg, seed=6)
+    t, gyro, acc = sim["time"], sim["gyro"], sim["accel"]
+    C0, length, gt = sim["truth"]["C"][0], sim["pole_length_m"], sim["gnss_time"]
+    win = _windows(t, 0.25)
+    sw = 0.003
+
+    def observe(g):
+        C = propagate(C0, t, g)
+        u_at, _, ea, _ = _model(C, t, acc, gt, length, np.zeros(3), np.zeros(3), 9.80665,
+                                win)
+        return np.concatenate([u_at.ravel(), ea.ravel()])
+
+    C = propagate(C0, t, gyro)
+    y = np.einsum("kij,kj->ki", C, acc)
+    H = _gyro_noise_design(C, t, gt, C[:, :, 2] * length, y, win, chunk=1)
+    Q = sw ** 2 * H @ H.T
+    base = observe(gyro)
+    rng = np.random.default_rng(0)
+    d = np.array([observe(gyro + rng.normal(0, sw, gyro.shape)) - base for _ in range(300)])
+    emp = np.std(d, axis=0)
+    pred = np.sqrt(np.diag(Q))
+    big = pred > 0.2 * pred.max()
+    assert big.sum() > 20
+    ratio = emp[big] / pred[big]
+    assert 0.8 < np.median(ratio) < 1.2 and np.all((ratio > 0.6) & (ratio < 1.5))
+    # and the correlation between the last GNSS epoch and the last window
+    i, j = 3 * gt.size - 2, Q.shape[0] - 2
+    rho_pred = Q[i, j] / math.sqrt(Q[i, i] * Q[j, j])
+    rho_emp = np.corrcoef(d[:, i], d[:, j])[0, 1]
+    assert abs(rho_pred - rho_emp) < 0.2
+
+
+def test_horizontal_radius_and_white_noise_level():
+    from hydrosync_core.methods.tilt_alignment.joint import horizontal_radius, white_sigma
+
+    assert horizontal_radius(np.eye(2) * 1e-6, 0.99) == pytest.approx(
+        1e-3 * math.sqrt(-2 * math.log(0.01)), rel=1e-3)
+    assert horizontal_radius(np.diag([4e-6, 0.0]), 0.99) == pytest.approx(2e-3 * 2.5758,
+                                                                         rel=1e-3)
+    cov = np.array([[2.0, 0.8], [0.8, 1.0]]) * 1e-6
+    z = np.random.default_rng(1).multivariate_normal([0, 0], cov, 200000)
+    assert horizontal_radius(cov, 0.95) == pytest.approx(
+        np.quantile(np.hypot(*z.T), 0.95), rel=0.01)
+    sim = simulate_swing(SwingConfig(gyro_noise_deg_s_rthz=0.015,
+                                     accel_noise_m_s2_rthz=0.002), seed=2)
+    assert white_sigma(sim["gyro"]) == pytest.approx(math.radians(0.015) * 10, rel=0.1)
+    assert white_sigma(sim["accel"]) == pytest.approx(0.002 * 10, rel=0.1)
+
+
+def test_joint_sigma_is_honest_over_repeated_noise_of_one_planar_swing():
+    """Empirical spread of the tip over 40 noise draws of one consumer-grade planar swing
+    against the σ the joint method reports (across and along the swing plane)."""
+    rng = np.random.default_rng(3)
+    errs, sds = [], []
+    for _ in range(40):
+        # heading 0, azimuth 0: the pole swings in the east-down plane, north is across
+        cfg = SwingConfig(tilt_deg=30.0, shape_ratio=0.0, twist_deg=3.0, wobble_deg=0.2,
+                          azimuth_deg=0.0, heading_deg=0.0, gyro_noise_deg_s_rthz=0.015,
+                          accel_noise_m_s2_rthz=0.002,
+                          gyro_bias_deg_s=tuple(rng.normal(0, 0.1, 3)),
+                          accel_bias_m_s2=tuple(rng.normal(0, 0.05, 3)))
+        sim = simulate_swing(cfg, seed=int(rng.integers(1 << 30)))
+        sol = _solve(sim)
+        errs.append(sol.methods["joint"].tip[:2] - sim["truth"]["tip_ned"][:2])
+        sds.append(np.sqrt(np.diag(sol.joint.cov[3:5, 3:5])))
+    sds = np.array(sds)
+    assert np.mean(sds[:, 0]) > 2 * np.mean(sds[:, 1])     # across the plane is the weak one
+    z = np.array(errs) / sds
+    rms = np.sqrt(np.mean(z ** 2, axis=0))
+    assert np.all((rms > 0.7) & (rms < 1.35)), rms
+
+
+def test_a_gnss_outlier_is_down_weighted_and_named():
+    cfg = SwingConfig(tilt_deg=45.0, shape_ratio=0.5, gnss_outliers=2)
+    sim = simulate_swing(cfg, seed=4)
+    sol = _solve(sim)
+    j = sol.methods["joint"]
+    assert sol.joint.gnss_downweighted >= 1
+    assert any("down-weighted" in w for w in sol.warnings)
+    assert np.hypot(*(j.tip - sim["truth"]["tip_ned"])[:2]) < 0.01
+    clean = _solve(simulate_swing(replace(cfg, gnss_outliers=0), seed=4))
+    assert clean.joint.gnss_downweighted == 0
+    assert not any("down-weighted" in w for w in clean.warnings)

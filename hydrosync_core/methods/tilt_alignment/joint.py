@@ -10,16 +10,25 @@ vector, antenna → tip, NED); the antenna ``p = p_tip − u``.
 Observations:
 
 * GNSS antenna positions: ``p_j = p_tip − u(t_j)`` (σ horizontal / vertical);
-* accelerometers, as velocity increments over blocks ``[t_a, t_b]``: the tip is fixed,
-  so the antenna acceleration is ``a = −C·(α× + ω×ω×)·l_b = −d²u/dt²`` and
-  ``∫ C·(f − b_a) dt + g·e_down·(t_b − t_a) = v(t_b) − v(t_a)`` with ``v = −du/dt``
-  (trapezoid rule and central differences: exact for the discrete model). These observe
-  roll and pitch at every sample — not only at a still moment.
+* accelerometers, in overlapping Hann windows ``w(t)`` (0.5 s, one every 0.25 s): the tip
+  is fixed, so the antenna acceleration is ``a = −C·(α× + ω×ω×)·l_b = −d²u/dt²``, and
+  integrating twice by parts ``∫ w·(C·(f − b_a) + g·e_down) dt = −∫ w''·u dt`` (the
+  window and its slope vanish at both ends). Only the pole vector u enters, not its rate:
+  an earlier form compared velocity increments with block-boundary velocities from central
+  differences of u, whose gyro white noise (``l·σ_ω/√2`` per boundary, ≈ 4 mm/s for a
+  consumer gyro on a 2 m pole) was 3-4 times the accelerometer's own noise and drowned the
+  information. Discrete form: summation by parts on the sample grid, exact for the
+  simulator's second differences. These observe roll and pitch at every sample — not only
+  at a still moment.
 
 Gauss-Newton with analytic Jacobians: a perturbation φ_k (NED) of the attitude at sample
 k is ``φ_k = δθ − M_k·δb_g`` with ``M_k = Σ_(j<k) C_(j+1)·Δt_j``; ``δu_k = φ_k × u_k``.
-The weights of the two groups are re-estimated from their residuals (variance
-components), and the covariance of the result gives σ of the tip.
+Generalised least squares: the gyro white noise, integrated by the attitude, is a random
+walk common to all later observations; it enters their covariance (not only white
+weights), with the GNSS and accelerometer white noise. The IMU noise levels come from the
+record itself (third differences); the four scale factors (GNSS horizontal, vertical,
+accelerometer, gyro) are re-estimated from the residuals (variance components), and the
+covariance of the result gives σ of the tip.
 
 Observability: a swing in one vertical plane rotates the IMU about one horizontal axis
 only, so the accelerometer bias along that axis stays the same vector in NED and looks
@@ -40,6 +49,8 @@ import numpy as np
 from hydrosync_core.methods.tilt_alignment.geometry import E_DOWN, exp_so3, propagate, skew
 
 NPAR = 12
+#: Huber threshold on a GNSS epoch's standardised 3-D residual (√χ²₃ at 99 %)
+HUBER_K = 3.37
 TH, TIP, BG, BA = slice(0, 3), slice(3, 6), slice(6, 9), slice(9, 12)
 
 
@@ -52,8 +63,12 @@ class JointResult:
     solution assumes the tags as given; :func:`.pipeline.solve_record` applies a significant
     offset to the tags, adjusts again and records it in ``time_offset_applied_s``).
     ``cov`` is the 12×12 covariance (δθ, tip, b_g, b_a); ``sigma_gnss_m`` and
-    ``sigma_dv_m_s`` the a-posteriori σ of one GNSS coordinate (horizontal; vertical is
-    twice) and of one velocity increment; ``rms_gnss_m`` the RMS of the GNSS residuals.
+    ``sigma_dv_m_s`` the a-posteriori σ of one horizontal GNSS coordinate and of one
+    accelerometer window (m/s, its white noise); ``rms_gnss_m`` the RMS of the GNSS residuals;
+    ``sigma_gnss_v_m`` the a-posteriori vertical GNSS σ; ``gyro_noise_rad_s`` and
+    ``accel_noise_m_s2`` the per-sample white-noise σ of the IMU (from the record, scaled by
+    their variance components); ``gnss_downweighted`` the GNSS epochs the robust (Huber)
+    weights took to less than half their weight (residual beyond twice the threshold).
     """
 
     C0: np.ndarray
@@ -74,6 +89,10 @@ class JointResult:
     time_offset_s: float = 0.0
     time_offset_std_s: float = float("nan")
     time_offset_applied_s: float = 0.0
+    gyro_noise_rad_s: float = float("nan")
+    accel_noise_m_s2: float = float("nan")
+    sigma_gnss_v_m: float = float("nan")
+    gnss_downweighted: int = 0
 
     @property
     def weak_sigma_m(self) -> float:
@@ -82,6 +101,11 @@ class JointResult:
         if d is None:
             return float("nan")
         return float(np.sqrt(max(d @ self.cov[3:5, 3:5] @ d, 0.0)))
+
+    def horizontal_radius_m(self, probability: float) -> float:
+        """Radius (m) of the horizontal circle about the estimate holding the tip with
+        *probability* (from the 2×2 covariance, :func:`horizontal_radius`)."""
+        return horizontal_radius(self.cov[3:5, 3:5], probability)
 
     @property
     def tip_std(self) -> np.ndarray:
@@ -93,18 +117,73 @@ class JointResult:
         return np.sqrt(np.clip(np.diag(self.cov)[TH], 0.0, None))
 
 
-def _blocks(time: np.ndarray, block_s: float) -> np.ndarray:
-    """Boundary sample indices of the accelerometer blocks (interior samples only)."""
+def horizontal_radius(cov2: np.ndarray, probability: float) -> float:
+    """Radius r with ``P(|e| ≤ r) = probability`` for a 2-D Gaussian error e ~ N(0, cov2).
+
+    With eigenvalues λ_big ≥ λ_small, ``P(r) = ∫ φ(z)·erf(√((r² − λ_big·z²)/(2·λ_small)))
+    dz`` over ``|z| ≤ r/√λ_big``; solved by bisection. For a circular error this is
+    ``σ·√(−2·ln(1 − p))`` (3.03 σ at 99 %), for a thin one ``z_p·σ_max`` (2.58 σ at 99 %).
+    """
+    from scipy.special import erf
+
+    lam = np.linalg.eigvalsh(np.asarray(cov2, float))
+    if not np.all(np.isfinite(lam)):
+        return float("nan")
+    small, big = (max(float(v), 0.0) for v in lam)
+    if big <= 0:
+        return 0.0
+    x = np.linspace(-1.0, 1.0, 2001)
+
+    def cdf(r):
+        z = x * r / math.sqrt(big)
+        inner = np.clip(r * r - big * z * z, 0.0, None)
+        term = erf(np.sqrt(inner / (2 * small))) if small > 0 else (inner > 0).astype(float)
+        f = np.exp(-0.5 * z * z) / math.sqrt(2 * math.pi) * term
+        return float(np.sum(0.5 * (f[1:] + f[:-1]) * np.diff(z)))
+
+    lo, hi = 0.0, 10.0 * math.sqrt(big + small)
+    for _ in range(50):
+        mid = 0.5 * (lo + hi)
+        lo, hi = (mid, hi) if cdf(mid) < probability else (lo, mid)
+    return 0.5 * (lo + hi)
+
+
+def _windows(time: np.ndarray, block_s: float, overlap: bool = True
+             ) -> tuple[np.ndarray, np.ndarray]:
+    """Accelerometer windows as weight matrices ``(Wq, D)``, each (B, N).
+
+    Window *i* is a Hann bump ``w = sin²(π·(t − t_a)/(t_b − t_a))`` over ``[t_a, t_b]``
+    (twice *block_s* long, one every *block_s*: they overlap by half and sum to one);
+    ``Wq[i, k] = q_k·w_k`` with the trapezoid weights ``q_k``, and ``D[i, k]`` the
+    second divided difference of *w* — summation by parts of ``Σ q_k·w_k·a_k`` with
+    ``a_k`` the second divided difference of the antenna position, so that
+    ``Σ_k Wq·a = Σ_k D·p`` exactly for the discrete record and ``Σ_k D = 0``.
+    """
     n = time.size
-    if n < 4 or block_s <= 0:
-        return np.zeros(0, int)
+    if n < 6 or block_s <= 0:
+        return np.zeros((0, n)), np.zeros((0, n))
     dt = float(np.median(np.diff(time)))
     step = max(2, int(round(block_s / dt)))
-    return np.arange(1, n - 1, step)
+    span = 2 * step if overlap else step
+    starts = np.arange(1, n - 1 - span, step)   # interior samples only (a ≥ 1, b ≤ n−2)
+    h = np.diff(time)
+    q = np.zeros(n)
+    q[1:-1] = 0.5 * (h[:-1] + h[1:])
+    Wq = np.zeros((starts.size, n))
+    D = np.zeros((starts.size, n))
+    for i, a in enumerate(starts):
+        b = a + span
+        w = np.zeros(n + 2)                             # w[k + 1] is sample k, 0 outside
+        w[a + 1:b + 2] = np.sin(np.pi * (time[a:b + 1] - time[a]) / (time[b] - time[a])) ** 2
+        Wq[i] = q * w[1:-1]
+        k = np.arange(a, b + 1)
+        D[i, k] = (w[k + 2] - w[k + 1]) / h[k] - (w[k + 1] - w[k]) / h[k - 1]
+    return Wq, D
 
 
-def _model(C, time, accel, gnss_t, length, tip, ba, g, bounds):
-    """Residuals (GNSS (M,3), ΔV (B,3)) and their Jacobians ((M,3,12), (B,3,12))."""
+def _model(C, time, accel, gnss_t, length, tip, ba, g, windows):
+    """Residuals (GNSS (M,3), accelerometer windows (B,3)) and their Jacobians
+    ((M,3,12), (B,3,12))."""
     n = time.size
     dt = np.diff(time)
     u = C[:, :, 2] * length
@@ -121,33 +200,81 @@ def _model(C, time, accel, gnss_t, length, tip, ba, g, bounds):
     u_at = u[k] * (1 - f) + u[k + 1] * f
     Dg = Du[k] * (1 - f)[:, :, None] + Du[k + 1] * f[:, :, None]
     Dg[:, :, TIP] -= np.eye(3)
-    # accelerometers: e = ∫C(f − b_a)dt + g e_d Δt − (v_b − v_a)
+    # accelerometers, window i: e = Σ_k Wq·(C(f − b_a) + g·e_d) + Σ_k D·u
+    # (= ∫w·a dt − ∫w·ü dt with the antenna acceleration a = −ü: no velocities needed)
+    Wq, D = windows
     y = np.einsum("kij,kj->ki", C, accel - ba)
     Dy = -skew(y) @ Phi
     Dy[:, :, BA] -= C
-    w = 0.5 * dt
-    cum_y = np.zeros((n, 3))
-    cum_y[1:] = np.cumsum((y[:-1] + y[1:]) * w[:, None], axis=0)
-    cum_D = np.zeros((n, 3, NPAR))
-    cum_D[1:] = np.cumsum((Dy[:-1] + Dy[1:]) * w[:, None, None], axis=0)
-    span = time[2:] - time[:-2]
-    v = np.zeros((n, 3))
-    v[1:-1] = -(u[2:] - u[:-2]) / span[:, None]
-    Dv = np.zeros((n, 3, NPAR))
-    Dv[1:-1] = -(Du[2:] - Du[:-2]) / span[:, None, None]
-    a, b = bounds[:-1], bounds[1:]
-    ea = (cum_y[b] - cum_y[a]) + g * E_DOWN * (time[b] - time[a])[:, None] - (v[b] - v[a])
-    Da = (cum_D[b] - cum_D[a]) - (Dv[b] - Dv[a])
+    ea = Wq @ (y + g * E_DOWN) + D @ u
+    Da = np.einsum("bk,kij->bij", Wq, Dy) + np.einsum("bk,kij->bij", D, Du)
     return u_at, Dg, ea, Da
+
+
+def white_sigma(x: np.ndarray) -> float:
+    """Per-sample σ of the white noise on the columns of *x* (N, 3), from third
+    differences (robust: MAD), RMS over the axes.
+
+    ``Δ³`` of white noise has variance 20·σ²; a swing's smooth motion hardly enters at
+    100 Hz (its third difference is ``(Ω·Δt)³`` times its amplitude).
+    """
+    d = np.diff(np.asarray(x, float), n=3, axis=0)
+    if d.shape[0] < 10:
+        return float("nan")
+    mad = np.median(np.abs(d - np.median(d, axis=0)), axis=0)
+    return float(np.sqrt(np.mean((1.4826 * mad) ** 2 / 20.0)))
+
+
+def _gyro_noise_design(C, time, gnss_t, u, y, windows, chunk):
+    """``H`` (R, K·3): the observations' (GNSS rows, then windows) sensitivity to the gyro
+    white noise, summed over chunks of *chunk* samples: ``Q = σ_ω²·H·Hᵀ``.
+
+    Gyro noise ``n_j`` (body, rad/s) over ``[t_j, t_(j+1))`` turns every later attitude by
+    ``φ_k = Σ_(j<k) C_(j+1)·Δt_j·n_j`` (NED); an observation with ``∂o/∂φ_k = G_k`` moves by
+    ``Σ_j (Σ_(k>j) G_k)·C_(j+1)·Δt_j·n_j``; ``C`` is orthogonal, so the covariance needs
+    only ``Σ_(k>j) G_k·Δt_j``. Noise within a chunk is treated as one increment.
+    """
+    n = time.size
+    dt = np.diff(time)
+    Wq, D = windows
+    m = gnss_t.size
+    k = np.clip(np.searchsorted(time, gnss_t, side="right") - 1, 0, n - 2)
+    f = (gnss_t - time[k]) / dt[k]
+    su, sy = skew(u), skew(y)
+    G = np.zeros((3 * m + 3 * Wq.shape[0], n, 3))
+    rows = np.arange(m)
+    Gg = np.zeros((m, n, 3, 3))
+    Gg[rows, k] = -su[k] * (1 - f)[:, None, None]
+    Gg[rows, k + 1] += -su[k + 1] * f[:, None, None]
+    G[:3 * m] = Gg.transpose(0, 2, 1, 3).reshape(3 * m, n, 3)
+    if Wq.shape[0]:
+        Gw = -(np.einsum("bk,kij->bikj", Wq, sy) + np.einsum("bk,kij->bikj", D, su))
+        G[3 * m:] = Gw.reshape(-1, n, 3)
+    # H_j = Σ_(k>j) G_k, for j = 0 … n−2
+    H = np.cumsum(G[:, ::-1], axis=1)[:, ::-1][:, 1:] * dt[None, :, None]
+    if chunk > 1:
+        nc = (n - 1) // chunk
+        Hc = H[:, :nc * chunk].reshape(H.shape[0], nc, chunk, 3).mean(axis=2) * math.sqrt(chunk)
+        H = np.concatenate([Hc, H[:, nc * chunk:]], axis=1)
+    return H.reshape(H.shape[0], -1)
 
 
 def joint_lsq(time: np.ndarray, gyro: np.ndarray, accel: np.ndarray, gnss_t: np.ndarray,
               gnss_p: np.ndarray, length: float, C0: np.ndarray, tip0: np.ndarray, *,
               sigma_h: float, sigma_v: float, g: float, block_s: float = 0.25,
-              sigma_dv: float = 0.003, gyro_bias_sigma: float = math.radians(0.2),
-              accel_bias_sigma: float = 0.05, max_iterations: int = 20, vce_rounds: int = 2,
-              cancel_check=None) -> JointResult:
+              gyro_noise: float | None = None, accel_noise: float | None = None,
+              gyro_bias_sigma: float = math.radians(0.2), accel_bias_sigma: float = 0.05,
+              max_iterations: int = 30, vce_rounds: int = 4, cancel_check=None
+              ) -> JointResult:
     """Estimate initial attitude, tip and IMU biases from the whole record.
+
+    Generalised least squares: the observations' covariance holds the GNSS white noise
+    (horizontal, vertical), the accelerometers' white noise through the overlapping
+    windows, and the gyros' white noise, which the attitude integrates into a random walk
+    common to every later observation (angle random walk: it correlates all of them and
+    is the limit of what a short swing can tell). Its four scale factors are re-estimated
+    from the residuals (variance components, Förstner's redundancy form), and each GNSS
+    epoch gets a robust (Huber) weight from its standardised residual.
 
     Parameters
     ----------
@@ -155,102 +282,157 @@ def joint_lsq(time: np.ndarray, gyro: np.ndarray, accel: np.ndarray, gnss_t: np.
     gnss_t : (M,) s. gnss_p : (M, 3) antenna NED (m). length : pole length (m).
     C0 : initial attitude guess (body→NED) at ``time[0]``. tip0 : tip guess (NED, m).
     sigma_h, sigma_v : a-priori GNSS σ (m). g : gravity (m/s²).
+    gyro_noise, accel_noise : per-sample white-noise σ of the gyros (rad/s) and
+    accelerometers (m/s²); None: from the record (:func:`white_sigma`).
     gyro_bias_sigma, accel_bias_sigma : a-priori 1σ of the biases about zero (rad/s,
     m/s², the IMU datasheet's bias stability): a swing in one plane cannot separate the
     accelerometer bias along the swing axis from the tilt out of that plane, so the
     datasheet bounds it.
-    block_s : accelerometer block length (s). sigma_dv : a-priori σ of a velocity
-    increment (m/s). vce_rounds : re-weighting rounds from the residuals.
+    block_s : step of the accelerometer windows (s; each twice as long).
+    vce_rounds : re-weighting rounds from the residuals.
     """
+    from scipy.linalg import cho_factor, cho_solve, solve_triangular
+
     C0 = np.array(C0, float)
     tip = np.array(tip0, float)
     bg, ba = np.zeros(3), np.zeros(3)
-    bounds = _blocks(time, block_s)
-    s_g, s_a = 1.0, 1.0
-    wg = np.array([sigma_h, sigma_h, sigma_v])
+    windows = _windows(time, block_s)
+    Wq = windows[0]
+    m, nb = gnss_t.size, Wq.shape[0]
+    dt_med = float(np.median(np.diff(time)))
+    sw = gyro_noise if gyro_noise is not None else white_sigma(gyro)
+    sf = accel_noise if accel_noise is not None else white_sigma(accel)
+    sw = sw if math.isfinite(sw) and sw > 0 else math.radians(0.01) / math.sqrt(dt_med)
+    sf = sf if math.isfinite(sf) and sf > 0 else 0.001 / math.sqrt(dt_med)
+    chunk = max(1, int(round(0.02 / dt_med)))
+    # covariance components (R × R): GNSS horizontal, GNSS vertical, accelerometer, gyro
+    R = 3 * (m + nb)
+    Qh, Qv = np.zeros(R), np.zeros(R)
+    Qh[:3 * m] = np.tile([sigma_h ** 2, sigma_h ** 2, 0.0], m)
+    Qv[:3 * m] = np.tile([0.0, 0.0, sigma_v ** 2], m)
+    Qa = np.zeros((R, R))
+    Qa[3 * m:, 3 * m:] = np.kron(Wq @ Wq.T, np.eye(3)) * sf ** 2
+    theta = np.ones(4)
+
+    def prior_rows():
+        P = np.zeros((6, NPAR))
+        P[:3, BG] = np.eye(3) / gyro_bias_sigma
+        P[3:, BA] = np.eye(3) / accel_bias_sigma
+        return P, np.concatenate([bg / gyro_bias_sigma, ba / accel_bias_sigma])
+
+    def linearise():
+        u_at, Dg, ea, Da = _model(C, time, accel, gnss_t, length, tip, ba, g, windows)
+        e = np.concatenate([(gnss_p - tip + u_at).ravel(), ea.ravel()])
+        A = np.vstack([Dg.reshape(-1, NPAR), Da.reshape(-1, NPAR)])
+        return e, A
+
+    def gyro_cov():
+        u = C[:, :, 2] * length
+        y = np.einsum("kij,kj->ki", C, accel - ba)
+        H = _gyro_noise_design(C, time, gnss_t, u, y, windows, chunk)
+        return (H @ H.T) * sw ** 2
+
     it_total, converged = 0, False
     C = propagate(C0, time, gyro, bg)
+    Qw = gyro_cov()
+    infl = np.ones(R)          # Huber: variance inflation of each GNSS epoch (1 = full weight)
     for rnd in range(vce_rounds + 1):
+        Sigma = np.diag(infl * (theta[0] * Qh + theta[1] * Qv)) + theta[2] * Qa + theta[3] * Qw
+        Sigma[np.diag_indices(R)] += 1e-12 * np.max(np.diag(Sigma))
+        L = np.linalg.cholesky(Sigma)
         converged = False
         for _ in range(max_iterations):
             if cancel_check is not None:
                 cancel_check()
             it_total += 1
-            u_at, Dg, ea, Da = _model(C, time, accel, gnss_t, length, tip, ba, g, bounds)
-            eg = gnss_p - tip + u_at
-            sg = (wg * s_g)[None, :]
-            rows = [(Dg / sg[:, :, None]).reshape(-1, NPAR)]
-            res = [(eg / sg).ravel()]
-            if len(ea):
-                rows.append((Da / (sigma_dv * s_a)).reshape(-1, NPAR))
-                res.append((ea / (sigma_dv * s_a)).ravel())
-            prior = np.zeros((6, NPAR))
-            prior[:3, BG] = np.eye(3) / gyro_bias_sigma
-            prior[3:, BA] = np.eye(3) / accel_bias_sigma
-            rows.append(prior)
-            res.append(np.concatenate([bg / gyro_bias_sigma, ba / accel_bias_sigma]))
-            A, r = np.vstack(rows), np.concatenate(res)
-            dx, *_ = np.linalg.lstsq(A, -r, rcond=None)
+            e, A = linearise()
+            P, rp = prior_rows()
+            Aw = np.vstack([solve_triangular(L, A, lower=True), P])
+            rw = np.concatenate([solve_triangular(L, e, lower=True), rp])
+            dx, *_ = np.linalg.lstsq(Aw, -rw, rcond=None)
             C0 = exp_so3(dx[TH]) @ C0
             tip = tip + dx[TIP]
             bg = bg + dx[BG]
             ba = ba + dx[BA]
             C = propagate(C0, time, gyro, bg)
             if (np.linalg.norm(dx[TH]) < 1e-10 and np.linalg.norm(dx[TIP]) < 1e-8
-                    and np.linalg.norm(dx[BG]) < 1e-10):
+                    and np.linalg.norm(dx[BG]) < 1e-10 and np.linalg.norm(dx[BA]) < 1e-9):
                 converged = True
                 break
-        u_at, Dg, ea, Da = _model(C, time, accel, gnss_t, length, tip, ba, g, bounds)
-        eg = gnss_p - tip + u_at
-        n_g, n_a = eg.size, ea.size
-        red = max(n_g + n_a - NPAR, 1)
-        q_g = float(np.sum((eg / (wg * s_g)) ** 2))
-        q_a = float(np.sum((ea / (sigma_dv * s_a)) ** 2)) if n_a else 0.0
-        if rnd < vce_rounds:  # variance components, redundancy shared by group size
-            s_g *= math.sqrt(q_g / max(red * n_g / (n_g + n_a), 1.0))
-            if n_a:
-                s_a *= math.sqrt(q_a / max(red * n_a / (n_g + n_a), 1.0))
-            s_g, s_a = float(np.clip(s_g, 0.05, 50.0)), float(np.clip(s_a, 0.01, 1e3))
-    sg = (wg * s_g)[None, :]
-    rows = [(Dg / sg[:, :, None]).reshape(-1, NPAR)]
-    if len(ea):
-        rows.append((Da / (sigma_dv * s_a)).reshape(-1, NPAR))
-    prior = np.zeros((6, NPAR))
-    prior[:3, BG] = np.eye(3) / gyro_bias_sigma
-    prior[3:, BA] = np.eye(3) / accel_bias_sigma
-    A = np.vstack(rows + [prior])
-    var_factor = max((q_g + q_a) / red, 1.0)
-    normal = A.T @ A
+        Qw = gyro_cov()
+        if rnd == vce_rounds:
+            break
+        # variance components (Förstner): θ_i ← θ_i·vᵀWΣ_iWv / tr(P·Σ_i), with
+        # P = W − W·A·N⁻¹·Aᵀ·W, W = Σ⁻¹ (the bias priors are observations without a
+        # component of their own)
+        e, A = linearise()
+        Pr, rp = prior_rows()
+        cf = cho_factor(Sigma, lower=True)
+        We, WA = cho_solve(cf, e), cho_solve(cf, A)
+        Ninv = np.linalg.pinv(A.T @ WA + Pr.T @ Pr)
+        v = We - WA @ (Ninv @ (WA.T @ e + Pr.T @ rp))     # W·v at the solution
+        comps = (np.diag(infl * theta[0] * Qh), np.diag(infl * theta[1] * Qv), theta[2] * Qa,
+                 theta[3] * Qw)
+        Wm = cho_solve(cf, np.eye(R))
+        Pm = Wm - WA @ Ninv @ WA.T
+        new = theta.copy()
+        for i, S in enumerate(comps):
+            red_i = float(np.sum(Pm * S))                  # tr(P·Σ_i), Σ_i symmetric
+            if red_i > 1.0:
+                new[i] = theta[i] * float(v @ S @ v) / red_i
+        # the GNSS σ may grow from the a-priori values, not shrink below them: a dozen
+        # epochs (2 Hz) estimate it to ±20 %, and a receiver's stated RTK σ is a floor
+        lo = np.array([1.0, 1.0, 0.05, 0.05]) ** 2
+        hi = np.array([50.0, 50.0, 20.0, 20.0]) ** 2
+        theta = np.clip(new, lo, hi)
+        # robust weights (Huber) per GNSS epoch, from its residual standardised by the
+        # white GNSS σ: beyond HUBER_K (χ²₃ 99 %) the variance grows with the residual
+        sd = np.sqrt(theta[0] * Qh[:3 * m] + theta[1] * Qv[:3 * m]).reshape(m, 3)
+        d = np.sqrt(np.sum((e[:3 * m].reshape(m, 3) / sd) ** 2, axis=1))
+        infl[:3 * m] = np.repeat(np.maximum(1.0, d / HUBER_K), 3)
+    e, A = linearise()
+    P, rp = prior_rows()
+    Aw = np.vstack([solve_triangular(L, A, lower=True), P])
+    rw = np.concatenate([solve_triangular(L, e, lower=True), rp])
+    red = max(R - NPAR, 1)
+    var_factor = max(float(rw @ rw) / red, 1.0)
+    normal = Aw.T @ Aw
     cov = np.linalg.pinv(normal) * var_factor
     share, weak = _bias_share(normal, cov, var_factor, accel_bias_sigma)
     # second-order check of the GNSS↔IMU time alignment: one Gauss-Newton step of the
     # solution augmented by a time offset τ (GNSS tag t_j is the pole at t_j + τ:
     # ∂e_j/∂τ = du/dt(t_j)), from the converged solution; the solution itself is kept
-    r_all = [(eg / sg).ravel()]
-    if len(ea):
-        r_all.append((ea / (sigma_dv * s_a)).ravel())
-    r_all.append(np.concatenate([bg / gyro_bias_sigma, ba / accel_bias_sigma]))
-    tau, tau_std = _time_offset(A, np.concatenate(r_all), C, time, gnss_t, length, sg,
-                                var_factor)
-    return JointResult(C0, tip, bg, ba, cov, C, it_total, converged, sigma_h * s_g,
-                       sigma_dv * s_a, float(np.sqrt(np.mean(eg ** 2))), eg,
-                       int(max(bounds.size - 1, 0)), share, weak, tau, tau_std)
+    tau, tau_std = _time_offset(Aw, rw, L, C, time, gnss_t, length, var_factor)
+    eg = e[:3 * m].reshape(m, 3)
+    s_window = float(np.sqrt(np.mean(np.diag(Qa)[3 * m:]) * theta[2])) if nb else math.nan
+    return JointResult(C0, tip, bg, ba, cov, C, it_total, converged,
+                       sigma_h * math.sqrt(theta[0]), s_window,
+                       float(np.sqrt(np.mean(eg ** 2))), eg, int(nb), share, weak, tau,
+                       tau_std, gyro_noise_rad_s=sw * math.sqrt(theta[3]),
+                       accel_noise_m_s2=sf * math.sqrt(theta[2]),
+                       sigma_gnss_v_m=sigma_v * math.sqrt(theta[1]),
+                       gnss_downweighted=int(np.sum(infl[:3 * m:3] > 2.0)))
 
 
-def _time_offset(A: np.ndarray, r: np.ndarray, C: np.ndarray, time: np.ndarray,
-                 gnss_t: np.ndarray, length: float, sg: np.ndarray, var_factor: float
+def _time_offset(Aw: np.ndarray, rw: np.ndarray, L: np.ndarray, C: np.ndarray,
+                 time: np.ndarray, gnss_t: np.ndarray, length: float, var_factor: float
                  ) -> tuple[float, float]:
-    """Time offset τ (s) of the GNSS tags against the IMU and its 1σ, from the weighted
-    design *A*, residuals *r* (GNSS rows first) of the converged solution."""
+    """Time offset τ (s) of the GNSS tags against the IMU and its 1σ, from the whitened
+    design *Aw* and residuals *rw* of the converged solution (observation rows whitened
+    by the Cholesky factor *L*, GNSS rows first, then the prior rows)."""
+    from scipy.linalg import solve_triangular
+
     u = C[:, :, 2] * length
     n = time.size
     k = np.clip(np.searchsorted(time, gnss_t, side="right") - 1, 0, n - 2)
     rate = (u[k + 1] - u[k]) / (time[k + 1] - time[k])[:, None]
-    col = np.zeros(A.shape[0])
-    col[:rate.size] = (rate / sg).ravel()
-    Aa = np.column_stack([A, col])
+    col = np.zeros(L.shape[0])
+    col[:rate.size] = rate.ravel()
+    colw = np.concatenate([solve_triangular(L, col, lower=True),
+                           np.zeros(Aw.shape[0] - L.shape[0])])
+    Aa = np.column_stack([Aw, colw])
     cov = np.linalg.pinv(Aa.T @ Aa)
-    dx = -cov @ (Aa.T @ r)
+    dx = -cov @ (Aa.T @ rw)
     return float(dx[-1]), float(math.sqrt(max(cov[-1, -1] * var_factor, 0.0)))
 
 

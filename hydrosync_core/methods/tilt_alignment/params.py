@@ -88,8 +88,8 @@ class TiltParams(Params):
                          "point after the swing)")
     accel_block_s: float = param(
         0.25, label="Accelerometer block", unit="s", minimum=0.02, maximum=5.0, decimals=3,
-        advanced=True, help="joint method: accelerometers enter as velocity increments "
-                            "over blocks of this length")
+        advanced=True, help="joint method: accelerometers enter in Hann windows twice this "
+                            "long, one every this many seconds (overlapping by half)")
     gyro_bias_sigma_deg_s: float = param(
         0.2, label="Gyro bias σ", unit="°/s", minimum=0.0, min_exclusive=True, maximum=10.0,
         decimals=3, advanced=True,
@@ -102,9 +102,9 @@ class TiltParams(Params):
     tip_tolerance_m: float = param(
         0.01, label="Tip tolerance", unit="m", minimum=0.0, min_exclusive=True, maximum=1.0,
         decimals=4, step=0.001,
-        help="joint method: warn when the 95 % horizontal uncertainty of the tip along its "
-             "weakest direction exceeds this (a swing nearly in one plane leaves the "
-             "accelerometer bias along the swing axis mixed with the tilt out of the plane)")
+        help="warn when the horizontal circle holding the tip with 99 % probability is "
+             "wider than this (a swing nearly in one plane leaves the accelerometer bias "
+             "along the swing axis mixed with the tilt out of the plane)")
     gravity_m_s2: float | None = param(
         None, label="Gravity", unit="m/s²", minimum=9.7, maximum=9.9, decimals=5,
         advanced=True, none_label="normal gravity at the latitude (geodetic input), else "

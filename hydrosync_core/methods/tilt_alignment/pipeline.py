@@ -32,6 +32,10 @@ from hydrosync_core.progress import check_cancel, report
 STANDARD_GRAVITY = 9.80665
 #: smallest GNSS↔IMU time offset (s) the joint method corrects (when also > 3σ)
 TIME_OFFSET_MIN_S = 0.002
+#: a tip is flagged as weaker than the tolerance when the horizontal circle holding it with
+#: this probability is wider (99 %: with an honest σ, a quiet tip is outside the
+#: tolerance in fewer than 1 % of the swings — 95 % let one in a hundred through)
+WARN_PROBABILITY = 0.99
 
 
 @dataclass
@@ -102,19 +106,23 @@ def _heading_only(name: str, R: np.ndarray, C_epochs: np.ndarray, C_imu0: np.nda
 
 
 def weak_tip_warning(joint: JointResult, tolerance_m: float) -> str | None:
-    """The warning for a tip weaker than *tolerance_m* (95 %, horizontal), else None.
+    """The warning for a tip weaker than *tolerance_m*, else None.
 
-    The weakest horizontal direction of the tip is, for a swing nearly in one plane,
-    across the plane: there the accelerometer bias along the swing axis and the tilt out
-    of the plane are one unknown, fixed only by the bias prior (``bias_share``).
+    Rule: the horizontal circle holding the tip with probability :data:`WARN_PROBABILITY`
+    (from the tip's 2×2 covariance, both directions) is wider than the tolerance. The
+    weakest horizontal direction of the tip is, for a swing nearly in one plane, across
+    the plane: there the accelerometer bias along the swing axis and the tilt out of the
+    plane are one unknown, fixed only by the bias prior (``bias_share``).
     """
-    s95 = 1.96 * joint.weak_sigma_m
-    if not math.isfinite(s95) or s95 <= tolerance_m:
+    r = joint.horizontal_radius_m(WARN_PROBABILITY)
+    if not math.isfinite(r) or r <= tolerance_m:
         return None
     d = joint.weak_direction
     az = math.degrees(math.atan2(d[1], d[0])) % 180.0
-    head = (f"joint: the tip is uncertain to ±{1000 * s95:.0f} mm (95 %) along azimuth "
-            f"{az:.0f}°/{az + 180:.0f}°, beyond the {1000 * tolerance_m:.0f} mm tolerance")
+    head = (f"joint: the tip is uncertain to {1000 * r:.0f} mm horizontally "
+            f"({100 * WARN_PROBABILITY:.0f} %), mostly along azimuth {az:.0f}°/{az + 180:.0f}° "
+            f"(±{1000 * 1.96 * joint.weak_sigma_m:.0f} mm at 95 %), beyond the "
+            f"{1000 * tolerance_m:.0f} mm tolerance")
     if joint.bias_share >= 0.5:
         return (f"{head}; {100 * joint.bias_share:.0f} % of it is the accelerometer bias, "
                 "which this swing cannot tell from the tilt out of its plane (a swing "
@@ -203,10 +211,11 @@ def solve_record(time: np.ndarray, gyro: np.ndarray, accel: np.ndarray, gnss_tim
         m = _heading_only(name, R, C_ep, C_imu[0], gnss_ned, window, length, p.sigma_h_m,
                           p.sigma_v_m, psi_std if math.isfinite(psi_std) else 0.0, tilt_std)
         m.psi_std, m.vectors = psi_std, int(mask.sum())
-        s95 = 1.96 * float(m.tip_std[0])
-        if s95 > p.tip_tolerance_m:
-            m.warning = (f"{name}: the tip is uncertain to ±{1000 * s95:.0f} mm (95 %) "
-                         f"horizontally, beyond the {1000 * p.tip_tolerance_m:.0f} mm "
+        r_h = float(m.tip_std[0]) * math.sqrt(-2.0 * math.log(1.0 - WARN_PROBABILITY))
+        if r_h > p.tip_tolerance_m:
+            m.warning = (f"{name}: the tip is uncertain to {1000 * r_h:.0f} mm horizontally "
+                         f"({100 * WARN_PROBABILITY:.0f} %), beyond the "
+                         f"{1000 * p.tip_tolerance_m:.0f} mm "
                          "tolerance: a heading-only method keeps the levelling's tilt error "
                          "(accelerometer bias, gyro drift since); the joint method estimates it")
         if name in ("bgd", "sgd", "mbgd"):
@@ -247,6 +256,11 @@ def solve_record(time: np.ndarray, gyro: np.ndarray, accel: np.ndarray, gnss_tim
                 joint = adjust(np.clip(gnss_time + applied, time[0], time[-1]), joint.C0,
                                joint.tip)
             joint.time_offset_applied_s = applied
+            if joint.gnss_downweighted:
+                warnings.append(
+                    f"joint: {joint.gnss_downweighted} GNSS epoch(s) far off the swing "
+                    "(residual beyond twice the robust limit) were down-weighted: multipath "
+                    "or a bad fix?")
             if applied:
                 warnings.append(
                     f"GNSS time tags are {1000 * applied:+.1f} ms (±"

@@ -7,7 +7,8 @@ the hold at the end of the swing (the shot). Attitude ``C = Rz(heading)·Ry(pitc
 Rx(roll)`` (body x forward, y right, z down along the pole; NED). The IMU sits at the
 antenna: gyro sample k is the exact mean rate over ``[t_k, t_(k+1))`` and accelerometer
 sample k the specific force ``Cᵀ(a − g·e_down)`` with the antenna acceleration from the
-trajectory; noise is white (density × √rate), biases constant. GNSS antenna positions
+trajectory; noise is white (density × √rate) or, with ``imu_noise_taps``, through a
+sensor's moving-average low-pass (same random walk), biases constant. GNSS antenna positions
 (NED, m) at 5-20 Hz with white noise, optionally a gap. The IMU's own heading starts at 0,
 so the true heading at the start is the misalignment to find.
 """
@@ -58,6 +59,9 @@ class SwingConfig:
     gyro_bias_deg_s: tuple[float, float, float] = (0.0, 0.0, 0.0)
     accel_bias_m_s2: tuple[float, float, float] = (0.0, 0.0, 0.0)
     gravity_m_s2: float = 9.80665
+    gnss_outliers: int = 0             # epochs with a 5-15 cm error (multipath, a bad fix)
+    imu_noise_taps: int = 1            # IMU noise through a moving average of this many
+                                       # samples (a sensor's digital low-pass), same ARW
     wobble: tuple = field(default=(), compare=False)   # (freqs, phases) filled by random
 
 
@@ -70,7 +74,8 @@ def noise_free(config: SwingConfig) -> SwingConfig:
 
 def random_config(rng: np.random.Generator, tilt_range=(15.0, 60.0), **overrides
                   ) -> SwingConfig:
-    """A random realistic swing: amplitude, shape, pole, IMU grade and biases, GNSS."""
+    """A random realistic swing: amplitude, shape, pole, IMU grade, rate, noise colour
+    and biases, GNSS rate, noise and gap (up to 1 s)."""
     grade = GRADES[rng.choice(list(GRADES))]
     gn, gb, an, ab = grade
     cfg = SwingConfig(
@@ -89,13 +94,17 @@ def random_config(rng: np.random.Generator, tilt_range=(15.0, 60.0), **overrides
         gnss_rate_hz=float(rng.choice([5.0, 10.0, 10.0, 20.0])),
         gnss_sigma_h_m=float(rng.choice([0.01, 0.01, 0.015])),
         gnss_sigma_v_m=float(rng.choice([0.02, 0.02, 0.03])),
-        gap_s=float(rng.choice([0.0, rng.uniform(0.2, 0.6)])),
+        gap_s=float(rng.choice([0.0, rng.uniform(0.2, 1.0)])),
         gyro_noise_deg_s_rthz=gn,
         accel_noise_m_s2_rthz=an,
         gyro_bias_deg_s=tuple(float(v) for v in rng.normal(0, gb, 3)),
         accel_bias_m_s2=tuple(float(v) for v in rng.normal(0, ab, 3)),
         gravity_m_s2=float(9.80665 + rng.uniform(-0.025, 0.025)),
     )
+    # harder cases added later (drawn after the others): the IMU at 50/100/200 Hz and its
+    # noise through a sensor's digital low-pass in half the runs
+    cfg = replace(cfg, imu_rate_hz=float(rng.choice([50.0, 100.0, 100.0, 200.0])),
+                  imu_noise_taps=int(rng.choice([1, 1, 2, 4])))
     return replace(cfg, **overrides)
 
 
@@ -133,6 +142,17 @@ def _angles(cfg: SwingConfig, t: np.ndarray, wob: tuple, scale: float) -> np.nda
 
 def _matrices(angles: np.ndarray) -> np.ndarray:
     return Rotation.from_euler("ZYX", angles[:, [2, 1, 0]]).as_matrix()
+
+
+def _noise(rng: np.random.Generator, sigma: float, shape: tuple, taps: int) -> np.ndarray:
+    """White noise of per-sample σ *sigma*, or (taps > 1) its moving average over *taps*
+    samples scaled by √taps: the same low-frequency density (angle / velocity random walk)
+    with the high frequencies a sensor's digital low-pass removes."""
+    if taps <= 1:
+        return rng.normal(0, sigma, shape)
+    raw = rng.normal(0, sigma * math.sqrt(taps), (shape[0] + taps - 1, *shape[1:]))
+    c = np.cumsum(np.vstack([np.zeros((1, *shape[1:])), raw]), axis=0)
+    return (c[taps:] - c[:-taps]) / taps
 
 
 def simulate_swing(config: SwingConfig | None = None, seed: int = 0) -> dict:
@@ -173,9 +193,10 @@ def simulate_swing(config: SwingConfig | None = None, seed: int = 0) -> dict:
     f = np.einsum("kji,kj->ki", C, acc - g * E_DOWN)
     bg = np.radians(np.array(cfg.gyro_bias_deg_s))
     ba = np.array(cfg.accel_bias_m_s2)
-    gyro = gyro + bg + rng.normal(0, math.radians(cfg.gyro_noise_deg_s_rthz)
-                                  * math.sqrt(cfg.imu_rate_hz), gyro.shape)
-    f = f + ba + rng.normal(0, cfg.accel_noise_m_s2_rthz * math.sqrt(cfg.imu_rate_hz), f.shape)
+    gyro = gyro + bg + _noise(rng, math.radians(cfg.gyro_noise_deg_s_rthz)
+                              * math.sqrt(cfg.imu_rate_hz), gyro.shape, cfg.imu_noise_taps)
+    f = f + ba + _noise(rng, cfg.accel_noise_m_s2_rthz * math.sqrt(cfg.imu_rate_hz), f.shape,
+                        cfg.imu_noise_taps)
     # GNSS epochs on the IMU grid (every imu_rate/gnss_rate samples), a gap in the swing
     stride = max(1, int(round(cfg.imu_rate_hz / cfg.gnss_rate_hz)))
     idx = np.arange(int(rng.integers(0, stride)), n, stride)
@@ -184,6 +205,11 @@ def simulate_swing(config: SwingConfig | None = None, seed: int = 0) -> dict:
         idx = idx[(t[idx] < t_gap) | (t[idx] >= t_gap + cfg.gap_s)]
     sig = np.array([cfg.gnss_sigma_h_m, cfg.gnss_sigma_h_m, cfg.gnss_sigma_v_m])
     gnss = p[idx] + rng.normal(0, 1, (idx.size, 3)) * sig
+    if cfg.gnss_outliers:
+        bad = rng.choice(idx.size, size=min(cfg.gnss_outliers, idx.size), replace=False)
+        jump = rng.normal(0, 1, (bad.size, 3))
+        jump /= np.linalg.norm(jump, axis=1)[:, None]
+        gnss[bad] += jump * rng.uniform(0.05, 0.15, (bad.size, 1))
     hold = t >= duration - cfg.hold_s
     tilt = np.degrees(np.arccos(np.clip(C[:, 2, 2], -1, 1)))
     return {

@@ -92,7 +92,10 @@ def result_document(sol: TiltSolution, frame: dict, length: float, params: TiltP
         doc["joint"] = {"gyro_bias_deg_s": np.degrees(j.gyro_bias).tolist(),
                         "accel_bias_m_s2": j.accel_bias.tolist(),
                         "sigma_gnss_m": j.sigma_gnss_m, "rms_gnss_m": j.rms_gnss_m,
+                        "sigma_gnss_v_m": j.sigma_gnss_v_m,
                         "sigma_dv_m_s": j.sigma_dv_m_s, "accel_blocks": j.n_blocks,
+                        "gyro_noise_deg_s_per_sample": math.degrees(j.gyro_noise_rad_s),
+                        "accel_noise_m_s2_per_sample": j.accel_noise_m_s2,
                         "iterations": j.iterations, "converged": j.converged,
                         "weak_azimuth_deg": math.degrees(math.atan2(
                             j.weak_direction[1], j.weak_direction[0])) % 180.0,

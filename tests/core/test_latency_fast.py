@@ -50,6 +50,29 @@ def test_fast_scan_equals_direct_interpolation_on_irregular_data():
     assert fastscan.uniform_step(dts) is None and fastscan.available()
 
 
+def test_lattice_scan_equals_direct_interpolation_on_regular_attitude():
+    rng = np.random.default_rng(1)
+    # Regular attitude (the lattice kernel), jittered GNSS tags; the steps divide the
+    # attitude interval 1, 2, 10 and 200 times; the last two grids do not fit the lattice
+    # (7.5 steps per sample; candidates beyond the record) and take the general kernel.
+    t_att = 1000.0 + np.arange(3000) * 0.01
+    h_att = np.sin(t_att * 1.3) + 0.1 * rng.standard_normal(t_att.size)
+    tags = np.sort(rng.uniform(1002.0, 1027.0, 300))
+    h = np.sin(tags * 1.3 - 0.4) + 0.05 * rng.standard_normal(tags.size)
+    grids = [(np.linspace(-1, 1, 201), True), (np.linspace(-1, 1, 401), True),
+             (np.linspace(-1, 1, 2001), True), (np.linspace(0.1, 0.1002, 5), True),
+             (np.linspace(-1, 1, 1501), False), (np.linspace(-3, 3, 6001), False)]
+    for dts, lattice in grids:
+        step = fastscan.uniform_step(dts)
+        assert (fastscan._lattice(tags, t_att, dts, step) is not None) == lattice
+        fast = correlation_curve(tags, h, t_att, h_att, dts)
+        direct = correlation_curve_direct(tags, h, t_att, h_att, dts)
+        np.testing.assert_allclose(fast, direct, rtol=0, atol=1e-10)
+        sums = fastscan.correlation_sums(tags, h, t_att, h_att, dts, step)
+        general = fastscan._sums(tags, h, t_att, h_att, dts, step)
+        np.testing.assert_allclose(sums, general, rtol=1e-11, atol=1e-9)
+
+
 def test_fast_scan_constant_heave_is_nan():
     tags = np.linspace(1, 9, 50)
     r = correlation_curve(tags, np.sin(tags), np.linspace(0, 10, 500), np.full(500, 0.3),

@@ -17,7 +17,7 @@ from hydrosync_core.methods.latency.correlation import (
     correlation_curve,
     correlation_curve_direct,
 )
-from hydrosync_core.methods.latency.heave import total_heave, total_heave_deg
+from hydrosync_core.methods.latency.heave import total_heave, total_heave_at, total_heave_deg
 from hydrosync_core.methods.latency.lines import line_epochs, line_slice
 from hydrosync_core.methods.latency.simulate import DayConfig, simulate_day, write_day_csv
 
@@ -145,6 +145,55 @@ def test_fast_csv_small_pieces_and_optional_columns(tmp_path, monkeypatch):
         np.testing.assert_array_equal(fast[key], slow[key])
 
 
+@pytest.mark.parametrize("newline, last", [("\n", "\n"), ("\r\n", ""), ("\n", "")])
+def test_compiled_csv_parser_returns_the_generic_readers_doubles(tmp_path, monkeypatch,
+                                                                 newline, last):
+    monkeypatch.setattr(fastcsv, "COMPILED_CHUNK", 97)  # many chunks, cut inside rows
+    rng = np.random.default_rng(8)
+    n = 2000
+    cols = [345600 + np.cumsum(rng.uniform(0.001, 0.02, n)), rng.normal(0, 5, n),
+            rng.normal(0, 2, n), rng.uniform(0, 360, n), rng.normal(0, 0.5, n)]
+    fmts = ["{:.4f}", "{:.6f}", "{:.15f}", "{:.3f}", "{:.9f}"]
+    text = "\n".join(",".join(f.format(c[i]) for f, c in zip(fmts, cols, strict=True))
+                     for i in range(n))
+    text = text.replace("-0.000000000,", "-0.000000000,") + "\n"
+    path = tmp_path / "attitude.csv"
+    path.write_bytes(("time,roll,pitch,heading,heave\n" + text).replace(
+        "\n", newline).encode()[: -len(newline)] + last.encode())
+    names, header = fastcsv._header(path)
+    keep = ["time", "roll", "pitch", "heave"]
+    from hydrosync_core import plausible
+    compiled = fastcsv._read_compiled(path, names, header, names, keep, plausible.ATTITUDE, 2)
+    assert compiled is not None  # the compiled parser took this file
+    slow = survey_csv.read_attitude_csv(path)
+    for key in keep:
+        np.testing.assert_array_equal(compiled[key], slow[key])
+    fast = fastcsv.read_attitude_csv(path)
+    assert list(fast) == list(slow)
+    for key in slow:
+        np.testing.assert_array_equal(fast[key], slow[key])
+
+
+@pytest.mark.parametrize("body", [
+    "time,height\n1,42.0\n2,4.2e1\n3,42.1\n",                  # exponent
+    "time,height\n1,42.0\n2,42.12345678901234567\n3,42.1\n",   # more than 15 digits
+    "time,height\n1,42.0\n\n2,42.1\n",                         # blank line
+    "time,height\n1,42.0\n2, 42.1\n",                           # space
+    "height,time\n42.0,1\n42.1,2\n",                            # time not first
+    "time,height\n1,42.0\n2,+42.1\n",                           # plus sign
+])
+def test_compiled_csv_parser_leaves_other_shapes_to_the_general_readers(tmp_path, body):
+    path = tmp_path / "gnss.csv"
+    path.write_text(body)
+    names, header = fastcsv._header(path)
+    from hydrosync_core import plausible
+    assert fastcsv._read_compiled(path, names, header, ["time", "height"],
+                                  ["time", "height"], plausible.GNSS, 2) is None
+    fast, slow = fastcsv.read_gnss_csv(path), survey_csv.read_gnss_csv(path)
+    for key in slow:
+        np.testing.assert_array_equal(fast[key], slow[key])
+
+
 @pytest.mark.parametrize("body, where", [
     ("time,height\n1,42.0\n2,abc\n3,42.1\n", ":3"),           # not a number
     ("time,height\n1,42.0\n2,nan\n3,42.1\n", ":3"),           # not finite
@@ -197,3 +246,16 @@ def test_total_heave_at_times_equals_whole_record_interpolation(day):
     times = np.concatenate([rng.uniform(att["time"][0] - 1, att["time"][-1] + 1, 500),
                             att["time"][[0, 7, -1]]])
     np.testing.assert_array_equal(source.at(times), np.interp(times, att["time"], full))
+
+
+def test_total_heave_at_equals_interpolated_total_heave():
+    rng = np.random.default_rng(3)
+    t = np.cumsum(rng.uniform(0.005, 0.015, 5000))
+    heave, roll, pitch = rng.normal(size=5000), rng.normal(size=5000) * 5, rng.normal(size=5000) * 2
+    # Sorted and unsorted times, times on the samples and beyond both ends.
+    times = np.concatenate([np.sort(rng.uniform(t[0] - 1, t[-1] + 1, 3000)),
+                            rng.uniform(t[0], t[-1], 500), t[:50]])
+    arm = (-1.5, 2.0, -6.0)
+    np.testing.assert_allclose(total_heave_at(times, t, heave, roll, pitch, arm),
+                               np.interp(times, t, total_heave_deg(heave, roll, pitch, arm)),
+                               rtol=0, atol=1e-13)

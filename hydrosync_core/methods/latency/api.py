@@ -157,16 +157,10 @@ class _Attitude:
         Only the two records around each time are evaluated: interpolating over that
         subset gives exactly what interpolating over the whole record gives.
         """
-        t = self.t
-        k = np.clip(np.searchsorted(t, times, side="right"), 1, t.size - 1)
-        lo = int(k.min()) - 1
-        mark = np.zeros(int(k.max()) - lo + 1, dtype=bool)
-        mark[k - 1 - lo] = True
-        mark[k - lo] = True
-        idx = np.flatnonzero(mark) + lo
+        from hydrosync_core.methods.latency.heave import total_heave_at
+
         a = self.att
-        h = total_heave_deg(a["heave"][idx], a["roll"][idx], a["pitch"][idx], self.arm)
-        return np.interp(times, t[idx], h)
+        return total_heave_at(times, self.t, a["heave"], a["roll"], a["pitch"], self.arm)
 
 
 def _filtered_line(line, t_g: np.ndarray, hgt: np.ndarray, response, interval: float,

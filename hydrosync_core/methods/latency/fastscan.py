@@ -223,6 +223,18 @@ def _lattice_sums_py(x, w, H, L, K):  # pragma: no cover - compiled below
 _lattice_sums = (njit(cache=True, nogil=True)(_lattice_sums_py) if njit is not None
                  else None)
 
+def _departure_py(ta, interval):  # pragma: no cover - compiled below
+    """Largest |ta[j] − ta[0] − j·interval| (s)."""
+    worst = 0.0
+    for j in range(ta.size):
+        d = abs(ta[j] - ta[0] - j * interval)
+        if d > worst:
+            worst = d
+    return worst
+
+
+_departure = njit(cache=True, nogil=True)(_departure_py) if njit is not None else None
+
 LATTICE_TOLERANCE = 1e-6
 """Largest departure of an attitude time from the uniform grid, as a fraction of the
 sampling interval, for the lattice kernel (10 ns at 100 Hz: the interpolated heave then
@@ -243,8 +255,7 @@ def _lattice(tags, ta, dts, step):
     L = int(round(ratio))
     if L < 1 or abs(ratio - L) > 1e-9 * ratio:
         return None
-    j = np.arange(m, dtype=float)
-    if np.max(np.abs((ta - ta[0]) - j * interval)) > LATTICE_TOLERANCE * interval:
+    if _departure(ta, interval) > LATTICE_TOLERANCE * interval:
         return None
     x = (tags - ta[0] - dts[0]) / (interval / L)
     K = dts.size
@@ -282,6 +293,7 @@ def correlation_sums(tags: np.ndarray, w: np.ndarray, t_att: np.ndarray, h_att: 
     """
     tags = np.ascontiguousarray(tags, dtype=float)
     w = np.ascontiguousarray(w, dtype=float)
+    t_att = np.ascontiguousarray(t_att, dtype=float)
     lattice = _lattice(tags, t_att, dts, step)
     if lattice is not None:
         x, L = lattice

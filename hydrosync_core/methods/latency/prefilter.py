@@ -58,9 +58,13 @@ def fft_filter(x: np.ndarray, dt: float, response) -> np.ndarray:
     n = x.size
     if n < 4:
         return x.copy()
-    k = np.arange(n, dtype=float)
-    slope, intercept = np.polyfit(k - k.mean(), x, 1)
-    trend = intercept + slope * (k - k.mean())
+    kc = np.arange(n, dtype=float) - 0.5 * (n - 1)
+    # Least-squares line in closed form (kc is centred): polyfit's numbers without
+    # lstsq, and no BLAS (a threaded BLAS dot wakes its threads for 10^4+ elements:
+    # 10 ms per window on a busy machine).
+    intercept = float(x.mean())
+    slope = float((kc * x).sum()) / float((kc * kc).sum())
+    trend = intercept + slope * kc
     from scipy import fft
 
     # Mirrored on both sides to a fast FFT length (about twice n): the wrap-around seam
@@ -89,13 +93,39 @@ class Weighting:
         return g * antialias_response(f, ANTIALIAS_FRACTION * self.nyquist_hz)
 
 
+def _welch3(x: np.ndarray, y: np.ndarray, fs: float, nper: int):
+    """(f, P_xx, P_yy, P_xy) as ``scipy.signal.welch``/``csd`` with ``nperseg=nper``,
+    ``detrend="linear"`` and the other defaults (periodic Hann window, half overlap,
+    density scaling, one-sided, mean of the segments), in one pass over both series."""
+    step = nper - nper // 2
+    count = (x.size - nper // 2) // step
+    idx = np.arange(count)[:, None] * step + np.arange(nper)[None, :]
+    win = 0.5 - 0.5 * np.cos(2 * np.pi * np.arange(nper) / nper)
+    kc = np.arange(nper, dtype=float) - 0.5 * (nper - 1)
+    kk = float(kc @ kc)
+
+    def spectra(v):
+        seg = v[idx]
+        seg = seg - seg.mean(axis=1, keepdims=True)
+        seg -= np.outer(seg @ kc / kk, kc)  # linear detrend per segment
+        return np.fft.rfft(seg * win, axis=1)
+
+    X, Y = spectra(x), spectra(y)
+    scale = 1.0 / (fs * float(win @ win))
+    pxx = (np.abs(X) ** 2).mean(axis=0) * scale
+    pyy = (np.abs(Y) ** 2).mean(axis=0) * scale
+    pxy = (np.conj(X) * Y).mean(axis=0) * scale
+    last = -1 if nper % 2 == 0 else None
+    for p in (pxx, pyy, pxy):
+        p[1:last] *= 2.0
+    return np.fft.rfftfreq(nper, 1.0 / fs), pxx, pyy, pxy
+
+
 def pooled_weighting(pairs: list[tuple[np.ndarray, np.ndarray]], dt: float) -> Weighting | None:
     """Coherence weight from (heights, heave at the same epochs) pairs of the day's lines.
 
     Returns None with fewer than 16 epochs in the shortest line.
     """
-    from scipy.signal import csd, welch
-
     pairs = [(h, H) for h, H in pairs if h.size >= 16]
     if not pairs:
         return None
@@ -104,9 +134,7 @@ def pooled_weighting(pairs: list[tuple[np.ndarray, np.ndarray]], dt: float) -> W
     s_hH = 0.0j
     total = 0
     for h, H in pairs:
-        f, p_hh = welch(h, 1.0 / dt, nperseg=nper, detrend="linear")
-        _, p_HH = welch(H, 1.0 / dt, nperseg=nper, detrend="linear")
-        _, p_hH = csd(h, H, 1.0 / dt, nperseg=nper, detrend="linear")
+        f, p_hh, p_HH, p_hH = _welch3(h, H, 1.0 / dt, nper)
         s_hh = s_hh + h.size * p_hh
         s_HH = s_HH + h.size * p_HH
         s_hH = s_hH + h.size * p_hH

@@ -259,3 +259,20 @@ def test_total_heave_at_equals_interpolated_total_heave():
     np.testing.assert_allclose(total_heave_at(times, t, heave, roll, pitch, arm),
                                np.interp(times, t, total_heave_deg(heave, roll, pitch, arm)),
                                rtol=0, atol=1e-13)
+
+
+def test_pooled_weighting_gives_noise_only_frequencies_no_weight():
+    from hydrosync_core.methods.latency import prefilter
+
+    rng = np.random.default_rng(11)
+    dt, pairs = 0.05, []
+    for _ in range(13):  # 13 two-minute lines at 20 Hz: waves at 0.15 Hz plus white noise
+        t = np.arange(2400) * dt
+        wave = np.sin(2 * np.pi * 0.15 * t + rng.uniform(0, 6.3))
+        pairs.append((wave + 0.05 * rng.standard_normal(t.size),
+                      wave + 0.05 * rng.standard_normal(t.size)))
+    w = prefilter.pooled_weighting(pairs, dt)
+    noise = w.f > 1.0
+    # Spurious coherence of the noise band (≈ 1/K per bin) no longer gets weight.
+    assert np.mean(w.coherence[noise] == 0) > 0.99 and np.mean(w.gain[noise] == 0) > 0.99
+    assert w.coherence[np.argmin(np.abs(w.f - 0.15))] > 0.9

@@ -17,7 +17,7 @@ from hydrosync_core.methods.latency.correlation import (
     correlation_curve,
     correlation_curve_direct,
 )
-from hydrosync_core.methods.latency.heave import total_heave, total_heave_deg
+from hydrosync_core.methods.latency.heave import total_heave, total_heave_at, total_heave_deg
 from hydrosync_core.methods.latency.lines import line_epochs, line_slice
 from hydrosync_core.methods.latency.simulate import DayConfig, simulate_day, write_day_csv
 
@@ -48,6 +48,29 @@ def test_fast_scan_equals_direct_interpolation_on_irregular_data():
     np.testing.assert_array_equal(correlation_curve(tags, h, t_att, h_att, dts),
                                   correlation_curve_direct(tags, h, t_att, h_att, dts))
     assert fastscan.uniform_step(dts) is None and fastscan.available()
+
+
+def test_lattice_scan_equals_direct_interpolation_on_regular_attitude():
+    rng = np.random.default_rng(1)
+    # Regular attitude (the lattice kernel), jittered GNSS tags; the steps divide the
+    # attitude interval 1, 2, 10 and 200 times; the last two grids do not fit the lattice
+    # (7.5 steps per sample; candidates beyond the record) and take the general kernel.
+    t_att = 1000.0 + np.arange(3000) * 0.01
+    h_att = np.sin(t_att * 1.3) + 0.1 * rng.standard_normal(t_att.size)
+    tags = np.sort(rng.uniform(1002.0, 1027.0, 300))
+    h = np.sin(tags * 1.3 - 0.4) + 0.05 * rng.standard_normal(tags.size)
+    grids = [(np.linspace(-1, 1, 201), True), (np.linspace(-1, 1, 401), True),
+             (np.linspace(-1, 1, 2001), True), (np.linspace(0.1, 0.1002, 5), True),
+             (np.linspace(-1, 1, 1501), False), (np.linspace(-3, 3, 6001), False)]
+    for dts, lattice in grids:
+        step = fastscan.uniform_step(dts)
+        assert (fastscan._lattice(tags, t_att, dts, step) is not None) == lattice
+        fast = correlation_curve(tags, h, t_att, h_att, dts)
+        direct = correlation_curve_direct(tags, h, t_att, h_att, dts)
+        np.testing.assert_allclose(fast, direct, rtol=0, atol=1e-10)
+        sums = fastscan.correlation_sums(tags, h, t_att, h_att, dts, step)
+        general = fastscan._sums(tags, h, t_att, h_att, dts, step)
+        np.testing.assert_allclose(sums, general, rtol=1e-11, atol=1e-9)
 
 
 def test_fast_scan_constant_heave_is_nan():
@@ -122,6 +145,55 @@ def test_fast_csv_small_pieces_and_optional_columns(tmp_path, monkeypatch):
         np.testing.assert_array_equal(fast[key], slow[key])
 
 
+@pytest.mark.parametrize("newline, last", [("\n", "\n"), ("\r\n", ""), ("\n", "")])
+def test_compiled_csv_parser_returns_the_generic_readers_doubles(tmp_path, monkeypatch,
+                                                                 newline, last):
+    monkeypatch.setattr(fastcsv, "COMPILED_CHUNK", 97)  # many chunks, cut inside rows
+    rng = np.random.default_rng(8)
+    n = 2000
+    cols = [345600 + np.cumsum(rng.uniform(0.001, 0.02, n)), rng.normal(0, 5, n),
+            rng.normal(0, 2, n), rng.uniform(0, 360, n), rng.normal(0, 0.5, n)]
+    fmts = ["{:.4f}", "{:.6f}", "{:.15f}", "{:.3f}", "{:.9f}"]
+    text = "\n".join(",".join(f.format(c[i]) for f, c in zip(fmts, cols, strict=True))
+                     for i in range(n))
+    text = text.replace("-0.000000000,", "-0.000000000,") + "\n"
+    path = tmp_path / "attitude.csv"
+    path.write_bytes(("time,roll,pitch,heading,heave\n" + text).replace(
+        "\n", newline).encode()[: -len(newline)] + last.encode())
+    names, header = fastcsv._header(path)
+    keep = ["time", "roll", "pitch", "heave"]
+    from hydrosync_core import plausible
+    compiled = fastcsv._read_compiled(path, names, header, names, keep, plausible.ATTITUDE, 2)
+    assert compiled is not None  # the compiled parser took this file
+    slow = survey_csv.read_attitude_csv(path)
+    for key in keep:
+        np.testing.assert_array_equal(compiled[key], slow[key])
+    fast = fastcsv.read_attitude_csv(path)
+    assert list(fast) == list(slow)
+    for key in slow:
+        np.testing.assert_array_equal(fast[key], slow[key])
+
+
+@pytest.mark.parametrize("body", [
+    "time,height\n1,42.0\n2,4.2e1\n3,42.1\n",                  # exponent
+    "time,height\n1,42.0\n2,42.12345678901234567\n3,42.1\n",   # more than 15 digits
+    "time,height\n1,42.0\n\n2,42.1\n",                         # blank line
+    "time,height\n1,42.0\n2, 42.1\n",                           # space
+    "height,time\n42.0,1\n42.1,2\n",                            # time not first
+    "time,height\n1,42.0\n2,+42.1\n",                           # plus sign
+])
+def test_compiled_csv_parser_leaves_other_shapes_to_the_general_readers(tmp_path, body):
+    path = tmp_path / "gnss.csv"
+    path.write_text(body)
+    names, header = fastcsv._header(path)
+    from hydrosync_core import plausible
+    assert fastcsv._read_compiled(path, names, header, ["time", "height"],
+                                  ["time", "height"], plausible.GNSS, 2) is None
+    fast, slow = fastcsv.read_gnss_csv(path), survey_csv.read_gnss_csv(path)
+    for key in slow:
+        np.testing.assert_array_equal(fast[key], slow[key])
+
+
 @pytest.mark.parametrize("body, where", [
     ("time,height\n1,42.0\n2,abc\n3,42.1\n", ":3"),           # not a number
     ("time,height\n1,42.0\n2,nan\n3,42.1\n", ":3"),           # not finite
@@ -174,3 +246,33 @@ def test_total_heave_at_times_equals_whole_record_interpolation(day):
     times = np.concatenate([rng.uniform(att["time"][0] - 1, att["time"][-1] + 1, 500),
                             att["time"][[0, 7, -1]]])
     np.testing.assert_array_equal(source.at(times), np.interp(times, att["time"], full))
+
+
+def test_total_heave_at_equals_interpolated_total_heave():
+    rng = np.random.default_rng(3)
+    t = np.cumsum(rng.uniform(0.005, 0.015, 5000))
+    heave, roll, pitch = rng.normal(size=5000), rng.normal(size=5000) * 5, rng.normal(size=5000) * 2
+    # Sorted and unsorted times, times on the samples and beyond both ends.
+    times = np.concatenate([np.sort(rng.uniform(t[0] - 1, t[-1] + 1, 3000)),
+                            rng.uniform(t[0], t[-1], 500), t[:50]])
+    arm = (-1.5, 2.0, -6.0)
+    np.testing.assert_allclose(total_heave_at(times, t, heave, roll, pitch, arm),
+                               np.interp(times, t, total_heave_deg(heave, roll, pitch, arm)),
+                               rtol=0, atol=1e-13)
+
+
+def test_pooled_weighting_gives_noise_only_frequencies_no_weight():
+    from hydrosync_core.methods.latency import prefilter
+
+    rng = np.random.default_rng(11)
+    dt, pairs = 0.05, []
+    for _ in range(13):  # 13 two-minute lines at 20 Hz: waves at 0.15 Hz plus white noise
+        t = np.arange(2400) * dt
+        wave = np.sin(2 * np.pi * 0.15 * t + rng.uniform(0, 6.3))
+        pairs.append((wave + 0.05 * rng.standard_normal(t.size),
+                      wave + 0.05 * rng.standard_normal(t.size)))
+    w = prefilter.pooled_weighting(pairs, dt)
+    noise = w.f > 1.0
+    # Spurious coherence of the noise band (≈ 1/K per bin) no longer gets weight.
+    assert np.mean(w.coherence[noise] == 0) > 0.99 and np.mean(w.gain[noise] == 0) > 0.99
+    assert w.coherence[np.argmin(np.abs(w.f - 0.15))] > 0.9

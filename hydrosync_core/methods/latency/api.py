@@ -157,16 +157,10 @@ class _Attitude:
         Only the two records around each time are evaluated: interpolating over that
         subset gives exactly what interpolating over the whole record gives.
         """
-        t = self.t
-        k = np.clip(np.searchsorted(t, times, side="right"), 1, t.size - 1)
-        lo = int(k.min()) - 1
-        mark = np.zeros(int(k.max()) - lo + 1, dtype=bool)
-        mark[k - 1 - lo] = True
-        mark[k - lo] = True
-        idx = np.flatnonzero(mark) + lo
+        from hydrosync_core.methods.latency.heave import total_heave_at
+
         a = self.att
-        h = total_heave_deg(a["heave"][idx], a["roll"][idx], a["pitch"][idx], self.arm)
-        return np.interp(times, t[idx], h)
+        return total_heave_at(times, self.t, a["heave"], a["roll"], a["pitch"], self.arm)
 
 
 def _filtered_line(line, t_g: np.ndarray, hgt: np.ndarray, response, interval: float,
@@ -240,10 +234,34 @@ def estimate_latency(
     p = params if isinstance(params, LatencyParams) else LatencyParams.from_dict(params)
     if p.estimator == "auto":
         return _auto(gnss, attitude, lines, lever_arm, p, progress, cancel)
+    return _estimate(_setup(gnss, attitude, lines, lever_arm, p), p, progress, cancel)
+
+
+@dataclasses.dataclass
+class _Setup:
+    """Checked inputs and prepared lines: what every estimator starts from."""
+
+    t_g: np.ndarray
+    hgt: np.ndarray
+    att: dict
+    arm: np.ndarray
+    dts: np.ndarray
+    g_int: float
+    a_int: float
+    names: list
+    starts: np.ndarray
+    ends: np.ndarray
+    prepared: list
+
+    def fresh(self) -> _Setup:
+        """A copy whose lines have their own warning lists (an estimator appends to them)."""
+        return dataclasses.replace(self, prepared=[
+            dataclasses.replace(ln, warnings=list(ln.warnings)) for ln in self.prepared])
+
+
+def _setup(gnss, attitude, lines, lever_arm, p: LatencyParams) -> _Setup:
     t_g, hgt, att, arm = _check_inputs(gnss, attitude, lever_arm)
     t_att = att["time"]
-    # Seed eq. 2: total heave at the antenna, at attitude rate (per line window).
-    source = _Attitude(att, arm)
     lo, hi = p.range_s
     dts = np.linspace(lo, hi, int(round((hi - lo) / p.step_s)) + 1)
     g_int, a_int = median_interval(t_g), median_interval(t_att)
@@ -255,9 +273,20 @@ def estimate_latency(
     ends = np.asarray(lines["end"], dtype=float).ravel()
     if not names:
         raise InputError("lines", "no survey lines")
-
     prepared = [prepare_line(name, starts[i], ends[i], t_g, hgt, t_att, p, g_int, a_int)
                 for i, name in enumerate(names)]
+    return _Setup(t_g, hgt, att, arm, dts, g_int, a_int, names, starts, ends, prepared)
+
+
+def _estimate(setup: _Setup, p: LatencyParams, progress, cancel) -> LatencyResult:
+    """One estimator (not auto) from :func:`_setup`'s inputs."""
+    t_g, hgt, att, arm = setup.t_g, setup.hgt, setup.att, setup.arm
+    t_att = att["time"]
+    dts, g_int, a_int = setup.dts, setup.g_int, setup.a_int
+    names, starts, ends, prepared = setup.names, setup.starts, setup.ends, setup.prepared
+    lo, hi = p.range_s
+    # Seed eq. 2: total heave at the antenna, at attitude rate (per line window).
+    source = _Attitude(att, arm)
     raw_source = source
     weighting = None
     if p.estimator != "qi2010":
@@ -323,16 +352,23 @@ def estimate_latency(
 
     check_cancel(cancel)
     report(progress, 0.92, "quality")
+    final = float(np.nan_to_num(comb.latency_s))
+
+    def quality(ln) -> tuple[float, float]:
+        if not ln.usable:
+            return float("nan"), float("nan")
+        # Seed eqs. 5–6 before (Δt = 0) and after (final Δt) synchronisation, always on
+        # the raw series (as published).
+        H0 = raw_source.at(np.concatenate([ln.tags, ln.tags - final])).reshape(2, -1)
+        after = sigma0(ln.h, H0[1]) if np.isfinite(comb.latency_s) else float("nan")
+        return sigma0(ln.h, H0[0]), after
+
+    from concurrent.futures import ThreadPoolExecutor
+
+    with ThreadPoolExecutor(SCAN_THREADS) as pool:  # the interpolation releases the GIL
+        sigmas = list(pool.map(quality, prepared))
     out_lines = []
-    for ln, pk, u in zip(prepared, peaks, used, strict=True):
-        before = after = float("nan")
-        if ln.usable:
-            # Seed eqs. 5–6 before (Δt = 0) and after (final Δt) synchronisation.
-            final = float(np.nan_to_num(comb.latency_s))
-            # Seed eqs. 5–6 always on the raw series (as published).
-            H0 = raw_source.at(np.concatenate([ln.tags, ln.tags - final])).reshape(2, -1)
-            before = sigma0(ln.h, H0[0])
-            after = sigma0(ln.h, H0[1]) if np.isfinite(comb.latency_s) else float("nan")
+    for ln, pk, u, (before, after) in zip(prepared, peaks, used, sigmas, strict=True):
         out_lines.append(LineResult(
             ln.name, float(ln.start), float(ln.end), int(ln.tags.size), pk.r_max, pk.latency_s,
             pk.uncertainty_s, before, after, bool(u), pk.at_edge, tuple(ln.warnings)))
@@ -365,10 +401,10 @@ def _auto(gnss, attitude, lines, lever_arm, p: LatencyParams, progress, cancel
           ) -> LatencyResult:
     """``estimator = auto``: qi2010 and weighted, the one with the smaller uncertainty."""
     runs = {}
+    setup = _setup(gnss, attitude, lines, lever_arm, p)  # checked and prepared once
     for k, name in enumerate(("qi2010", "weighted")):
-        runs[name] = estimate_latency(gnss, attitude, lines, lever_arm,
-                                      dataclasses.replace(p, estimator=name),
-                                      sub_progress(progress, 0.5 * k, 0.5 * k + 0.5), cancel)
+        runs[name] = _estimate(setup.fresh(), dataclasses.replace(p, estimator=name),
+                               sub_progress(progress, 0.5 * k, 0.5 * k + 0.5), cancel)
 
     def key(r: LatencyResult) -> float:
         return r.uncertainty_s if r.converged and np.isfinite(r.uncertainty_s) else np.inf

@@ -11,9 +11,18 @@ from __future__ import annotations
 from dataclasses import asdict, dataclass
 
 import numpy as np
-from scipy import special
 
 from hydrosync_core.methods.latency.params import WEIGHTINGS  # noqa: E402
+
+Z975 = 1.959963984540054
+"""Normal 97.5 % quantile (``scipy.special.ndtri(0.975)``; scipy.special is imported only
+for Student's t: its import costs a command-line run 0.1–0.2 s)."""
+
+
+def _t975(dof: int) -> float:
+    from scipy import special
+
+    return float(special.stdtrit(dof, 0.975))
 
 
 @dataclass(frozen=True)
@@ -109,10 +118,10 @@ def combine(
         if np.isfinite(internal) and internal >= external:
             # The lines agree within their own uncertainties: the internal figure, built
             # from every line's residuals (many degrees of freedom), with the normal factor.
-            sigma, factor = internal, float(special.ndtri(0.975))
+            sigma, factor = internal, Z975
         else:
             # The scatter of n lines says more: Student's t with n − 1 degrees of freedom.
-            sigma, factor = external, float(special.stdtrit(n - 1, 0.975))
+            sigma, factor = external, _t975(n - 1)
     else:
-        sigma, factor = internal, float(special.ndtri(0.975))  # normal quantile
+        sigma, factor = internal, Z975  # normal quantile
     return Combined(mean, sigma, mean - factor * sigma, mean + factor * sigma, n, weighting)

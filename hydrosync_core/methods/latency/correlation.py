@@ -25,6 +25,12 @@ def heave_at(tags: np.ndarray, dts: np.ndarray, t_att: np.ndarray, h_att: np.nda
     return np.interp(corrected.ravel(), t_att, h_att).reshape(corrected.shape)
 
 
+def _dot(a: np.ndarray, b: np.ndarray) -> float:
+    """Σ a·b without BLAS (a threaded BLAS wakes its threads for long vectors: slow when
+    called per line from the scan threads on a busy machine)."""
+    return float(np.multiply(a, b).sum())
+
+
 def _unit_centred(h: np.ndarray) -> np.ndarray:
     """*h* minus its mean, scaled to unit norm (the heights' side of eq. 4)."""
     hc = h - h.mean()
@@ -148,17 +154,25 @@ def peak_uncertainty(
         return float("nan")
     span = float(tags[-1] - tags[0]) / max(n - 1, 1)
     H = heave_at(tags, np.array([dt - delta, dt, dt + delta]), t_att, h_att)
-    X = np.column_stack([np.ones(n), H[1]])
-    coef, *_ = np.linalg.lstsq(X, h, rcond=None)
-    resid = h - X @ coef
-    g = coef[1] * (H[2] - H[0]) / (2 * delta)
-    g = g - X @ np.linalg.lstsq(X, g, rcond=None)[0]
-    # Curvature of SSR(Δt)/2 = Σ(h−h̄)²(1 − R²)/2 at the peak: −Σ(h−h̄)²·R·R''.
+    # Least squares h = a + b·H (closed form on centred series; no lstsq per line).
+    Hc = H[1] - H[1].mean()
+    hc = h - h.mean()
+    hh = _dot(Hc, Hc)
+    if not hh > 0:
+        return float("nan")
+    b = _dot(Hc, hc) / hh
+    resid = hc - b * Hc
+    g = b * (H[2] - H[0]) / (2 * delta)
+    g = g - g.mean()
+    g = g - (_dot(Hc, g) / hh) * Hc
+    # Curvature of SSR(Δt)/2 = Σ(h−h̄)²(1 − R²)/2 at the peak: −Σ(h−h̄)²·R·R''. R'' from
+    # the least-squares parabola over the symmetric grid (x and x² are orthogonal there).
     grid = np.linspace(dt - width, dt + width, 21)
     r = correlation_curve(tags, h, t_att, h_att, grid)
-    c2 = np.polyfit(grid - dt, r, 2)[0]
-    hc = h - h.mean()
-    jj = float(-(hc @ hc) * r[10] * 2 * c2)
+    x2 = (grid - dt) ** 2
+    x2 -= x2.mean()
+    c2 = _dot(x2, r) / _dot(x2, x2)
+    jj = float(-_dot(hc, hc) * r[10] * 2 * c2)
     if not jj > 0:
         return float("nan")
     u = resid * g

@@ -8,7 +8,15 @@ the header on the first line, no comment (``#``) or quote characters, every row 
 header's field count, every wanted value a finite number inside its plausible range, and
 strictly increasing times. Anything else — and any pyarrow failure — goes to the generic
 reader, which returns the same columns or raises the same one-line :class:`InputError`
-naming file, line and field. The returned dicts are identical (float64 columns, same
+naming file, line and field.
+
+First choice is a compiled parser (numba, two threads over the two halves of the file,
+read through a memory map whose pages are released as they are parsed) for rows of plain
+decimals (``-12.3456``): such a number with at most 15 significant digits is a whole
+number divided by a power of ten, both exact in float64, so one correctly rounded
+division gives exactly the double any correct parser returns. Any other byte, field
+count or number shape (exponents, more digits, blank lines, quotes…) hands the file to
+the pyarrow path. The returned dicts are identical (float64 columns, same
 order) to those of :func:`~hydrosync_core.importers.survey_csv.read_gnss_csv` and
 :func:`~hydrosync_core.importers.survey_csv.read_attitude_csv`.
 """
@@ -74,9 +82,225 @@ def _pieces(fh, start: int):
         yield rest
 
 
+_POW10 = np.array([10.0 ** k for k in range(23)])
+
+try:  # numba is a dependency; the pyarrow path remains if it cannot load
+    from numba import njit
+except ImportError:  # pragma: no cover
+    njit = None
+
+
+def _count_py(buf, start, stop):  # pragma: no cover - compiled below
+    n = 0
+    for i in range(start, stop):
+        if buf[i] == 10:
+            n += 1
+    return n
+
+
+def _parse_py(buf, start, stop, ncols, slot, out, row0, lo, hi, pow10):  # pragma: no cover
+    """Parse rows of *buf[start:stop]* (whole lines) into ``out[slot[c], row0 + i]``.
+
+    Returns (rows, status): status 0 when every field is a plain decimal inside
+    [lo, hi] of its column, column 0 strictly increasing within the range, the row's
+    field count *ncols*; otherwise 1 (the caller falls back to the general readers).
+    """
+    row = row0
+    i = start
+    prev = -np.inf
+    while i < stop:
+        for c in range(ncols):
+            neg = False
+            if i < stop and buf[i] == 45:  # '-'
+                neg = True
+                i += 1
+            mant = 0
+            digits = 0
+            frac = 0
+            while i < stop:
+                d = buf[i]
+                if d < 48 or d > 57:
+                    break
+                mant = mant * 10 + (d - 48)
+                digits += 1
+                i += 1
+            if i < stop and buf[i] == 46:  # '.'
+                i += 1
+                while i < stop:
+                    d = buf[i]
+                    if d < 48 or d > 57:
+                        break
+                    mant = mant * 10 + (d - 48)
+                    frac += 1
+                    i += 1
+            # Up to 18 digits fit an int64; exact in float64 up to 2**53; 10**22 is exact.
+            if digits == 0 or digits + frac > 18 or frac > 22 or mant > 9007199254740992:
+                return row - row0, 1
+            value = mant / pow10[frac]
+            if neg:
+                value = -value
+            if not (lo[c] <= value <= hi[c]):
+                return row - row0, 1
+            if c == 0:
+                if not value > prev:
+                    return row - row0, 1
+                prev = value
+            s = slot[c]
+            if s >= 0:
+                out[s, row] = value
+            # separator: ',' between fields, then '\n' (or '\r\n', or the end) after the last
+            if c < ncols - 1:
+                if i >= stop or buf[i] != 44:
+                    return row - row0, 1
+                i += 1
+            else:
+                if i < stop and buf[i] == 13:
+                    i += 1
+                if i < stop:
+                    if buf[i] != 10:
+                        return row - row0, 1
+                    i += 1
+        row += 1
+    return row - row0, 0
+
+
+if njit is not None:
+    _count = njit(cache=True, nogil=True)(_count_py)
+    _parse = njit(cache=True, nogil=True)(_parse_py)
+else:  # pragma: no cover
+    _count = _parse = None
+
+COMPILED_CHUNK = 1 << 25
+"""Bytes of the memory map parsed between releases of its pages (32 MiB)."""
+
+
+def _release(mm, start: int, stop: int) -> None:
+    """Drop the mapped pages of [start, stop) from this process (they stay cached)."""
+    import mmap
+
+    page = mmap.PAGESIZE
+    a = (start // page) * page
+    b = (stop // page) * page
+    if b > a and hasattr(mm, "madvise") and hasattr(mmap, "MADV_DONTNEED"):
+        mm.madvise(mmap.MADV_DONTNEED, a, b - a)
+
+
+def _read_compiled(path: Path, names: list[str], header_bytes: int, wanted: Sequence[str],
+                   keep: Sequence[str], limits: Mapping[str, plausible.Limits],
+                   min_rows: int) -> dict | None:
+    """The compiled parser (module doc), or None when the file needs another reader."""
+    import mmap
+    from concurrent.futures import ThreadPoolExecutor
+
+    if _parse is None or "time" not in names or names[0] != "time":
+        return None
+    size = path.stat().st_size
+    if size <= header_bytes:
+        return None
+    ncols = len(names)
+    slot = np.full(ncols, -1, dtype=np.int64)
+    lo = np.full(ncols, -np.inf)
+    hi = np.full(ncols, np.inf)
+    for c, name in enumerate(names):
+        if name in keep:
+            slot[c] = list(keep).index(name)
+        if name in wanted and name in limits:
+            lo[c], hi[c] = limits[name][0], limits[name][1]
+        elif name not in wanted:
+            return None  # an unknown column: the general readers decide what it means
+    with open(path, "rb") as fh, mmap.mmap(fh.fileno(), 0, access=mmap.ACCESS_READ) as mm:
+        buf = np.frombuffer(mm, dtype=np.uint8)
+        try:
+            # Two halves split after a newline; chunks of whole lines inside each half.
+            mid = header_bytes + (size - header_bytes) // 2
+            k = mm.find(b"\n", mid)
+            mid = size if k < 0 else k + 1
+            halves = [(header_bytes, mid), (mid, size)]
+
+            def chunks(a, b):
+                while a < b:
+                    e = min(a + COMPILED_CHUNK, b)
+                    if e < b:
+                        e = mm.rfind(b"\n", a, e) + 1
+                        if e <= a:
+                            e = mm.find(b"\n", a + COMPILED_CHUNK, b) + 1 or b
+                    yield a, e
+                    a = e
+
+            def count(a, b, buf=buf):
+                n = 0
+                for x, y in chunks(a, b):
+                    n += _count(buf, x, y)
+                    _release(mm, x, y)
+                return n
+
+            with ThreadPoolExecutor(2) as pool:
+                counts = list(pool.map(lambda h: count(*h), halves))
+                # A last row without a newline still counts.
+                rows_total = counts[0] + counts[1] + (0 if mm[size - 1:size] == b"\n" else 1)
+                if rows_total < min_rows:
+                    return None
+                out = np.empty((len(keep), rows_total))
+
+                def parse(a, b, row0, buf=buf):
+                    rows = 0
+                    for x, y in chunks(a, b):
+                        n, status = _parse(buf, x, y, ncols, slot, out, row0 + rows, lo, hi,
+                                           _POW10)
+                        _release(mm, x, y)
+                        if status:
+                            return -1
+                        rows += n
+                    return rows
+
+                got = list(pool.map(lambda h: parse(*h), [(halves[0][0], halves[0][1], 0),
+                                                          (halves[1][0], halves[1][1],
+                                                           counts[0])]))
+        finally:
+            count = parse = None
+            del buf  # the map closes only without exported buffers
+    if got[0] != counts[0] or got[0] < 0 or got[1] < 0 or got[0] + got[1] != rows_total:
+        return None
+    t = keep.index("time")
+    if counts[0] and got[1] and not out[t, counts[0]] > out[t, counts[0] - 1]:
+        return None  # not increasing across the halves: the general readers decide
+    return {c: out[i] for i, c in enumerate(keep)}
+
+
+def _header(path: Path) -> tuple[list[str], int] | None:
+    """(lower-cased header names, header length in bytes) of a plain ASCII header."""
+    try:
+        if not path.is_file() or path.stat().st_size == 0:
+            return None
+        with open(path, "rb") as fh:
+            first = fh.readline(1 << 16)
+    except OSError:
+        return None
+    if not first.endswith(b"\n") or not first.strip() or not first.isascii():
+        return None
+    header = first.decode("ascii").strip()
+    if header.startswith("#") or '"' in header:
+        return None
+    names = [c.strip().lower() for c in header.split(",")]
+    if len(set(names)) != len(names) or any(not n for n in names):
+        return None
+    return names, len(first)
+
+
 def _read_fast(path: Path, required: Sequence[str], optional: Sequence[str],
                limits: Mapping[str, plausible.Limits], min_rows: int,
                keep: Sequence[str] | None = None) -> dict | None:
+    head = _header(path)
+    if head is not None and all(c in head[0] for c in required):
+        names = head[0]
+        wanted = list(required) + [c for c in optional if c in names]
+        kept = wanted if keep is None else [c for c in wanted if c in keep or c == "time"]
+        try:
+            compiled = _read_compiled(path, names, head[1], wanted, kept, limits, min_rows)
+        except (OSError, ValueError):
+            compiled = None
+        if compiled is not None:
+            return compiled
     screened = _plain_file(path)
     if screened is None:
         return None

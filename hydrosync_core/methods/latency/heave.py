@@ -93,3 +93,61 @@ def total_heave_deg(
         out[sl] = total_heave(heave[sl], np.radians(roll_deg[sl]), np.radians(pitch_deg[sl]),
                               lever_arm)
     return out
+
+
+def _total_heave_at_py(times, t, heave, roll_deg, pitch_deg, x, y, z):  # pragma: no cover
+    out = np.empty(times.size)
+    k = np.pi / 180.0
+    m = t.size
+    last = -1
+    h0 = h1 = 0.0
+    for i in range(times.size):
+        u = times[i]
+        # Right neighbour as numpy.interp: t[j-1] <= u < t[j], clipped to the record.
+        j = np.searchsorted(t, u, side="right")
+        if j < 1:
+            j = 1
+        if j > m - 1:
+            j = m - 1
+        if j != last:
+            if j == last + 1:
+                h0 = h1
+            else:
+                sr = np.sin(roll_deg[j - 1] * k)
+                cr = np.cos(roll_deg[j - 1] * k)
+                sp = np.sin(pitch_deg[j - 1] * k)
+                cp = np.cos(pitch_deg[j - 1] * k)
+                h0 = heave[j - 1] + (-((-sp * x + cp * sr * y + cp * cr * z) - z))
+            sr = np.sin(roll_deg[j] * k)
+            cr = np.cos(roll_deg[j] * k)
+            sp = np.sin(pitch_deg[j] * k)
+            cp = np.cos(pitch_deg[j] * k)
+            h1 = heave[j] + (-((-sp * x + cp * sr * y + cp * cr * z) - z))
+            last = j
+        if u <= t[0]:
+            out[i] = h0
+        elif u >= t[m - 1]:
+            out[i] = h1
+        else:
+            out[i] = h0 + (h1 - h0) / (t[j] - t[j - 1]) * (u - t[j - 1])
+    return out
+
+
+_total_heave_at_nb = (njit(cache=True, nogil=True)(_total_heave_at_py) if njit is not None
+                      else None)
+
+
+def total_heave_at(times: np.ndarray, t: np.ndarray, heave: np.ndarray, roll_deg: np.ndarray,
+                   pitch_deg: np.ndarray, lever_arm) -> np.ndarray:
+    """Total heave (m, up) linearly interpolated at *times* (s) from the attitude records
+    (*t* increasing, angles in degrees), as ``numpy.interp`` of :func:`total_heave_deg`
+    but evaluating only the records next to each time."""
+    times = np.ascontiguousarray(times, dtype=float)
+    if _total_heave_at_nb is None or t.size < 2:
+        k = np.clip(np.searchsorted(t, times, side="right"), 1, max(t.size - 1, 1))
+        idx = np.unique(np.concatenate([k - 1, k]))
+        idx = idx[idx < t.size]
+        return np.interp(times, t[idx], total_heave_deg(heave[idx], roll_deg[idx],
+                                                        pitch_deg[idx], lever_arm))
+    x, y, z = (float(v) for v in np.asarray(lever_arm, dtype=float).reshape(3))
+    return _total_heave_at_nb(times, t, heave, roll_deg, pitch_deg, x, y, z)

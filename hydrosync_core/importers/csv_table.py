@@ -29,6 +29,9 @@ from hydrosync_core.errors import InputError, quote
 MAX_COLUMNS = 1000
 """More header fields than this is not one of our tables."""
 
+COUNT_BLOCK = 1 << 18
+"""Lines whose commas are counted at once (bounds that count's memory)."""
+
 FAST_MIN_BYTES = 1 << 21
 """Files of at least this size try :func:`~hydrosync_core.importers.fastcsv.read_numeric_fast`
 first (same columns, or None and this reader decides); smaller ones are read here at once,
@@ -120,8 +123,15 @@ def _check_field_counts(path: Path, body: str, first_line: int, n_fields: int) -
     if ends.size == 0 or ends[-1] != raw.size - 1:
         ends = np.append(ends, raw.size)
     starts = np.concatenate([[0], ends[:-1] + 1])
-    commas = np.concatenate([[0], np.cumsum(raw == 44)])
-    count = commas[ends] - commas[starts]
+    # Commas per line, a block of lines at a time: a cumulative count over the whole
+    # body would take 8 bytes per byte of the file.
+    count = np.empty(ends.size, dtype=np.int64)
+    for a in range(0, ends.size, COUNT_BLOCK):
+        b = min(a + COUNT_BLOCK, ends.size)
+        lo = starts[a]
+        commas = np.concatenate([[0], np.cumsum(raw[lo:ends[b - 1]] == 44)])
+        count[a:b] = commas[ends[a:b] - lo] - commas[starts[a:b] - lo]
+        del commas
     suspects = np.flatnonzero(count != n_fields - 1)
     if suspects.size == 0:
         return

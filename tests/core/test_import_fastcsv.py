@@ -373,3 +373,21 @@ def test_import_command_large_file_stores_the_generic_readers_arrays(tmp_path, m
     assert list(stored) == list(reference)
     for key in reference:
         assert np.asarray(stored[key]).tobytes() == reference[key].tobytes()
+
+
+@pytest.mark.parametrize("block", [1, 2, 3])
+def test_generic_field_count_in_blocks_of_lines(tmp_path, monkeypatch, block):
+    """The generic reader counts commas a block of lines at a time (its memory on a large
+    bad file): the same outcome whatever the block."""
+    path = tmp_path / "gnss.csv"
+    for text, _ in BAD + [("time,height\n1,2\n2,3\n\n4\n5,6", None),
+                          ("time,height\r\n1,2\r\n2,3,4\r\n", None)]:
+        path.write_text(text)
+        expected = outcome(generic, path, GNSS)
+        with pytest.MonkeyPatch.context() as patch:
+            patch.setattr(csv_table, "COUNT_BLOCK", block)
+            got = outcome(generic, path, GNSS)
+        if isinstance(expected, str):
+            assert got == expected
+        else:
+            assert_same(got, expected)

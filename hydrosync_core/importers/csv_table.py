@@ -29,6 +29,14 @@ from hydrosync_core.errors import InputError, quote
 MAX_COLUMNS = 1000
 """More header fields than this is not one of our tables."""
 
+COUNT_BLOCK = 1 << 18
+"""Lines whose commas are counted at once (bounds that count's memory)."""
+
+FAST_MIN_BYTES = 1 << 21
+"""Files of at least this size try :func:`~hydrosync_core.importers.fastcsv.read_numeric_fast`
+first (same columns, or None and this reader decides); smaller ones are read here at once,
+sparing the second it takes to load the compiled parser."""
+
 
 def cells(path: Path, line: str, number: int) -> list[str]:
     """The comma-separated fields of one *line*; a field too long for csv is an InputError."""
@@ -115,8 +123,15 @@ def _check_field_counts(path: Path, body: str, first_line: int, n_fields: int) -
     if ends.size == 0 or ends[-1] != raw.size - 1:
         ends = np.append(ends, raw.size)
     starts = np.concatenate([[0], ends[:-1] + 1])
-    commas = np.concatenate([[0], np.cumsum(raw == 44)])
-    count = commas[ends] - commas[starts]
+    # Commas per line, a block of lines at a time: a cumulative count over the whole
+    # body would take 8 bytes per byte of the file.
+    count = np.empty(ends.size, dtype=np.int64)
+    for a in range(0, ends.size, COUNT_BLOCK):
+        b = min(a + COUNT_BLOCK, ends.size)
+        lo = starts[a]
+        commas = np.concatenate([[0], np.cumsum(raw[lo:ends[b - 1]] == 44)])
+        count[a:b] = commas[ends[a:b] - lo] - commas[starts[a:b] - lo]
+        del commas
     suspects = np.flatnonzero(count != n_fields - 1)
     if suspects.size == 0:
         return
@@ -151,6 +166,7 @@ def read_numeric_csv(
     time_column: str | None = "time",
     min_rows: int = 1,
     limits: Mapping[str, plausible.Limits] | None = None,
+    fast: bool = True,
 ) -> dict[str, np.ndarray]:
     """Read a comma-separated numeric table with a header row.
 
@@ -168,6 +184,11 @@ def read_numeric_csv(
         Fewer data rows than this is an error.
     limits : mapping of column name to (low, high, unit), optional
         Plausible range of each column; a value outside is an error naming its line.
+    fast : bool
+        Try the fast reader (:mod:`~hydrosync_core.importers.fastcsv`) first on files of
+        at least :data:`FAST_MIN_BYTES`: it returns exactly what this function returns, or
+        leaves the file to the line-by-line reading below (False: always the latter, the
+        reference the fast reader is checked against).
 
     Returns
     -------
@@ -181,6 +202,13 @@ def read_numeric_csv(
         With file, line and field for every problem.
     """
     path = Path(path)
+    if fast and _size(path) >= FAST_MIN_BYTES:
+        from hydrosync_core.importers.fastcsv import read_numeric_fast
+
+        table = read_numeric_fast(path, required, optional, time_column=time_column,
+                                  min_rows=min_rows, limits=limits)
+        if table is not None:
+            return table
     text = read_text_file(path)
     names, header_line = _header(path, text)
     missing = [c for c in required if c not in names]
@@ -215,6 +243,14 @@ def read_numeric_csv(
     if time_column is not None:
         columns = _sort_by_time(path, text, header_line, columns, time_column)
     return columns
+
+
+def _size(path: Path) -> int:
+    """Size of the regular file *path* in bytes, -1 for anything else."""
+    try:
+        return path.stat().st_size if path.is_file() else -1
+    except OSError:
+        return -1
 
 
 def _data_line_numbers(text: str, header_line: int) -> np.ndarray:

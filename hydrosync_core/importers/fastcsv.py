@@ -1,0 +1,438 @@
+"""Fast reading of large numeric CSV tables (the survey day's gnss.csv and attitude.csv…).
+
+A survey day of 100 Hz attitude is ~8 million rows (330 MB). The validated generic reader
+(:func:`hydrosync_core.importers.csv_table.read_numeric_csv`) holds the whole text, its
+lines and several byte-sized working arrays in memory (6.5 GiB, tens of seconds for such a
+day). :func:`read_numeric_fast` reads the same table into preallocated float64 columns,
+without a Python object per row, and returns exactly what the generic reader returns —
+or ``None`` whenever it is not certain to, and the caller then runs the generic reader,
+which returns the same columns or raises its one-line :class:`InputError` naming file,
+line and field. So the fast path never decides an error except one it can word exactly as
+the generic reader does (a duplicate time, below); every other bad file goes to the
+generic reader.
+
+Only files that are plainly well-formed take the fast path: the header on the first line,
+every byte printable ASCII (or a line end), no comment (``#``) or quote character, every
+row with the header's field count, every wanted value a finite number inside its
+plausible range. Unsorted times are sorted (stable, as the generic reader does).
+
+First choice is a compiled parser (numba, two threads over the two halves of the file,
+read through a memory map whose pages are released as they are parsed) for rows of plain
+decimals (``-12.3456``): such a number of at most 2**53 as a whole number of digits is a
+whole number divided by a power of ten (at most 10**18), both exact in float64, so one
+correctly rounded division gives exactly the double any correctly rounding parser (numpy's,
+Python's) returns. Columns the caller does not want are skipped whatever printable text
+they hold. Any other byte, field count or number shape (exponents, more digits, blank
+lines…) hands the file to a pyarrow parser that reads it in pieces of a few MiB into the
+preallocated columns, and anything that one does not take to the generic reader.
+"""
+
+from __future__ import annotations
+
+import os
+from collections.abc import Mapping, Sequence
+from pathlib import Path
+
+import numpy as np
+
+from hydrosync_core import plausible
+from hydrosync_core.errors import InputError
+
+CHECK_CHUNK = 1 << 24
+"""Bytes scanned per read when screening a file for the pyarrow path."""
+
+PIECE_BYTES = 1 << 22
+"""Bytes of CSV parsed per pyarrow call (bounds the parser's memory above the output)."""
+
+COMPILED_CHUNK = 1 << 25
+"""Bytes of the memory map parsed between releases of its pages (32 MiB)."""
+
+MAX_COLUMNS = 1000
+"""As :data:`hydrosync_core.importers.csv_table.MAX_COLUMNS` (more is not a table)."""
+
+_PRINTABLE = bytes(range(0x20, 0x7F))
+_HEADER_BYTES = _PRINTABLE.replace(b"#", b"").replace(b'"', b"")
+"""Bytes a header may hold (its line end apart)."""
+_DATA_BYTES = _HEADER_BYTES + b"\r\n"
+"""Bytes the data rows may hold: anything else (a tab, a form feed — a line break to
+:meth:`str.splitlines` —, a quote, a comment, a non-ASCII byte) is left to the generic
+reader."""
+
+SKIP = -2
+"""Slot of a column nobody wants: its field is skipped, not parsed."""
+CHECK = -1
+"""Slot of a column that is checked (number, range) but not returned."""
+
+
+def _header(path: Path) -> tuple[list[str], int] | None:
+    """(lower-cased header names, header length in bytes) of a plain ASCII header line."""
+    try:
+        if not path.is_file() or path.stat().st_size == 0:
+            return None
+        with open(path, "rb") as fh:
+            first = fh.readline(1 << 16)
+    except OSError:
+        return None
+    if not first.endswith(b"\n"):
+        return None
+    line = first[:-2] if first.endswith(b"\r\n") else first[:-1]
+    if not line.strip() or line.translate(None, _HEADER_BYTES):
+        return None
+    names = [c.strip().lower() for c in line.decode("ascii").split(",")]
+    if len(names) > MAX_COLUMNS or len(set(names)) != len(names) or any(not n for n in names):
+        return None
+    return names, len(first)
+
+
+def _plain_file(path: Path, header_bytes: int) -> int | None:
+    """Newline count of *path* if every byte after the header is one of ``_DATA_BYTES``."""
+    try:
+        with open(path, "rb") as fh:
+            fh.seek(header_bytes)
+            newlines = 1
+            while chunk := fh.read(CHECK_CHUNK):
+                if chunk.translate(None, _DATA_BYTES):
+                    return None
+                newlines += chunk.count(b"\n")
+    except OSError:
+        return None
+    return newlines
+
+
+def _pieces(fh, start: int):
+    """Successive byte strings of *fh* from *start*, about PIECE_BYTES each, whole lines."""
+    fh.seek(start)
+    rest = b""
+    while chunk := fh.read(PIECE_BYTES):
+        chunk = rest + chunk
+        cut = chunk.rfind(b"\n") + 1
+        if cut == 0:
+            rest = chunk
+            continue
+        rest = chunk[cut:]
+        yield chunk[:cut]
+        del chunk
+    if rest:
+        yield rest
+
+
+_POW10 = np.array([10.0 ** k for k in range(23)])
+
+
+def _count_py(buf, start, stop):  # pragma: no cover - compiled below
+    n = 0
+    for i in range(start, stop):
+        if buf[i] == 10:
+            n += 1
+    return n
+
+
+def _parse_py(buf, start, stop, ncols, slot, out, row0, lo, hi, pow10):  # pragma: no cover
+    """Parse rows of *buf[start:stop]* (whole lines) into ``out[slot[c], row0 + i]``.
+
+    ``slot[c]`` is the output row of column *c*, ``CHECK`` (-1) to check it only, ``SKIP``
+    (-2) to skip its field (printable ASCII other than ``#`` and ``"``).
+    Returns (rows, status): status 0 when every checked field is a plain decimal inside
+    [lo, hi] of its column and every row has *ncols* fields; otherwise 1 (the caller falls
+    back to the other readers).
+    """
+    row = row0
+    i = start
+    while i < stop:
+        for c in range(ncols):
+            s = slot[c]
+            if s == -2:
+                while i < stop:
+                    d = buf[i]
+                    if d == 44 or d == 10 or d == 13:
+                        break
+                    if d < 32 or d > 126 or d == 35 or d == 34:
+                        return row - row0, 1
+                    i += 1
+            else:
+                neg = False
+                if i < stop and buf[i] == 45:  # '-'
+                    neg = True
+                    i += 1
+                mant = 0
+                digits = 0
+                frac = 0
+                while i < stop:
+                    d = buf[i]
+                    if d < 48 or d > 57:
+                        break
+                    mant = mant * 10 + (d - 48)
+                    digits += 1
+                    i += 1
+                if i < stop and buf[i] == 46:  # '.'
+                    i += 1
+                    while i < stop:
+                        d = buf[i]
+                        if d < 48 or d > 57:
+                            break
+                        mant = mant * 10 + (d - 48)
+                        frac += 1
+                        i += 1
+                # Up to 18 digits fit an int64; exact in float64 up to 2**53; 10**18 is exact.
+                if digits == 0 or digits + frac > 18 or mant > 9007199254740992:
+                    return row - row0, 1
+                value = mant / pow10[frac]
+                if neg:
+                    value = -value
+                if not (lo[c] <= value <= hi[c]):
+                    return row - row0, 1
+                if s >= 0:
+                    out[s, row] = value
+            # separator: ',' between fields, then '\n' (or '\r\n', or the end) after the last
+            if c < ncols - 1:
+                if i >= stop or buf[i] != 44:
+                    return row - row0, 1
+                i += 1
+            else:
+                if i < stop and buf[i] == 13:
+                    i += 1
+                if i < stop:
+                    if buf[i] != 10:
+                        return row - row0, 1
+                    i += 1
+        row += 1
+    return row - row0, 0
+
+
+_kernels: list | None = None
+
+
+def _compiled():
+    """(count, parse) compiled by numba (cached on disk), or None without numba. Loaded on
+    first use: numba costs about a second to import, which small files do not pay."""
+    global _kernels
+    if _kernels is None:
+        try:
+            from numba import njit
+        except ImportError:  # pragma: no cover - numba is a dependency
+            _kernels = [None, None]
+        else:
+            _kernels = [njit(cache=True, nogil=True)(_count_py),
+                        njit(cache=True, nogil=True)(_parse_py)]
+    return None if _kernels[0] is None else tuple(_kernels)
+
+
+def _release(mm, start: int, stop: int) -> None:
+    """Drop the mapped pages of [start, stop) from this process (they stay cached)."""
+    import mmap
+
+    page = mmap.PAGESIZE
+    a = (start // page) * page
+    b = (stop // page) * page
+    if b > a and hasattr(mm, "madvise") and hasattr(mmap, "MADV_DONTNEED"):
+        mm.madvise(mmap.MADV_DONTNEED, a, b - a)
+
+
+def _read_compiled(path: Path, names: list[str], header_bytes: int, wanted: Sequence[str],
+                   keep: Sequence[str], limits: Mapping[str, plausible.Limits],
+                   min_rows: int) -> dict | None:
+    """The compiled parser (module doc): the *keep* columns in file order, or None when the
+    file needs another reader. Every row is one line: row *i* is line ``i + 2``."""
+    import mmap
+    from concurrent.futures import ThreadPoolExecutor
+
+    kernels = _compiled()
+    if kernels is None:
+        return None
+    count_kernel, parse_kernel = kernels
+    size = path.stat().st_size
+    if size <= header_bytes:
+        return None
+    ncols = len(names)
+    slot = np.full(ncols, SKIP, dtype=np.int64)
+    lo = np.full(ncols, -np.inf)
+    hi = np.full(ncols, np.inf)
+    for c, name in enumerate(names):
+        if name in keep:
+            slot[c] = list(keep).index(name)
+        elif name in wanted:
+            slot[c] = CHECK
+        if name in wanted and name in limits:
+            lo[c], hi[c] = limits[name][0], limits[name][1]
+    with open(path, "rb") as fh, mmap.mmap(fh.fileno(), 0, access=mmap.ACCESS_READ) as mm:
+        buf = np.frombuffer(mm, dtype=np.uint8)
+        try:
+            # Two halves split after a newline; chunks of whole lines inside each half.
+            mid = header_bytes + (size - header_bytes) // 2
+            k = mm.find(b"\n", mid)
+            mid = size if k < 0 else k + 1
+            halves = [(header_bytes, mid), (mid, size)]
+
+            def chunks(a, b):
+                while a < b:
+                    e = min(a + COMPILED_CHUNK, b)
+                    if e < b:
+                        e = mm.rfind(b"\n", a, e) + 1
+                        if e <= a:
+                            e = mm.find(b"\n", a + COMPILED_CHUNK, b) + 1 or b
+                    yield a, e
+                    a = e
+
+            def count(a, b, buf=buf):
+                n = 0
+                for x, y in chunks(a, b):
+                    n += count_kernel(buf, x, y)
+                    _release(mm, x, y)
+                return n
+
+            with ThreadPoolExecutor(2) as pool:
+                counts = list(pool.map(lambda h: count(*h), halves))
+                # A last row without a newline still counts.
+                rows_total = counts[0] + counts[1] + (0 if mm[size - 1:size] == b"\n" else 1)
+                if rows_total < min_rows:
+                    return None
+                out = np.empty((len(keep), rows_total))
+
+                def parse(a, b, row0, buf=buf):
+                    rows = 0
+                    for x, y in chunks(a, b):
+                        n, status = parse_kernel(buf, x, y, ncols, slot, out, row0 + rows, lo,
+                                                 hi, _POW10)
+                        _release(mm, x, y)
+                        if status:
+                            return -1
+                        rows += n
+                    return rows
+
+                got = list(pool.map(lambda h: parse(*h), [(halves[0][0], halves[0][1], 0),
+                                                          (halves[1][0], halves[1][1],
+                                                           counts[0])]))
+        finally:
+            count = parse = None
+            del buf  # the map closes only without exported buffers
+    if got[0] != counts[0] or got[0] < 0 or got[1] < 0 or got[0] + got[1] != rows_total:
+        return None
+    return {c: out[i] for i, c in enumerate(keep)}
+
+
+def _read_arrow(path: Path, names: list[str], header_bytes: int, wanted: Sequence[str],
+                keep: Sequence[str], limits: Mapping[str, plausible.Limits],
+                min_rows: int) -> dict | None:
+    """pyarrow's CSV parser, piece by piece into preallocated columns (file order), or
+    None. Blank lines are skipped (as the generic reader does), so rows are not lines."""
+    newlines = _plain_file(path, header_bytes)
+    if newlines is None:
+        return None
+    try:
+        import pyarrow as pa
+        from pyarrow import csv as pacsv
+    except ImportError:  # pragma: no cover - pyarrow is a dependency
+        return None
+    raw_names = [f"c{i}" for i in range(len(names))]
+    keys = {c: f"c{names.index(c)}" for c in wanted}
+    options = (
+        pacsv.ReadOptions(column_names=raw_names, block_size=1 << 20),
+        pacsv.ParseOptions(delimiter=",", quote_char=False, double_quote=False,
+                           newlines_in_values=False),
+        pacsv.ConvertOptions(include_columns=[keys[c] for c in wanted],
+                             column_types={keys[c]: pa.float64() for c in wanted},
+                             null_values=[], strings_can_be_null=False,
+                             quoted_strings_can_be_null=False),
+    )
+    # Rows <= newlines + 1: filled piece by piece, so the parser never holds more than one
+    # piece above the output arrays.
+    out = {c: np.empty(newlines) for c in keep}
+    # The system allocator returns each piece's buffers; arrow's default pool keeps them.
+    pool = pa.system_memory_pool()
+    rows = 0
+    with open(path, "rb") as fh:
+        for piece in _pieces(fh, header_bytes):
+            try:
+                table = pacsv.read_csv(pa.py_buffer(piece), *options, memory_pool=pool)
+            except (pa.ArrowException, OSError, ValueError):
+                return None
+            n = table.num_rows
+            if rows + n > newlines:
+                return None
+            for name in wanted:
+                column = table.column(keys[name])
+                if column.null_count:
+                    return None
+                values = column.to_numpy()
+                if not np.isfinite(values).all():
+                    return None
+                if name in limits and plausible.first_outside(values, limits[name]) is not None:
+                    return None
+                if name in out:
+                    out[name][rows:rows + n] = values
+                del column, values
+            rows += n
+            del table, piece
+    if rows < min_rows:
+        return None
+    return {c: v[:rows] if rows < newlines else v for c, v in out.items()}
+
+
+def _sort_by_time(path: Path, columns: dict[str, np.ndarray], key: str,
+                  lines_known: bool) -> dict[str, np.ndarray] | None:
+    """*columns* sorted by *key* (stable), as the generic reader sorts them; a duplicate
+    time raises the generic reader's error when row *i* is known to be line ``i + 2``,
+    else gives None (the generic reader then names the lines)."""
+    time = columns[key]
+    if time.size < 2 or bool(np.all(time[1:] > time[:-1])):
+        return columns
+    order = np.argsort(time, kind="stable")
+    sorted_time = time[order]
+    dup = np.flatnonzero(sorted_time[1:] == sorted_time[:-1])
+    if dup.size:
+        if not lines_known:
+            return None
+        first, second = sorted((int(order[dup[0]]) + 2, int(order[dup[0] + 1]) + 2))
+        raise InputError(
+            str(path),
+            f"duplicate time {float(sorted_time[dup[0]])!r} (also on line {first})",
+            line=second, field=key,
+        )
+    del sorted_time
+    for values in columns.values():  # in place: one column's copy at a time
+        values[:] = values[order]
+    return columns
+
+
+def read_numeric_fast(
+    path: str | os.PathLike,
+    required: Sequence[str],
+    optional: Sequence[str] = (),
+    *,
+    time_column: str | None = "time",
+    min_rows: int = 1,
+    limits: Mapping[str, plausible.Limits] | None = None,
+    keep: Sequence[str] | None = None,
+) -> dict[str, np.ndarray] | None:
+    """What :func:`~hydrosync_core.importers.csv_table.read_numeric_csv` returns for these
+    arguments, or None when the file is not plainly well-formed (module doc).
+
+    *keep*, if given, limits the columns returned (*time_column* always is); every wanted
+    column is still checked. Raises only the duplicate-time :class:`InputError`, worded and
+    placed as the generic reader does.
+    """
+    path = Path(path)
+    limits = limits or {}
+    head = _header(path)
+    if head is None:
+        return None
+    names, header_bytes = head
+    if any(c not in names for c in required):
+        return None  # the generic reader names the missing column
+    wanted = list(required) + [c for c in optional if c in names]
+    if time_column is not None and time_column not in wanted:
+        return None
+    kept = wanted if keep is None else [c for c in wanted if c in keep or c == time_column]
+    lines_known = True
+    try:
+        columns = _read_compiled(path, names, header_bytes, wanted, kept, limits, min_rows)
+    except (OSError, ValueError):
+        columns = None
+    if columns is None:
+        lines_known = False
+        columns = _read_arrow(path, names, header_bytes, wanted, kept, limits, min_rows)
+    if columns is None:
+        return None
+    if time_column is not None:
+        columns = _sort_by_time(path, columns, time_column, lines_known)
+    return columns

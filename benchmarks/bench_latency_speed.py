@@ -3,17 +3,18 @@
 500 lines of 2 minutes, 100 Hz attitude, 10 Hz GNSS, scan −1..+1 s with a 1 ms step
 (2001 candidates per line), issue #15 part 3. Measured in one run:
 
-* ``hydrosync latency --estimator qi2010`` from the CSV files to the JSON result, in a
-  fresh process (wall
-  time and the process's peak resident memory) — twice: the first run may compile and
-  cache the numba kernels;
-* :func:`estimate_latency` alone on the arrays in memory (the paper's estimator, and the
-  default ``auto``, which runs it and the weighted one);
+* ``hydrosync latency`` from the CSV files to the JSON result, in a fresh process (wall
+  and CPU time and the process's peak resident memory), with ``--estimator qi2010`` (the
+  paper's) and with the default ``auto`` (qi2010 and the weighted one) — the first run
+  may compile and cache the numba kernels;
+* :func:`estimate_latency` alone on the arrays in memory, qi2010 and auto;
 * a straightforward per-candidate scan written here: per line and trial delay, one
   ``numpy.interp`` of the total heave at ``tags − Δt`` and one Pearson correlation, the
   grid maximum refined by a parabola — what one writes from eqs. 3–4 of Qi et al. (2010);
 * the pre-v2 estimator (every candidate interpolated: ``correlation_curve_direct``) for the
-  "identical to today's" check: final and per-line Δt must agree to 0.1 ms.
+  "identical to today's" check: final and per-line Δt must agree to 0.1 ms;
+* auto with every candidate of every pass scanned (``api.WINDOWED_SCAN = False``, the
+  computation before the weighted pass was windowed) against the default auto.
 
 Run: ``.venv/bin/python benchmarks/bench_latency_speed.py [--lines 500] [--dir DIR]``.
 """
@@ -67,14 +68,15 @@ def straightforward_scan(gnss, att, lines, arm, dts) -> tuple[float, list[float]
     return float(np.average(peaks, weights=weights)), peaks
 
 
-def run_cli(d: Path, step: float) -> tuple[float, float, float, dict]:
+def run_cli(d: Path, step: float, estimator: str = "qi2010"
+            ) -> tuple[float, float, float, dict]:
     """Wall time (s), peak RSS (MiB), CPU time (s, all threads) and JSON of
     ``hydrosync latency`` in a new process."""
     out = d / "result.json"
     cmd = [sys.executable, "-c", "import sys; from hydrosync_core.cli import main; "
            "sys.exit(main(sys.argv[1:]))", "latency", "--gnss", str(d / "gnss.csv"),
            "--attitude", str(d / "attitude.csv"), "--lines", str(d / "lines.csv"),
-           "--lever-arm", "-1.5", "2.0", "-6.0", "--step", str(step), "--estimator", "qi2010",
+           "--lever-arm", "-1.5", "2.0", "-6.0", "--step", str(step), "--estimator", estimator,
            "--json", str(out)]
     # Peak RSS of this child alone: a wrapper process reports its own child's.
     wrapper = ("import resource, subprocess, sys; subprocess.run(sys.argv[1:], check=True, "
@@ -109,6 +111,7 @@ def main() -> None:
 
     cli_first, rss_first, _, _ = run_cli(d, args.step)
     cli_wall, cli_rss, cli_cpu, doc = run_cli(d, args.step)
+    auto_wall, auto_rss, auto_cpu, auto_doc = run_cli(d, args.step, "auto")
 
     gnss = read_gnss_csv(d / "gnss.csv")
     att = read_attitude_csv(d / "attitude.csv")
@@ -118,9 +121,23 @@ def main() -> None:
     t0, c0 = time.perf_counter(), time.process_time()
     res = api.estimate_latency(gnss, att, lines, arm, params)
     t_est, c_est = time.perf_counter() - t0, time.process_time() - c0
-    t0 = time.perf_counter()
+    t0, c0 = time.perf_counter(), time.process_time()
     auto = api.estimate_latency(gnss, att, lines, arm, {**params, "estimator": "auto"})
-    t_auto = time.perf_counter() - t0
+    t_auto, c_auto = time.perf_counter() - t0, time.process_time() - c0
+    api.WINDOWED_SCAN = False  # every pass over every candidate: the reference for auto
+    try:
+        t0, c0 = time.perf_counter(), time.process_time()
+        auto_full = api.estimate_latency(gnss, att, lines, arm,
+                                         {**params, "estimator": "auto"})
+        t_auto_full, c_auto_full = time.perf_counter() - t0, time.process_time() - c0
+    finally:
+        api.WINDOWED_SCAN = True
+    auto_line_diff = max(max(abs(a.latency_s - b.latency_s), abs(a.uncertainty_s
+                                                                  - b.uncertainty_s))
+                         for a, b in zip(auto.lines, auto_full.lines, strict=True)
+                         if np.isfinite(a.latency_s))
+    auto_final_diff = max(abs(auto_doc["latency_s"] - auto_full.latency_s),
+                          abs(auto_doc["uncertainty_s"] - auto_full.uncertainty_s))
 
     dts = res.dt_grid
     t0, c0 = time.perf_counter(), time.process_time()
@@ -155,14 +172,22 @@ def main() -> None:
                         f"{cli_rss:.0f} MiB"),
         ("ratio CSV -> JSON / straightforward", f"1/{t_plain / cli_wall:.0f} wall, "
                                                 f"1/{c_plain / cli_cpu:.0f} CPU (goal <= 1/30)"),
+        ("CSV -> JSON, auto (default)", f"{auto_wall:.1f} s (CPU {auto_cpu:.1f} s), peak RSS "
+                                        f"{auto_rss:.0f} MiB"),
+        ("ratio auto CSV -> JSON / straightfwd", f"1/{t_plain / auto_wall:.0f} wall, "
+                                                 f"1/{c_plain / auto_cpu:.0f} CPU (goal <= 1/30)"),
         ("estimation alone (qi2010)", f"{t_est:.2f} s, CPU {c_est:.2f} s (goal <= 1 s)"),
-        ("estimation, estimator auto", f"{t_auto:.2f} s (qi2010 + weighted; chose "
-                                       f"{auto.estimator}, {auto.latency_s:.5f} s)"),
+        ("estimation, auto (default)", f"{t_auto:.2f} s, CPU {c_auto:.2f} s (goal <= 1 s; "
+                                       f"chose {auto.estimator}, {auto.latency_s:.5f} s)"),
+        ("estimation, auto, full scans", f"{t_auto_full:.2f} s, CPU {c_auto_full:.2f} s "
+                                         "(every pass over every candidate)"),
         ("result", f"{res.latency_s:.5f} s (truth {cfg.latency_s}), 95 % "
                    f"[{res.ci95_low:.4f}, {res.ci95_high:.4f}], {res.n_used} lines used"),
         ("straightforward scan result", f"{plain:.5f} s"),
         ("|CLI - pre-v2| final", f"{final_diff * 1e3:.2e} ms (goal <= 0.1 ms)"),
         ("max |new - pre-v2| per line", f"{line_diff * 1e3:.2e} ms"),
+        ("auto: |CLI - full scans| Δt, σ", f"{auto_final_diff * 1e3:.2e} ms (goal <= 0.1 ms)"),
+        ("auto: max |new - full| line Δt, σ", f"{auto_line_diff * 1e3:.2e} ms"),
         ("machine", f"{os.cpu_count()} cores, load {os.getloadavg()[0]:.1f} at the end"),
         ("this process maxrss", f"{resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024:.0f}"
                                 " MiB (incl. benchmark data)"),

@@ -25,6 +25,7 @@ from hydrosync_core.methods.latency.lines import (
     line_epochs,
     prepare_line,
     scan_line,
+    scan_line_window,
 )
 from hydrosync_core.methods.latency.params import LatencyParams
 from hydrosync_core.methods.latency.quality import sigma0
@@ -129,6 +130,7 @@ class _Attitude:
     def __init__(self, att: dict, arm: np.ndarray, response=None, interval: float = 0.0):
         self.t, self.att, self.arm = att["time"], att, arm
         self.response, self.interval = response, interval
+        self.cache: dict = {}  # the response per FFT length (prefilter.fft_filter)
 
     def window(self, tags: np.ndarray, lo: float, hi: float) -> tuple[np.ndarray, np.ndarray]:
         """(times, total heave) of the records needed for ``tags − Δt``, Δt in [lo, hi]."""
@@ -148,7 +150,7 @@ class _Attitude:
 
         inner = attitude_window(self.t, tags, lo, hi)
         crop = slice(inner.start - win.start, inner.stop - win.start)
-        return self.t[inner], fft_filter(h, self.interval, self.response)[crop]
+        return self.t[inner], fft_filter(h, self.interval, self.response, self.cache)[crop]
 
 
     def at(self, times: np.ndarray) -> np.ndarray:
@@ -164,7 +166,7 @@ class _Attitude:
 
 
 def _filtered_line(line, t_g: np.ndarray, hgt: np.ndarray, response, interval: float,
-                   degree: int):
+                   degree: int, cache: dict | None = None):
     """A copy of *line* whose heights are filtered zero-phase on a padded GNSS window."""
     from hydrosync_core.methods.latency.prefilter import PAD_S, fft_filter
 
@@ -173,7 +175,7 @@ def _filtered_line(line, t_g: np.ndarray, hgt: np.ndarray, response, interval: f
     i0 = int(np.searchsorted(t_g, line.tags[0] - PAD_S, side="left"))
     i1 = int(np.searchsorted(t_g, line.tags[-1] + PAD_S, side="right"))
     k0 = int(np.searchsorted(t_g, line.tags[0], side="left")) - i0
-    filtered = fft_filter(hgt[i0:i1], interval, response)[k0:k0 + line.tags.size]
+    filtered = fft_filter(hgt[i0:i1], interval, response, cache)[k0:k0 + line.tags.size]
     h, _ = detrend(line.tags, filtered, degree)
     return dataclasses.replace(line, h=h, warnings=line.warnings)
 
@@ -197,18 +199,74 @@ def _pooled_weighting(prepared: list, peaks: list, source: _Attitude, min_r: flo
     return pooled_weighting(pairs, g_int)
 
 
-def _scan_one(line, source: _Attitude, dts: np.ndarray):
+WINDOWED_SCAN = True
+"""Scan the weighted estimator's second pass only around the first passes' peaks
+(:func:`_scan_windows`); False scans every candidate of every pass (the reference)."""
+
+WINDOW_MIN_S = 0.1
+"""Smallest half-width (s) of a line's window around its first-pass peaks."""
+
+WINDOW_SIGMAS = 10.0
+"""Half-width of the window in the line's own σ (qi2010 pass), when that is wider."""
+
+
+def _scan_one(line, source: _Attitude, dts: np.ndarray, uncertainty: bool = True,
+              window: tuple[int, int] | None = None):
     ta, ha = source.window(line.tags, float(dts[0]), float(dts[-1]))
-    return scan_line(line, ta, ha, dts)
+    if window is not None:
+        peak = scan_line_window(line, ta, ha, dts, *window, uncertainty=uncertainty)
+        if peak is not None:
+            return peak
+    peak = scan_line(line, ta, ha, dts, uncertainty=uncertainty)
+    if window is not None:
+        peak.scan = "fallback"
+    return peak
 
 
-def _scan_lines(prepared: list, source: _Attitude, dts: np.ndarray, progress, cancel) -> list:
-    """:func:`scan_line` of every line, in order, on up to SCAN_THREADS threads."""
+def _scan_windows(first: list, hints, dts: np.ndarray) -> list:
+    """Candidate index windows ``(k0, k1)`` (or None: every candidate) for a second pass.
+
+    A line's window spans its first-pass peak and, with *hints* (per-line ``(Δt, σ)``
+    of another estimator, e.g. the qi2010 run of ``auto``), that estimator's peak too,
+    widened on each side by WINDOW_MIN_S or WINDOW_SIGMAS σ, whichever is wider.
+    Lines whose first pass found no interior peak get None.
+    """
+    if not WINDOWED_SCAN or dts.size < 3:
+        return [None] * len(first)
+    step = (float(dts[-1]) - float(dts[0])) / (dts.size - 1)
+    out = []
+    for i, pk in enumerate(first):
+        if not np.isfinite(pk.latency_s) or pk.at_edge:
+            out.append(None)
+            continue
+        lo = hi = pk.latency_s
+        half = WINDOW_MIN_S
+        if hints is not None:
+            lat, unc = hints[i]
+            if np.isfinite(lat):
+                lo, hi = min(lo, lat), max(hi, lat)
+            if np.isfinite(unc):
+                half = max(half, WINDOW_SIGMAS * unc)
+        k0 = max(int(np.floor((lo - half - float(dts[0])) / step)), 0)
+        k1 = min(int(np.ceil((hi + half - float(dts[0])) / step)) + 1, dts.size)
+        out.append((k0, k1) if k1 - k0 < dts.size else None)
+    return out
+
+
+def _scan_lines(prepared: list, source: _Attitude, dts: np.ndarray, progress, cancel,
+                uncertainty: bool = True, windows: list | None = None) -> list:
+    """:func:`scan_line` of every line, in order, on up to SCAN_THREADS threads.
+
+    *windows*: per line None (every candidate) or ``(k0, k1)`` (:func:`scan_line_window`,
+    with the full scan when the window fails its checks).
+    """
     from concurrent.futures import ThreadPoolExecutor
 
+    windows = windows or [None] * len(prepared)
     peaks = []
     with ThreadPoolExecutor(SCAN_THREADS) as pool:
-        futures = [pool.submit(_scan_one, line, source, dts) for line in prepared]
+        futures = [pool.submit(_scan_one, line, source, dts, uncertainty, win)
+                   for line, win in zip(prepared, windows, strict=True)]
         try:
             for i, future in enumerate(futures):
                 check_cancel(cancel)
@@ -278,8 +336,12 @@ def _setup(gnss, attitude, lines, lever_arm, p: LatencyParams) -> _Setup:
     return _Setup(t_g, hgt, att, arm, dts, g_int, a_int, names, starts, ends, prepared)
 
 
-def _estimate(setup: _Setup, p: LatencyParams, progress, cancel) -> LatencyResult:
-    """One estimator (not auto) from :func:`_setup`'s inputs."""
+def _estimate(setup: _Setup, p: LatencyParams, progress, cancel, hints=None) -> LatencyResult:
+    """One estimator (not auto) from :func:`_setup`'s inputs.
+
+    *hints*: per-line ``(Δt, σ)`` of another estimator on the same lines (``auto`` gives
+    its qi2010 run's), used only to place the weighted pass's scan windows.
+    """
     t_g, hgt, att, arm = setup.t_g, setup.hgt, setup.att, setup.arm
     t_att = att["time"]
     dts, g_int, a_int = setup.dts, setup.g_int, setup.a_int
@@ -294,22 +356,30 @@ def _estimate(setup: _Setup, p: LatencyParams, progress, cancel) -> LatencyResul
 
         cutoff = prefilter.ANTIALIAS_FRACTION * 0.5 / g_int
         source = _Attitude(att, arm, lambda f: prefilter.antialias_response(f, cutoff), a_int)
+    # The weighted estimator keeps only R_max, Δt and the edge flag of its first pass:
+    # no σ there (unless the weighting proves impossible, then that pass is the answer).
+    weighted = p.estimator == "weighted"
+    first_sigma = not (weighted and WINDOWED_SCAN)
     peaks = _scan_lines(prepared, source, dts,
-                        sub_progress(progress, 0, 0.45 if p.estimator == "weighted" else 0.9),
-                        cancel)
-    if p.estimator == "weighted":
+                        sub_progress(progress, 0, 0.45 if weighted else 0.9), cancel,
+                        uncertainty=first_sigma)
+    if weighted:
         weighting = _pooled_weighting(prepared, peaks, source, p.min_r, g_int)
         if weighting is None:
             warnings_pre = ["coherence weighting not possible (too few epochs): "
                             "the anti-aliased correlation is used"]
+            if not first_sigma:
+                _add_uncertainty(prepared, peaks, source, dts)
         else:
             warnings_pre = []
             source = _Attitude(att, arm, weighting.response, a_int)
+            gnss_cache: dict = {}
             scan_input = [_filtered_line(ln, t_g, hgt, weighting.response, g_int,
-                                         int(p.detrend_degree)) for ln in prepared]
+                                         int(p.detrend_degree), gnss_cache)
+                          for ln in prepared]
             first = peaks
             peaks = _scan_lines(scan_input, source, dts, sub_progress(progress, 0.45, 0.9),
-                                cancel)
+                                cancel, windows=_scan_windows(first, hints, dts))
             # R (the selection threshold, the curves shown) stays on the scale of the
             # published R: the anti-aliased correlation; Δt and σ come from the weighted one.
             for pk, pk1 in zip(peaks, first, strict=True):
@@ -397,14 +467,31 @@ def _estimate(setup: _Setup, p: LatencyParams, progress, cancel) -> LatencyResul
         p.to_dict(), converged, message, tuple(warnings), diagnostics, p.estimator)
 
 
+def _add_uncertainty(prepared: list, peaks: list, source: _Attitude, dts: np.ndarray) -> None:
+    """The σ that a pass scanned without uncertainty would have had (same window, same Δt)."""
+    from hydrosync_core.methods.latency.correlation import peak_uncertainty
+
+    for ln, pk in zip(prepared, peaks, strict=True):
+        if ln.usable and np.isfinite(pk.latency_s) and not pk.at_edge:
+            ta, ha = source.window(ln.tags, float(dts[0]), float(dts[-1]))
+            pk.uncertainty_s = peak_uncertainty(ln.tags, ln.h, ta, ha, pk.latency_s)
+
+
 def _auto(gnss, attitude, lines, lever_arm, p: LatencyParams, progress, cancel
           ) -> LatencyResult:
-    """``estimator = auto``: qi2010 and weighted, the one with the smaller uncertainty."""
+    """``estimator = auto``: qi2010 and weighted, the one with the smaller uncertainty.
+
+    One set-up; the weighted run's second pass scans each line only around its
+    anti-aliased and qi2010 peaks (:func:`_scan_windows`), with the full scan for any line
+    whose window does not settle the answer (:func:`.lines.scan_line_window`).
+    """
     runs = {}
     setup = _setup(gnss, attitude, lines, lever_arm, p)  # checked and prepared once
-    for k, name in enumerate(("qi2010", "weighted")):
-        runs[name] = _estimate(setup.fresh(), dataclasses.replace(p, estimator=name),
-                               sub_progress(progress, 0.5 * k, 0.5 * k + 0.5), cancel)
+    runs["qi2010"] = _estimate(setup.fresh(), dataclasses.replace(p, estimator="qi2010"),
+                               sub_progress(progress, 0.0, 0.4), cancel)
+    hints = [(ln.latency_s, ln.uncertainty_s) for ln in runs["qi2010"].lines]
+    runs["weighted"] = _estimate(setup.fresh(), dataclasses.replace(p, estimator="weighted"),
+                                 sub_progress(progress, 0.4, 1.0), cancel, hints=hints)
 
     def key(r: LatencyResult) -> float:
         return r.uncertainty_s if r.converged and np.isfinite(r.uncertainty_s) else np.inf

@@ -8,6 +8,7 @@ import numpy as np
 
 from hydrosync_core.methods.latency.correlation import (
     correlation_curve,
+    correlation_curve_direct,
     peak_uncertainty,
     refine_peak,
 )
@@ -19,6 +20,10 @@ MARGIN_S = 0.15
 
 FLAT_R_SPAN = 0.05
 """A line whose R varies less than this over the whole scan has no usable peak."""
+
+FLAT_PROBES = 9
+"""Candidates spread over the grid that :func:`scan_line_window` evaluates to show that R
+is not flat when the window alone does not."""
 
 
 @dataclass
@@ -43,6 +48,10 @@ class LinePeak:
     latency_s: float = float("nan")
     uncertainty_s: float = float("nan")
     at_edge: bool = False
+    scan: str = "full"
+    """How the grid was scanned: "full", "window" (candidates around a first pass's peak
+    only, see :func:`scan_line_window`) or "fallback" (a window that failed its checks,
+    then the full grid). Not part of any result."""
 
 
 def attitude_window(t_att: np.ndarray, tags: np.ndarray, lo: float, hi: float) -> slice:
@@ -144,6 +153,56 @@ def scan_line(
         return peak
     if refine:
         peak.latency_s, peak.r_max = refine_peak(line.tags, line.h, ta, ha, dts, curve, k)
+    if uncertainty:
+        peak.uncertainty_s = peak_uncertainty(line.tags, line.h, ta, ha, peak.latency_s)
+    return peak
+
+
+def scan_line_window(
+    line: LineData, t_att: np.ndarray, h_att: np.ndarray, dts: np.ndarray, k0: int, k1: int,
+    uncertainty: bool = True,
+) -> LinePeak | None:
+    """:func:`scan_line` with R evaluated at the candidates ``dts[k0:k1]`` only.
+
+    Returns None — the caller then scans the full grid — unless the window settles what
+    the full scan decides from the curve: a finite maximum strictly inside the window (so
+    not on the scan's edge, and the refinement's ±1 step lies inside), and R varying by
+    at least FLAT_R_SPAN between the window's maximum and the window or FLAT_PROBES
+    candidates spread over the grid (then it does over the whole grid: no "flat"
+    warning).
+    The attitude window is that of the full grid, so the refinement and the uncertainty
+    see the same samples as :func:`scan_line`. It cannot show that no larger maximum lies
+    outside the window: the window must be wide enough for that (the caller's choice).
+    The curve outside the window is NaN. Appends no warning when it returns None.
+    """
+    if not line.usable or not 0 <= k0 < k1 <= dts.size:
+        return None
+    win = attitude_window(t_att, line.tags, float(dts[0]), float(dts[-1]))
+    ta, ha = t_att[win], h_att[win]
+    part = correlation_curve(line.tags, line.h, ta, ha, dts[k0:k1])
+    if not np.any(np.isfinite(part)):
+        return None
+    j = int(np.nanargmax(part))
+    if not 0 < j < part.size - 1:
+        return None
+    # Not flat: R must vary by FLAT_R_SPAN over the grid. Near its peak R is broad, so a
+    # few candidates spread outside the window give the lower values that show it.
+    low = float(np.nanmin(part))
+    if part[j] - low < FLAT_R_SPAN + 1e-9:
+        out = np.setdiff1d(np.linspace(0, dts.size - 1, FLAT_PROBES).round().astype(int),
+                           np.arange(k0, k1))
+        if out.size:
+            with np.errstate(invalid="ignore"):
+                probe = correlation_curve_direct(line.tags, line.h, ta, ha, dts[out])
+            if np.any(np.isfinite(probe)):
+                low = min(low, float(np.nanmin(probe)))
+        if part[j] - low < FLAT_R_SPAN + 1e-9:
+            return None
+    k = k0 + j
+    curve = np.full(dts.size, np.nan)
+    curve[k0:k1] = part
+    peak = LinePeak(curve, r_max=float(part[j]), latency_s=float(dts[k]), scan="window")
+    peak.latency_s, peak.r_max = refine_peak(line.tags, line.h, ta, ha, dts, curve, k)
     if uncertainty:
         peak.uncertainty_s = peak_uncertainty(line.tags, line.h, ta, ha, peak.latency_s)
     return peak

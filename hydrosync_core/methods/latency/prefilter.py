@@ -55,12 +55,18 @@ def antialias_response(f: np.ndarray, cutoff_hz: float) -> np.ndarray:
     return 1.0 / (1.0 + (np.abs(f) / cutoff_hz) ** 16)
 
 
-def fft_filter(x: np.ndarray, dt: float, response) -> np.ndarray:
+RESPONSE_CACHE_SIZE = 32
+"""Responses kept per cache (one per FFT length; a day's line windows share a few)."""
+
+
+def fft_filter(x: np.ndarray, dt: float, response, cache: dict | None = None) -> np.ndarray:
     """Apply the real, zero-phase frequency *response* (callable of f in Hz) to *x*.
 
     The series is sampled every *dt* seconds (regular sampling assumed). Its linear trend
     is taken out before and put back after (scaled by the response at 0 Hz), and the
     series is mirrored on both sides so that the FFT sees no jump next to the data.
+    *cache* (a dict owned by the caller, for one *response* and *dt*) keeps the response
+    evaluated per FFT length: the same numbers, computed once instead of once per line.
     """
     n = x.size
     if n < 4:
@@ -79,9 +85,13 @@ def fft_filter(x: np.ndarray, dt: float, response) -> np.ndarray:
     size = fft.next_fast_len(2 * n, real=True)
     left = (size - n) // 2
     y = np.pad(x - trend, (left, size - n - left), mode="symmetric")
-    f = np.fft.rfftfreq(size, dt)
-    out = fft.irfft(fft.rfft(y) * response(f), size)[left:left + n]
-    return out + trend * float(response(np.zeros(1))[0])
+    gains = cache.get(size) if cache is not None else None
+    if gains is None:
+        gains = (response(np.fft.rfftfreq(size, dt)), float(response(np.zeros(1))[0]))
+        if cache is not None and len(cache) < RESPONSE_CACHE_SIZE:
+            cache[size] = gains
+    out = fft.irfft(fft.rfft(y) * gains[0], size)[left:left + n]
+    return out + trend * gains[1]
 
 
 @dataclass(frozen=True)

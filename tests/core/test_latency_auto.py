@@ -1,0 +1,119 @@
+"""auto / weighted with the weighted pass scanned in windows (issue #15 part 3): the same
+results as scanning every candidate of every pass."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from hydrosync_core.methods.latency import api, estimate_latency
+from hydrosync_core.methods.latency.lines import FLAT_R_SPAN, LineData, scan_line, scan_line_window
+from hydrosync_core.methods.latency.simulate import scenario, simulate_day
+
+DAY = dict(n_lines=6, line_s=90.0, turn_s=15.0, run_in_s=5.0, gnss_hz=5.0, attitude_hz=50.0)
+PARAMS = {"range_s": (-1.0, 1.0), "step_s": 0.002}
+SCAN_LINES, SCAN_WINDOWS = api._scan_lines, api._scan_windows
+
+
+def _run(day, cfg, monkeypatch, windowed: bool, estimator: str = "auto", shift=None):
+    """The estimate and the scan modes of every pass ("full", "window", "fallback")."""
+    modes: list[list[str]] = []
+    def spy(*args, **kwargs):
+        peaks = SCAN_LINES(*args, **kwargs)
+        modes.append([pk.scan for pk in peaks])
+        return peaks
+
+    def shifted(first, hints, dts):
+        # A line whose weighted peak lies far from where its first passes put it: the
+        # window is moved 0.5 s away from them.
+        out = SCAN_WINDOWS(first, hints, dts)
+        k0, k1 = out[shift]
+        move = int(round(0.5 / (dts[1] - dts[0])))
+        move = move if k1 + move <= dts.size else -move
+        out[shift] = (k0 + move, k1 + move)
+        return out
+
+    monkeypatch.setattr(api, "WINDOWED_SCAN", windowed)
+    monkeypatch.setattr(api, "_scan_lines", spy)
+    if shift is not None:
+        monkeypatch.setattr(api, "_scan_windows", shifted)
+    res = estimate_latency(day["gnss"], day["attitude"], day["lines"], cfg.lever_arm_m,
+                           {**PARAMS, "estimator": estimator})
+    return res, modes
+
+
+def _assert_same(a, b, tol=1e-9):
+    assert a.estimator == b.estimator and a.converged == b.converged
+    assert a.n_used == b.n_used and a.message == b.message
+    for name in ("latency_s", "uncertainty_s", "ci95_low", "ci95_high", "joint_latency_s"):
+        assert getattr(a, name) == pytest.approx(getattr(b, name), abs=tol, nan_ok=True), name
+    for la, lb in zip(a.lines, b.lines, strict=True):
+        for name in ("latency_s", "uncertainty_s", "r_max", "sigma0_after_m"):
+            assert getattr(la, name) == pytest.approx(getattr(lb, name), abs=tol,
+                                                      nan_ok=True), (la.name, name)
+        assert (la.used, la.at_edge, la.warnings) == (lb.used, lb.at_edge, lb.warnings)
+    assert a.warnings == b.warnings
+    np.testing.assert_allclose(a.r_curves, b.r_curves, atol=1e-12, equal_nan=True)
+
+
+@pytest.mark.parametrize(("noise", "seed"), [("clean", 1), ("paper", 2), ("coloured", 3)])
+def test_windowed_auto_equals_the_full_scan(noise, seed, monkeypatch):
+    cfg = scenario(noise, **DAY)
+    day = simulate_day(cfg, seed=seed)
+    full, full_modes = _run(day, cfg, monkeypatch, windowed=False)
+    fast, modes = _run(day, cfg, monkeypatch, windowed=True)
+    _assert_same(fast, full)
+    # qi2010, anti-aliased first pass: every candidate; the weighted pass in windows.
+    assert all(m == "full" for pass_ in full_modes for m in pass_)
+    assert modes[0] == modes[1] == ["full"] * cfg.n_lines
+    assert modes[2] == ["window"] * cfg.n_lines
+
+
+def test_windowed_weighted_equals_the_full_scan(monkeypatch):
+    cfg = scenario("coloured", **DAY)
+    day = simulate_day(cfg, seed=4)
+    full, _ = _run(day, cfg, monkeypatch, windowed=False, estimator="weighted")
+    fast, modes = _run(day, cfg, monkeypatch, windowed=True, estimator="weighted")
+    _assert_same(fast, full)
+    assert modes[1] == ["window"] * cfg.n_lines
+
+
+def test_a_peak_outside_the_window_falls_back_to_the_full_scan(monkeypatch):
+    cfg = scenario("coloured", **DAY)
+    day = simulate_day(cfg, seed=5)
+    full, _ = _run(day, cfg, monkeypatch, windowed=False)
+    fast, modes = _run(day, cfg, monkeypatch, windowed=True, shift=2)
+    _assert_same(fast, full)
+    assert modes[2][2] == "fallback"
+    assert modes[2][:2] + modes[2][3:] == ["window"] * (cfg.n_lines - 1)
+
+
+def test_scan_line_window_checks():
+    rng = np.random.default_rng(0)
+    ta = np.arange(0.0, 200.0, 0.02)
+    ha = np.sin(2 * np.pi * ta / 7.0) + 0.3 * np.sin(2 * np.pi * ta / 3.1)
+    tags = np.arange(20.0, 180.0, 0.2)
+    h = np.interp(tags - 0.1, ta, ha) + 0.01 * rng.standard_normal(tags.size)
+    dts = np.linspace(-1.0, 1.0, 1001)
+    line = LineData("A", 20.0, 180.0, tags, h - h.mean())
+    ref = scan_line(LineData("A", 20.0, 180.0, tags, h - h.mean()), ta, ha, dts)
+    k = int(np.argmin(np.abs(dts - 0.1)))
+    ok = scan_line_window(line, ta, ha, dts, k - 50, k + 51)
+    assert ok is not None and ok.scan == "window"
+    assert ok.latency_s == pytest.approx(ref.latency_s, abs=1e-12)
+    assert ok.r_max == pytest.approx(ref.r_max, abs=1e-12)
+    assert ok.uncertainty_s == pytest.approx(ref.uncertainty_s, rel=1e-9)
+    assert np.all(np.isnan(ok.curve[: k - 50])) and np.all(np.isnan(ok.curve[k + 51:]))
+    np.testing.assert_allclose(ok.curve[k - 50:k + 51], ref.curve[k - 50:k + 51], atol=1e-12)
+    # The maximum on the window's edge: not settled.
+    assert scan_line_window(line, ta, ha, dts, k + 10, k + 200) is None
+    assert scan_line_window(line, ta, ha, dts, k - 200, k - 10) is None
+    # The window reaching the grid's end with the maximum there: not settled either.
+    assert scan_line_window(line, ta, ha, dts, 0, 3) is None
+    # No warning appended when it gives up.
+    assert line.warnings == []
+    # A flat R (heights unrelated to the heave): the full scan decides (its warning).
+    flat = LineData("F", 20.0, 180.0, tags, 1e-3 * rng.standard_normal(tags.size))
+    full = scan_line(LineData("F", 20.0, 180.0, tags, flat.h.copy()), ta, ha, dts)
+    if np.nanmax(full.curve) - np.nanmin(full.curve) < FLAT_R_SPAN:
+        assert scan_line_window(flat, ta, ha, dts, 400, 600) is None

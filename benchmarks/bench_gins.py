@@ -144,7 +144,18 @@ def print_coverage(rows: list[dict]) -> None:
 def main() -> int:
     ap = argparse.ArgumentParser(description=__doc__)
     ap.add_argument("--quick", action="store_true", help="only the 21-state cases")
+    ap.add_argument("--coverage-only", action="store_true",
+                    help="only the simulated σ coverage table")
+    ap.add_argument("--seeds", type=int, default=4, help="simulated runs per coverage case")
+    ap.add_argument("--gnss-noise", default="auto", choices=("auto", "file"),
+                    help="GNSS noise model of every run (file = as before the check)")
     args = ap.parse_args()
+    extra = {"gnss_noise": args.gnss_noise}
+    if args.coverage_only:
+        t0 = time.perf_counter()
+        print_coverage(simulation_coverage(range(args.seeds), params=extra))
+        print(f"({time.perf_counter() - t0:.0f} s)")
+        return 0
     if not (DATA / "IMU-synthetic.txt").exists():
         print(f"shared data not found: {DATA}")
         return 1
@@ -172,15 +183,24 @@ def main() -> int:
     for label, params, outage in cases:
         g = gnss.without(windows) if outage else gnss
         t1 = time.perf_counter()
-        res = run_gins(imu, g, cfg, params)
+        res = run_gins(imu, g, cfg, GinsParams.from_dict({**params.to_dict(), **extra}))
         dt = time.perf_counter() - t1
         ev = evaluate(res, truth, windows if outage else ())
         for name in ("forward", "smoothed"):
             s = ev[name]
             print(_row(f"{label} {name[:3]}", s, s.get("outage")))
+        for name in ("forward", "smoothed"):
+            for part, c in ev[name]["coverage"].items():
+                if part != "all" or not outage:
+                    print(f"{'':<4}σ coverage {name[:3]} {part:<9} {_cov_cells(c)}")
         print(f"{'':<26} time {dt:.1f} s (forward + smoothing, {res.counts['nodes']} nodes), "
               f"peak RSS {resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024:.0f} MB",
               flush=True)
+        print(f"{'':<26} {res.gnss_model['summary']}")
+    print(f"{'':<4}(σ coverage: % within 1.96 σ / RMS(error/σ) for "
+          + " ".join(COMPONENTS) + ")")
+    print()
+    print_coverage(simulation_coverage(range(args.seeds), params=extra))
     return 0
 
 

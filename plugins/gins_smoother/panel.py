@@ -97,6 +97,9 @@ class GinsPanel(AnalysisPanel):
         ev = json.loads(attrs["evaluation"])
         text = (f"{counts['imu_epochs']} IMU epochs, {counts['gnss_used']} of "
                 f"{counts['gnss_epochs']} GNSS fixes used, {counts['states']} states.")
+        model = json.loads(attrs.get("gnss_model", "{}"))
+        if model.get("summary"):
+            text += "\nσ from: " + model["summary"]
         for name, e in ev.items():
             a = e.get("gnss_on", e["all"])
             text += (f"\n{name}: horizontal RMS {100 * a['horizontal']['rms']:.2f} cm, yaw RMS "
@@ -104,6 +107,10 @@ class GinsPanel(AnalysisPanel):
             o = e.get("outage")
             if o and o.get("max_horizontal_m") is not None:
                 text += f", outage drift max {o['max_horizontal_m']:.3f} m"
+            c = e.get("coverage", {}).get("all", {})
+            if c.get("north") and c.get("east") and c.get("down"):
+                text += (", within 1.96σ N/E/D " + "/".join(
+                    f"{100 * c[k]['within_95']:.0f}" for k in ("north", "east", "down")) + " %")
         self.summary.setText(text)
         tabs = {"forward": project.get_table(f"{RESULT}/forward")}
         if project.exists(f"{RESULT}/smoothed"):

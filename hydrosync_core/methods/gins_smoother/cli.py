@@ -39,7 +39,8 @@ def _summary(res, ev: dict) -> dict:
 
     from hydrosync_core.jsonsafe import jsonable
 
-    doc = {"counts": res.counts, "alignment": res.alignment, "evaluation": ev}
+    doc = {"counts": res.counts, "alignment": res.alignment, "evaluation": ev,
+           "gnss_model": res.gnss_model}
     for key in ("residual_forward", "residual"):
         if key in res.gnss:
             r = res.gnss[key]
@@ -54,6 +55,8 @@ def _print(doc: dict) -> None:
     print(f"{c['imu_epochs']} IMU epochs, {c['gnss_used']} of {c['gnss_epochs']} GNSS fixes "
           f"used, {c['states']} states, {c['nodes']} smoother nodes; alignment: "
           f"{doc['alignment'].get('method')}")
+    if doc.get("gnss_model", {}).get("summary"):
+        print(f"σ computed from: {doc['gnss_model']['summary']}")
     for name, ev in doc["evaluation"].items():
         a = ev.get("gnss_on", ev["all"])
         print(f"{name:<9} RMS pos N/E/D {a['north']['rms']:.4f} {a['east']['rms']:.4f} "
@@ -64,6 +67,14 @@ def _print(doc: dict) -> None:
         if o and o["rms_max_horizontal_m"] is not None:
             print(f"{'':<9} outage drift (RMS of per-outage max) horizontal "
                   f"{o['rms_max_horizontal_m']:.3f} m, vertical {o['rms_max_vertical_m']:.3f} m")
+        c = ev.get("coverage", {}).get("all", {})
+        if c.get("north"):
+            print(f"{'':<9} within 1.96σ of the reference: pos N/E/D " + " ".join(
+                f"{100 * c[k]['within_95']:.0f}" for k in ("north", "east", "down"))
+                + " %, vel " + " ".join(f"{100 * c[k]['within_95']:.0f}" for k in
+                                        ("vn", "ve", "vd"))
+                + " %, roll/pitch/yaw " + " ".join(f"{100 * c[k]['within_95']:.0f}" for k in
+                                                   ("roll", "pitch", "yaw")) + " %")
 
 
 def _run_files(args, params: GinsParams) -> int:

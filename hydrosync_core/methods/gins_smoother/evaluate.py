@@ -79,6 +79,31 @@ def statistics(errors: dict[str, np.ndarray], mask: np.ndarray | None = None) ->
     return out
 
 
+def coverage(errors: dict[str, np.ndarray], mask: np.ndarray | None = None) -> dict:
+    """How honest the solution's σ are: per component the share of epochs with
+    ``|e| ≤ 1.96 σ`` (``within_95``, 0.95 for honest Gaussian σ) and the RMS of ``e/σ``
+    (``rms_z``, 1 for honest σ). Needs the ``sd_<name>`` columns of :func:`error_series`.
+    Consecutive epochs are correlated: the share is a coverage, not an independent count.
+    """
+    out = {"epochs": int(errors["time"].size if mask is None else mask.sum())}
+    for name in POS + VEL + ATT:
+        sd = errors.get(f"sd_{name}")
+        if sd is None:
+            out[name] = None
+            continue
+        e, s = errors[name], sd
+        if mask is not None:
+            e, s = e[mask], s[mask]
+        ok = s > 0
+        if not ok.any():
+            out[name] = None
+            continue
+        z = e[ok] / s[ok]
+        out[name] = {"within_95": float(np.mean(np.abs(z) <= 1.96)),
+                     "rms_z": float(np.sqrt(np.mean(z * z)))}
+    return out
+
+
 def outage_drift(errors: dict[str, np.ndarray], windows) -> dict:
     """Largest horizontal and vertical error inside each outage window (s).
 
@@ -119,7 +144,9 @@ def evaluate(result, ref: NavData, windows=()) -> dict:
     """Statistics of the forward and smoothed solutions of a :class:`GinsResult`.
 
     ``{"forward": {...}, "smoothed": {...}}`` each with ``all`` (every reference epoch),
-    ``gnss_on`` (outside the outage windows) and ``outage`` (:func:`outage_drift`).
+    ``gnss_on`` (outside the outage windows) and ``outage`` (:func:`outage_drift`), and
+    ``coverage`` (:func:`coverage` of the solution's own σ) over ``all`` epochs and, with
+    outage windows, ``gnss_on`` and ``in_outage``.
     """
     out = {}
     for name in ("forward", "smoothed"):
@@ -127,12 +154,14 @@ def evaluate(result, ref: NavData, windows=()) -> dict:
         if sol is None:
             continue
         e = error_series(sol, ref)
-        entry = {"all": statistics(e)}
+        entry = {"all": statistics(e), "coverage": {"all": coverage(e)}}
         if windows:
             inside = np.zeros(e["time"].size, bool)
             for a, b in windows:
                 inside |= (e["time"] > a) & (e["time"] < b)
             entry["gnss_on"] = statistics(e, ~inside)
             entry["outage"] = outage_drift(e, windows)
+            entry["coverage"]["gnss_on"] = coverage(e, ~inside)
+            entry["coverage"]["in_outage"] = coverage(e, inside)
         out[name] = entry
     return out

@@ -60,7 +60,10 @@ class GinsResult:
     bias (mGal) and, with 21 states, scale factors (ppm), each (nodes, 3).
     ``gnss``: ``time``, ``innovation`` (forward, computed − measured antenna position,
     NED m, before the update), ``residual`` (smoothed trajectory minus measurement, NED m),
-    ``used`` (1 if the forward filter applied it).
+    ``used`` (1 if the forward filter applied it), ``innovation_cov`` (its predicted
+    covariance, n × 3 × 3).
+    ``gnss_model``: the GNSS noise model used and what it was computed from
+    (:func:`run_gins`; ``summary`` is one line for the user).
     """
 
     forward: Trajectory
@@ -70,6 +73,7 @@ class GinsResult:
     gnss: dict
     alignment: dict
     counts: dict = field(default_factory=dict)
+    gnss_model: dict = field(default_factory=dict)
 
 
 def quat_to_euler(q: np.ndarray) -> np.ndarray:
@@ -374,7 +378,9 @@ def _trajectory(t, traj, diag, node_t, diag_end) -> Trajectory:
 def _imu_errors(node_t, xs, ns) -> dict:
     out = {"time": node_t, "gyro_bias_dph": np.degrees(xs[:, 10:13]) * 3600,
            "acc_bias_mgal": xs[:, 13:16] / 1e-5}
-    if ns == 21:
+    if ns in (18, 24):
+        out["gnss_error_m"] = xs[:, K.GNSS_X:K.GNSS_X + 3].copy()
+    if ns >= 21:
         out["gyro_scale_ppm"] = xs[:, 16:19] * 1e6
         out["acc_scale_ppm"] = xs[:, 19:22] * 1e6
     return out
@@ -420,9 +426,107 @@ def _lever_vec(att_rad: np.ndarray, lever) -> np.ndarray:
     return C @ np.asarray(lever, float)
 
 
+@dataclass
+class NoiseModel:
+    """The noise model of one pass beyond the configuration: the IMU white noise (ARW and
+    VRW) × ``imu_scale``; GNSS white noise of std ``white_scale`` × the file's std (per
+    N/E/D) plus, when ``corr_std`` is non-zero, a first-order Gauss–Markov GNSS error (std
+    ``corr_std`` m N/E/D, correlation time ``corr_time_s``) estimated as 3 extra states."""
+
+    white_scale: np.ndarray
+    corr_std: np.ndarray
+    corr_time_s: float = 0.0
+    imu_scale: float = 1.0
+
+    @property
+    def correlated(self) -> bool:
+        return bool(np.any(self.corr_std > 0) and self.corr_time_s > 0)
+
+
+#: The noise model is accepted when the RMS of the normalised GNSS innovations lies in
+#: this range for every component and their autocorrelation at 1 s stays below RHO_MAX.
+RMS_OK = (0.8, 1.25)
+RHO_MAX = 0.3
+#: Below this white scale the file's σ is not explained by the white scatter: the rest is
+#: modelled as a time-correlated GNSS error.
+K_WHITE_MIN = 0.9
+#: Range of the factor on the IMU white noise (ARW, VRW) searched in factor-2 steps, and
+#: GNSS correlation times (s) tried, by maximum likelihood of the innovations.
+IMU_SCALE_RANGE = (1.0 / 16.0, 64.0)
+TAU_GRID = (3.0, 10.0, 30.0, 100.0, 300.0, 1000.0, 3000.0)
+
+
+def _lag_pairs(tt: np.ndarray, lag_s: float) -> tuple[np.ndarray, np.ndarray]:
+    """Index pairs (i, j) of epochs *tt* whose separation is the epoch step nearest to
+    *lag_s* (within half the median step)."""
+    if tt.size < 3:
+        return np.zeros(0, int), np.zeros(0, int)
+    step = float(np.median(np.diff(tt)))
+    k = max(1, int(round(lag_s / step)))
+    i = np.arange(tt.size - k)
+    j = i + k
+    ok = np.abs((tt[j] - tt[i]) - k * step) <= 0.5 * step
+    return i[ok], j[ok]
+
+
+def innovation_check(gnss_out: dict, lag_s: float = 1.0) -> dict:
+    """Normalised GNSS innovations ``ν / √S`` (each component by its own predicted std)
+    of the forward filter: RMS per N/E/D (1 if the noise model is right), autocorrelation at
+    *lag_s* (0 if right: a Kalman filter's innovations are white), count, and the mean
+    negative log-likelihood per fix ``½(log det S + νᵀS⁻¹ν)`` (for comparing models)."""
+    used = gnss_out["used"].astype(bool)
+    nu = gnss_out["innovation"][used]
+    S = gnss_out["innovation_cov"][used]
+    tt = gnss_out["time"][used]
+    if nu.shape[0] < 5:
+        return {"fixes": int(nu.shape[0]), "rms": None, "rho_1s": None, "nll": None}
+    sd = np.sqrt(np.einsum("kii->ki", S))
+    u = nu / sd
+    i, j = _lag_pairs(tt, lag_s)
+    rho = [float(np.sum(u[i, c] * u[j, c]) / np.sqrt(np.sum(u[i, c] ** 2) *
+                                                    np.sum(u[j, c] ** 2)))
+           if i.size > 3 else None for c in range(3)]
+    _sign, logdet = np.linalg.slogdet(S)
+    m = np.einsum("ki,kij,kj->k", nu, np.linalg.inv(S), nu)
+    return {"fixes": int(nu.shape[0]), "rms": np.sqrt(np.mean(u * u, axis=0)).tolist(),
+            "rho_1s": rho, "nll": float(np.mean(0.5 * (logdet + m)))}
+
+
+def _consistent(check: dict) -> bool:
+    if check["rms"] is None:
+        return True
+    rho = [r for r in check["rho_1s"] if r is not None]
+    return (all(RMS_OK[0] <= r <= RMS_OK[1] for r in check["rms"])
+            and (not rho or max(rho) < RHO_MAX))
+
+
+def white_scale_from_innovations(gnss_out: dict, scale: np.ndarray) -> np.ndarray | None:
+    """Scale of the file's GNSS σ (per N/E/D) that the forward innovations support: the
+    pass ran with ``R = scale²·R_file`` and predicted the innovation covariance
+    ``S = HPHᵀ + R``; the new scale is ``scale · √mean(ν²/S)``, the fixed point of which
+    makes the normalised innovations' mean square 1 (an innovation-based adaptive
+    estimate, Mohamed & Schwarz 1999, in multiplicative form so that it stays positive
+    when ``HPHᵀ`` alone exceeds the scatter). Iterated by the caller (P depends on R);
+    bounded to [10⁻³, 10³]. None with fewer than 10 fixes."""
+    used = gnss_out["used"].astype(bool)
+    if used.sum() < 10:
+        return None
+    nu = gnss_out["innovation"][used]
+    S = np.einsum("kii->ki", gnss_out["innovation_cov"][used])
+    return np.clip(scale * np.sqrt(np.mean(nu * nu / S, axis=0)), 1e-3, 1e3)
+
+
 def run_gins(imu: ImuData, gnss: GnssData, cfg: SensorConfig, params: GinsParams | None = None,
              progress=None, cancel=None) -> GinsResult:
     """Forward closed-loop EKF and (unless ``params.smooth`` is off) RTS smoothing.
+
+    With ``params.gnss_noise == "auto"`` (the default) the noise model is checked against
+    the data after the first pass: the forward GNSS innovations normalised by their own
+    predicted std must have an RMS in :data:`RMS_OK` and an autocorrelation at 1 s below
+    :data:`RHO_MAX`. If not, the model is re-estimated from the innovations
+    (:func:`_estimate_model`: a factor on the IMU white noise and the GNSS white σ scale,
+    and, when the innovations stay time-correlated, a Gauss–Markov GNSS error) and the run
+    repeated. What was done is in ``result.gnss_model`` (and its ``summary`` line).
 
     Parameters
     ----------
@@ -433,16 +537,14 @@ def run_gins(imu: ImuData, gnss: GnssData, cfg: SensorConfig, params: GinsParams
     cfg : SensorConfig
         Initial state (or None parts for alignment), IMU noise, lever arm.
     params : GinsParams
-        Processing options (scale-factor states, NHC, ZUPT, intervals, gate).
+        Processing options (scale-factor states, NHC, ZUPT, intervals, gate, GNSS noise).
 
     Returns
     -------
     GinsResult
     """
     p = params if params is not None else GinsParams()
-    ns = 21 if p.scale_factors else 15
     t = np.ascontiguousarray(imu.time, float)
-    inc = np.ascontiguousarray(imu.inc, float)
     if t.size < 10:
         raise InputError(imu.source, "fewer than 10 IMU epochs")
     if gnss.time.size == 0:
@@ -460,8 +562,161 @@ def run_gins(imu: ImuData, gnss: GnssData, cfg: SensorConfig, params: GinsParams
     static = (detect_static(imu, p.zupt_window_s, p.zupt_acc_std, p.zupt_gyro_dps)
               if p.zupt else np.zeros(t.size, bool))
     i0, x0, cfg, align = _initial_state(imu, gnss, cfg, i0, static, p)
-    P0 = initial_covariance(cfg, ns)
-    qc = noise_densities(cfg, ns)
+    base_std = np.asarray(gnss.std, float) * p.gnss_std_scale
+    ctx = (imu, gnss, cfg, p, i0, i1, x0, static, align, base_std)
+    model = NoiseModel(np.ones(3), np.zeros(3))
+    adapt = p.gnss_noise == "auto"
+    res = _pass(ctx, model, p.smooth or adapt, progress, cancel)
+    first = check = innovation_check(res.gnss)
+    estimated = False
+    if p.gnss_corr_time_s > 0 or (adapt and not _consistent(check)):
+        model = _estimate_model(ctx, res, check, cancel)
+        res = _pass(ctx, model, p.smooth, progress, cancel)
+        check = innovation_check(res.gnss)
+        estimated = True
+    elif not p.smooth and res.smoothed is not None:
+        res.smoothed = None
+        res.imu_errors_smoothed = None
+        res.gnss.pop("residual", None)
+    info = {"mode": p.gnss_noise, "file_std_median_m": np.median(base_std, axis=0).tolist(),
+            "gnss_std_scale": p.gnss_std_scale, "estimated": estimated,
+            "model": "gauss-markov" if model.correlated else "white",
+            "imu_noise_scale": model.imu_scale, "white_scale": model.white_scale.tolist(),
+            "corr_std_m": model.corr_std.tolist() if model.correlated else None,
+            "corr_time_s": model.corr_time_s if model.correlated else None,
+            "tau_given": p.gnss_corr_time_s > 0, "first_check": first, "check": check}
+    info["summary"] = _model_summary(info)
+    res.gnss_model = info
+    return res
+
+
+def _model_summary(info: dict) -> str:
+    """One line saying what the σ were computed from."""
+    def f3(v):
+        return "/".join(f"{x:.2g}" for x in v)
+
+    def innov(chk):
+        if chk.get("rms") is None:
+            return "no GNSS innovations to check"
+        rho = [r for r in chk["rho_1s"] if r is not None]
+        return (f"normalised GNSS innovations RMS N/E/D {f3(chk['rms'])}"
+                + (f", autocorrelation at 1 s ≤ {max(rho):.2f}" if rho else ""))
+    if not info["estimated"]:
+        return ("GNSS σ from the file" + (f" ×{info['gnss_std_scale']:g}"
+                                          if info["gnss_std_scale"] != 1 else "")
+                + " (white), IMU noise from the configuration; " + innov(info["check"]))
+    text = "noise model estimated from the data (maximum likelihood of the GNSS innovations"
+    text += (f", which were {innov(info['first_check'])[len('normalised GNSS innovations '):]}"
+             " with the file's σ): ")
+    if info["imu_noise_scale"] != 1:
+        text += f"IMU white noise (ARW, VRW) ×{info['imu_noise_scale']:g}; "
+    text += f"GNSS σ ×{f3(info['white_scale'])} (N/E/D, white)"
+    if info["corr_std_m"] is not None:
+        how = "given" if info["tau_given"] else "estimated"
+        text += (f" plus a time-correlated GNSS error of σ {f3(info['corr_std_m'])} m, τ "
+                 f"{info['corr_time_s']:g} s {how} (Gauss–Markov states)")
+    return text + "; now " + innov(info["check"])
+
+
+def _estimate_model(ctx, res: GinsResult, first_check: dict, cancel) -> NoiseModel:
+    """Noise model by maximum likelihood of the GNSS innovations (:func:`run_gins`).
+
+    1. IMU white-noise factor in factor-2 steps from 1 (up, then down, while the
+       likelihood improves; within :data:`IMU_SCALE_RANGE`), with white GNSS noise whose
+       scale is re-estimated from the innovations at each factor
+       (:func:`white_scale_from_innovations`, two iterations);
+    2. if the white scale leaves part of the file's σ unexplained (< :data:`K_WHITE_MIN`),
+       the innovations of the best model are still correlated at 1 s (≥ RHO_MAX) or a
+       correlation time is given: a Gauss–Markov GNSS error, its σ the part of the file's
+       σ that the white scale leaves (at least half of it — the file's σ is taken as the
+       accuracy of one fix, slowly varying errors included, which innovations cannot see),
+       its correlation time over :data:`TAU_GRID` (or the given one), then the IMU factor
+       again with it.
+    """
+    p = ctx[3]
+    base_std = ctx[9]
+    med = np.median(base_std, axis=0)
+
+    def run(m):
+        check_cancel(cancel)
+        return _pass(ctx, m, False, None, cancel)
+
+    def corr_for(k):
+        return med * np.sqrt(np.maximum(1.0 - np.minimum(k, 1.0) ** 2, 0.25))
+
+    def fit(m, times=2):
+        r = run(m)
+        for _ in range(times):
+            k = white_scale_from_innovations(r.gnss, m.white_scale)
+            if k is None:
+                break
+            m = NoiseModel(k, corr_for(k) if m.correlated else np.zeros(3), m.corr_time_s,
+                           m.imu_scale)
+            r = run(m)
+        return innovation_check(r.gnss), m
+
+    def best_of(models):
+        best = None
+        for m0 in models:
+            chk, m = fit(m0)
+            if chk["nll"] is not None and (best is None or chk["nll"] < best[0]["nll"]):
+                best = (chk, m)
+        return best
+
+    def climb(make, start):
+        """Best IMU factor by factor-2 steps up, then down, from *start* while the
+        likelihood improves, within :data:`IMU_SCALE_RANGE`."""
+        cache = {}
+
+        def nll(q):
+            if q not in cache:
+                cache[q] = best_of([make(q)])
+            return math.inf if cache[q] is None else cache[q][0]["nll"]
+        q = start
+        for step in (2.0, 0.5):
+            while IMU_SCALE_RANGE[0] <= q * step <= IMU_SCALE_RANGE[1] and \
+                    nll(q * step) < nll(q):
+                q *= step
+        nll(q)
+        return cache[q]
+
+    best = climb(lambda q: NoiseModel(np.ones(3), np.zeros(3), 0.0, q), 1.0)
+    if best is None:
+        return NoiseModel(np.ones(3), np.zeros(3))
+    chk, m = best
+    rho = [r for r in chk["rho_1s"] if r is not None]
+    if p.gnss_corr_time_s > 0 or np.min(m.white_scale) < K_WHITE_MIN or \
+            (rho and max(rho) >= RHO_MAX):
+        taus = (p.gnss_corr_time_s,) if p.gnss_corr_time_s > 0 else TAU_GRID
+        best = best_of(NoiseModel(m.white_scale, corr_for(m.white_scale), float(tau),
+                                  m.imu_scale) for tau in taus) or best
+        m = best[1]
+        if m.correlated:  # the IMU factor again, with the Gauss-Markov GNSS error
+            best = climb(lambda q: NoiseModel(m.white_scale, m.corr_std, m.corr_time_s, q),
+                         m.imu_scale) or best
+    return fit(best[1], 3)[1]  # the white scale settled at the chosen model
+
+
+def _pass(ctx: tuple, model: NoiseModel, smooth: bool, progress, cancel) -> GinsResult:
+    """One forward (and smoothed) pass with the noise *model*; *ctx* is ``(imu, gnss, cfg,
+    params, i0, i1, x0, static, alignment, GNSS std)`` of :func:`run_gins`."""
+    imu, gnss, cfg, p, i0, i1, x0, static, align, base_std = ctx
+    ns_imu = 21 if p.scale_factors else 15
+    ns = ns_imu + (3 if model.correlated else 0)
+    t = np.ascontiguousarray(imu.time, float)
+    inc = np.ascontiguousarray(imu.inc, float)
+    P0 = np.zeros((ns, ns))
+    P0[:ns_imu, :ns_imu] = initial_covariance(cfg, ns_imu)
+    qc = np.zeros(ns)
+    qc[:ns_imu] = noise_densities(cfg, ns_imu)
+    qc[3:9] *= model.imu_scale ** 2  # VRW², ARW²
+    tau_g = model.corr_time_s if model.correlated else 1.0
+    if model.correlated:
+        for c in range(3):
+            P0[ns_imu + c, ns_imu + c] = model.corr_std[c] ** 2
+            qc[ns_imu + c] = 2 * model.corr_std[c] ** 2 / tau_g
+    x0 = x0.copy()
+    x0[K.GNSS_X:K.GNSS_X + 3] = 0.0
     n_traj = i1 - i0 + 1
     duration = t[i1] - t[i0]
     g_in = (gnss.time > t[i0]) & (gnss.time <= t[i1])
@@ -476,8 +731,9 @@ def run_gins(imu: ImuData, gnss: GnssData, cfg: SensorConfig, params: GinsParams
     Phi_n = np.zeros((max_nodes, ns, ns))
     tg = np.ascontiguousarray(gnss.time)
     llh_g = np.column_stack([np.radians(gnss.llh[:, :2]), gnss.llh[:, 2]])
-    std_g = np.ascontiguousarray(gnss.std * p.gnss_std_scale)
+    std_g = np.ascontiguousarray(base_std * model.white_scale)
     innov = np.full((tg.size, 3), np.nan)
+    innov_cov = np.full((tg.size, 3, 3), np.nan)
     used = np.zeros(tg.size, np.int8)
     mount = np.radians(np.asarray(p.mounting_deg, float))
     # The mounting angles are the IMU's attitude in the vehicle frame, as the boresight
@@ -495,12 +751,12 @@ def run_gins(imu: ImuData, gnss: GnssData, cfg: SensorConfig, params: GinsParams
     while ja <= i1:
         jb = min(i1, ja + chunk)
         check_cancel(cancel)
-        K.forward(t, inc, i0, ja, jb, x, P, Phi, state, qc, ns, cfg.noise.corr_time, nominal_dt,
-                  prop_n, tg, llh_g, std_g, np.asarray(cfg.lever_arm_m, float), p.gnss_gate,
-                  p.nhc, p.nhc_std, c_vb, con, static, p.zupt_std, p.zupt_speed,
+        K.forward(t, inc, i0, ja, jb, x, P, Phi, state, qc, ns, cfg.noise.corr_time, tau_g,
+                  nominal_dt, prop_n, tg, llh_g, std_g, np.asarray(cfg.lever_arm_m, float),
+                  p.gnss_gate, p.nhc, p.nhc_std, c_vb, con, static, p.zupt_std, p.zupt_speed,
                   p.max_node_interval_s, traj, node_idx, xp_n, xf_n, Pp_n, Pf_n, Phi_n, innov,
-                  used)
-        report(progress, 0.75 * (jb - i0 + 1) / n_traj if p.smooth else (jb - i0 + 1) / n_traj,
+                  innov_cov, used)
+        report(progress, 0.75 * (jb - i0 + 1) / n_traj if smooth else (jb - i0 + 1) / n_traj,
                f"forward filter {t[jb] - t[i0]:.0f} of {duration:.0f} s")
         ja = jb + 1
     nn = int(state[5])
@@ -513,12 +769,13 @@ def run_gins(imu: ImuData, gnss: GnssData, cfg: SensorConfig, params: GinsParams
     diag_p = np.einsum("kii->ki", Pp_n[:nn])
     forward = _trajectory(tt, traj, diag_f, node_t, diag_p)
     err_f = _imu_errors(node_t, xf_n[:nn], ns)
-    gnss_out = {"time": gnss.time, "innovation": innov, "used": used}
+    gnss_out = {"time": gnss.time, "innovation": innov, "innovation_cov": innov_cov,
+                "used": used}
     counts = {"imu_epochs": int(n_traj), "nodes": nn, "states": ns,
               "gnss_epochs": int(g_in.sum()), "gnss_used": int(used.sum()),
               "static_epochs": int(static[i0:i1 + 1].sum())}
     smoothed = err_s = None
-    if p.smooth:
+    if smooth:
         check_cancel(cancel)
         report(progress, 0.8, "RTS smoother")
         xs_n = np.zeros((nn, K.NX))

@@ -13,11 +13,13 @@ Frames and conventions
   ``sg``, ``sa`` (dimensionless); the compensated increments are
   ``Δθ = (Δθ̃ − bg·Δt) / (1 + sg)`` and ``Δv = (Δṽ − ba·Δt) / (1 + sa)``.
 
-The total state vector (22 values) is ``[lat, lon, h, vN, vE, vD, qw, qx, qy, qz, bg(3),
-ba(3), sg(3), sa(3)]``.
+The total state vector (25 values) is ``[lat, lon, h, vN, vE, vD, qw, qx, qy, qz, bg(3),
+ba(3), sg(3), sa(3), bG(3)]``; ``bG`` is the time-correlated GNSS position error (NED, m;
+the fix is the antenna position plus ``bG`` plus white noise).
 
-Error state (15 or 21 states, Wang et al. eq. 1, extended by scale factors):
-``δr`` (NED, m), ``δv`` (NED, m/s), ``φ`` (rad), ``δbg``, ``δba``, ``δsg``, ``δsa``.
+Error state (15 or 21 states, Wang et al. eq. 1, extended by scale factors, plus 3 with
+the Gauss–Markov GNSS error: 18 or 24): ``δr`` (NED, m), ``δv`` (NED, m/s), ``φ`` (rad),
+``δbg``, ``δba``, [``δsg``, ``δsa``], [``δbG``].
 Position and velocity errors are *computed minus true*; the attitude error φ is defined by
 ``C_true = exp(φ×)·C_computed``; the IMU-error states are *true minus estimated*. The
 closed-loop feedback is therefore ``r −= δr``, ``v −= δv``, ``q ← exp(φ)⊗q``, ``b += δb``
@@ -34,7 +36,22 @@ from numba import njit
 WIE = 7.2921151467e-5  # earth rotation rate, rad/s
 A_WGS = 6378137.0
 E2_WGS = 0.00669437999013
-NX = 22  # total-state length
+NX = 25  # total-state length
+GNSS_X = 22  # total-state index of the GNSS error estimate bG
+
+
+@njit(cache=True)
+def n_imu(ns):
+    """Error states up to and including the IMU errors (15 or 21) of an ns-state filter;
+    the remaining ``ns − n_imu`` (0 or 3) are the GNSS error."""
+    return 21 if ns >= 21 else 15
+
+
+@njit(cache=True)
+def tix(i, ns):
+    """Total-state index of error state *i* ≥ 9 (IMU errors, then the GNSS error)."""
+    ni = n_imu(ns)
+    return i + 1 if i < ni else GNSS_X + i - ni
 
 
 @njit(cache=True)
@@ -198,11 +215,12 @@ def mechanise(x, dth, dv, dth_p, dv_p, dt):
 
 
 @njit(cache=True)
-def system_matrix(x, fb, wb, ns, tcorr):
+def system_matrix(x, fb, wb, ns, tcorr, tcorr_g):
     """Continuous error-state matrix F (ns × ns) at total state *x*.
 
     *fb* (m/s²) and *wb* (rad/s): compensated specific force and angular rate in b.
-    *tcorr*: correlation time (s) of the first-order Gauss-Markov IMU errors.
+    *tcorr*: correlation time (s) of the first-order Gauss-Markov IMU errors; *tcorr_g*
+    that of the GNSS error states (when ns is 18 or 24).
     """
     lat, h = x[0], x[2]
     v = x[3:6]
@@ -251,9 +269,12 @@ def system_matrix(x, fb, wb, ns, tcorr):
     F[8, 4] = -tl / rnh
     F[6:9, 6:9] = -skew(wie + wen)
     F[6:9, 9:12] = -c
-    for i in range(9, ns):
+    ni = n_imu(ns)
+    for i in range(9, ni):
         F[i, i] = -1.0 / tcorr
-    if ns == 21:
+    for i in range(ni, ns):
+        F[i, i] = -1.0 / tcorr_g
+    if ni == 21:
         for i in range(3):
             for j in range(3):
                 F[3 + i, 18 + j] = c[i, j] * fb[j]
@@ -287,7 +308,7 @@ def feedback(x, dx, ns):
     qn = qmul(qrotvec(dx[6:9]), x[6:10])
     x[6:10] = qn / math.sqrt(np.sum(qn * qn))
     for i in range(9, ns):
-        x[i + 1] += dx[i]
+        x[tix(i, ns)] += dx[i]
 
 
 @njit(cache=True)
@@ -304,7 +325,7 @@ def difference(a, b, ns):
     d[3:6] = a[3:6] - b[3:6]
     d[6:9] = qlog(qmul(b[6:10], qconj(a[6:10])))
     for i in range(9, ns):
-        d[i] = b[i + 1] - a[i + 1]
+        d[i] = b[tix(i, ns)] - a[tix(i, ns)]
     return d
 
 
@@ -331,18 +352,18 @@ def compensate(x, dth_raw, dv_raw, dt, ns):
     """Bias and scale-factor compensated increments (rad, m/s)."""
     dth = dth_raw - x[10:13] * dt
     dv = dv_raw - x[13:16] * dt
-    if ns == 21:
+    if ns >= 21:
         dth = dth / (1.0 + x[16:19])
         dv = dv / (1.0 + x[19:22])
     return dth, dv
 
 
 @njit(cache=True)
-def forward(t, inc, i0, ja, jb, x, P, Phi, state, qc, ns, tcorr, nominal_dt, prop_n,
+def forward(t, inc, i0, ja, jb, x, P, Phi, state, qc, ns, tcorr, tcorr_g, nominal_dt, prop_n,
             tg, llh_g, std_g, lever, gate,
             nhc, nhc_std, c_vb, con_interval, static, zupt_std, zupt_speed,
             max_node_dt,
-            traj, node_idx, xp_n, xf_n, Pp_n, Pf_n, Phi_n, innov, gnss_used):
+            traj, node_idx, xp_n, xf_n, Pp_n, Pf_n, Phi_n, innov, innov_cov, gnss_used):
     """Forward closed-loop EKF over IMU epochs ``ja … jb`` (inclusive) of a run from ``i0``.
 
     Called repeatedly on consecutive chunks; *x*, *P*, *Phi* and *state* carry the filter
@@ -363,9 +384,12 @@ def forward(t, inc, i0, ja, jb, x, P, Phi, state, qc, ns, tcorr, nominal_dt, pro
         count, previous compensated increments, block sums (zeros on the first call).
     qc : (ns,) float64
         Continuous white-noise densities: VRW² (m²/s³), ARW² (rad²/s), then
-        ``2σ²/T`` of the Gauss-Markov IMU errors.
+        ``2σ²/T`` of the Gauss-Markov IMU errors and GNSS errors.
+    tcorr, tcorr_g : float
+        Correlation times (s) of the IMU errors and of the GNSS error states.
     tg, llh_g, std_g
-        GNSS epoch times (s), antenna lat/lon (rad)/h (m), N/E/D std (m).
+        GNSS epoch times (s), antenna lat/lon (rad)/h (m), N/E/D std (m) of the white
+        part of the GNSS error (the time-correlated part is the GNSS error state).
     lever : (3,)
         Antenna lever arm in b (m).
     gate : float
@@ -385,8 +409,10 @@ def forward(t, inc, i0, ja, jb, x, P, Phi, state, qc, ns, tcorr, nominal_dt, pro
     node_idx, xp_n, xf_n, Pp_n, Pf_n, Phi_n
         Output, per smoother node: IMU index, predicted and filtered total states and
         covariances, transition matrix from the previous node.
-    innov, gnss_used
-        Output per GNSS epoch: innovation (NED m, computed − measured) and 1 if applied.
+    innov, innov_cov, gnss_used
+        Output per GNSS epoch: innovation (NED m, computed − measured, the GNSS error
+        estimate removed), its predicted covariance ``S = HPHᵀ + R`` (3 × 3) and 1 if
+        applied.
     """
     ng = tg.shape[0]
     if state[5] == 0:
@@ -442,7 +468,7 @@ def forward(t, inc, i0, ja, jb, x, P, Phi, state, qc, ns, tcorr, nominal_dt, pro
         if nblk >= prop_n or is_node:
             fb = fsum / tsum
             wb = wsum / tsum
-            F = system_matrix(x, fb, wb, ns, tcorr) * tsum
+            F = system_matrix(x, fb, wb, ns, tcorr, tcorr_g) * tsum
             Phb = np.eye(ns) + F + 0.5 * (F @ F)
             G = noise_gain(x, ns)
             GQG = (G * qc) @ G.T
@@ -473,8 +499,14 @@ def forward(t, inc, i0, ja, jb, x, P, Phi, state, qc, ns, tcorr, nominal_dt, pro
                 H[1, 1] = 1.0
                 H[2, 2] = 1.0
                 H[:, 6:9] = skew(la)
+                ni = n_imu(ns)
+                if ns > ni:  # fix − estimated GNSS error; error state true − estimated
+                    for c3 in range(3):
+                        z[c3] += x[GNSS_X + c3]
+                        H[c3, ni + c3] = -1.0
                 R = np.diag(std_g[g] ** 2)
                 innov[g] = z
+                innov_cov[g] = H @ P @ H.T + R
                 if _update(x, P, H, z, R, ns, gate):
                     gnss_used[g] = 1
                 g += 1

@@ -77,6 +77,20 @@ class GinsParams(Params):
     gnss_std_scale: float = param(
         1.0, label="GNSS σ scale", minimum=0.0, min_exclusive=True, maximum=1000.0,
         decimals=2, help="factor on the std of the GNSS file")
+    gnss_noise: str = param(
+        "auto", label="GNSS noise model", choices=("auto", "file"),
+        help="auto: check the file's GNSS σ against the data (forward innovations normalised "
+             "by their predicted std: RMS 0.8-1.25, autocorrelation at 1 s below 0.3) and, "
+             "if they disagree, re-estimate — white σ scaled to the residual scatter, the "
+             "rest as a time-correlated (Gauss-Markov) GNSS error with τ by maximum "
+             "likelihood — reported with the result; file: the file's σ (× the scale) as "
+             "white noise")
+    gnss_corr_time_s: float = param(
+        0.0, label="GNSS error correlation time", unit="s", minimum=0.0, maximum=1e5,
+        decimals=1, advanced=True,
+        help="model the GNSS error as white plus a Gauss-Markov error of this correlation "
+             "time (white part scaled from the residuals, the rest of the file's σ "
+             "correlated); 0 = chosen by the auto check")
     gnss_gate: float = param(
         0.0, label="GNSS innovation gate", minimum=0.0, maximum=1e6, decimals=1,
         advanced=True,

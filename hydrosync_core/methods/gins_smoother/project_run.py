@@ -13,6 +13,7 @@ Inputs read from the project (``hydrosync import P.h5 --gins-imu … --gins-gnss
 
 Stored layout — ``/results/gins_smoother``: attributes ``json`` (the parameters),
 ``params_schema_version``, ``software_version``, ``run_utc``, ``counts``, ``alignment``,
+``gnss_model`` (the noise model used and what its σ were computed from),
 ``evaluation`` (JSON, :func:`.evaluate.evaluate` or ``{}``), ``outages`` (JSON windows);
 tables ``forward`` and ``smoothed`` (``time``, ``lat``, ``lon``, ``height``, ``vn``,
 ``ve``, ``vd``, ``roll``, ``pitch``, ``yaw`` and ``sd_*`` of each; degrees, m, m/s),
@@ -31,6 +32,7 @@ import numpy as np
 
 from hydrosync_core import __version__
 from hydrosync_core.errors import InputError
+from hydrosync_core.jsonsafe import jsonable
 from hydrosync_core.methods.gins_smoother import VERSION
 from hydrosync_core.methods.gins_smoother.params import GinsParams
 from hydrosync_core.progress import check_cancel, report, sub_progress
@@ -261,6 +263,7 @@ def run(project, params: GinsParams | Mapping | None = None, progress=None, canc
                       software_version=__version__,
                       run_utc=datetime.now(UTC).isoformat(timespec="seconds"),
                       counts=json.dumps(res.counts), alignment=json.dumps(res.alignment),
+                      gnss_model=json.dumps(jsonable(res.gnss_model)),
                       evaluation=json.dumps(ev), outages=json.dumps(windows))
     project.put_table(f"{RESULT}/forward", trajectory_columns(res.forward), units="deg, m")
     if res.smoothed is not None:

@@ -429,14 +429,16 @@ def estimate_time_shift(rec: Recording, half_range_s: float = 0.3, step_s: float
 
     A loosely coupled filter fed fixes that are late by δ puts the trajectory v·δ behind;
     the speed changes of a real drive make that visible in the residuals, so the offset is
-    found from the recording itself (no reference): a grid of smoothed runs over
+    found from the recording itself (no reference; the GNSS noise model of the file, not
+    re-estimated per offset): a grid of smoothed runs over
     ±*half_range_s*, refined by a parabola through the best three. Returns the offset and
     the (offset, horizontal residual RMS m) grid.
     """
     from hydrosync_core.methods.gins_smoother.filter import run_gins
     from hydrosync_core.methods.gins_smoother.params import GinsParams
 
-    p = GinsParams.from_dict({**rec.params, "smooth": True})
+    p = GinsParams.from_dict({**rec.params, "smooth": True, "gnss_noise": "file",
+                              "gnss_corr_time_s": 0.0})
     grid = []
     for d in np.arange(-half_range_s, half_range_s + 1e-9, step_s):
         r = shifted(rec, float(d))
@@ -457,7 +459,10 @@ def outage_test(rec: Recording, windows, params: dict | None = None) -> dict:
     fixes themselves (the antenna, lever arm applied) and against the reference if any.
 
     Returns ``windows`` (per window: length, and for forward and smoothed the largest
-    horizontal and vertical distance to the removed fixes, m) and the run's result.
+    horizontal and vertical distance to the removed fixes, m), ``normalised`` (per
+    solution, the errors at every removed fix N/E/D divided by ``√(σ_trajectory² +
+    σ_fix²)`` — the removed fix taken as the truth minus its own σ; (k, 3)) and the run's
+    result.
     """
     from hydrosync_core.methods.gins_smoother.evaluate import error_series
     from hydrosync_core.methods.gins_smoother.filter import gnss_residuals, run_gins
@@ -472,6 +477,16 @@ def outage_test(rec: Recording, windows, params: dict | None = None) -> dict:
             ref_err[name] = error_series(getattr(res, name), rec.reference)
     resid = {name: gnss_residuals(rec.gnss, getattr(res, name), rec.config.lever_arm_m)
              for name in ("forward", "smoothed")}
+    removed = np.zeros(rec.gnss.time.size, bool)
+    for a, b in windows:
+        removed |= (rec.gnss.time > a) & (rec.gnss.time < b)
+    normalised = {}
+    for name, r in resid.items():
+        tr = getattr(res, name)
+        sd = np.column_stack([np.interp(rec.gnss.time[removed], tr.time, tr.pos_std[:, c])
+                              for c in range(3)])
+        z = r[removed] / np.sqrt(sd ** 2 + rec.gnss.std[removed] ** 2)
+        normalised[name] = z[np.isfinite(z).all(axis=1)]
     for a, b in windows:
         m = (rec.gnss.time > a) & (rec.gnss.time < b)
         row = {"start": float(a), "end": float(b), "length_s": float(b - a)}
@@ -487,7 +502,7 @@ def outage_test(rec: Recording, windows, params: dict | None = None) -> dict:
                 row[f"{name}_ref_max_h_m"] = float(np.max(e["horizontal"][mr])) \
                     if mr.any() else None
         rows.append(row)
-    return {"windows": rows, "result": res}
+    return {"windows": rows, "normalised": normalised, "result": res}
 
 
 def moving_windows(rec: Recording, length_s: float, every_s: float, min_speed: float = 2.0,

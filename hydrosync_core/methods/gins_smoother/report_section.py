@@ -102,7 +102,10 @@ def section(project, ctx) -> list:
         [("IMU epochs", str(counts["imu_epochs"])),
          ("GNSS fixes in span / used", f"{counts['gnss_epochs']} / {counts['gnss_used']}"),
          ("Smoother nodes", str(counts["nodes"])),
-         ("Alignment", str(align.get("method")))], caption="Processing summary.")
+         ("Alignment", str(align.get("method"))),
+         ("Noise model (what the σ are computed from)",
+          json.loads(attrs.get("gnss_model", "{}")).get("summary", "not recorded"))],
+        caption="Processing summary.")
     fwd = project.get_table(f"{RESULT}/forward")
     smo = project.get_table(f"{RESULT}/smoothed") if project.exists(f"{RESULT}/smoothed") \
         else None

@@ -7,7 +7,10 @@ and pitch, position by integration on the WGS-84 ellipsoid, and the exact sensor
 ``f^b = C_n^b (a^n − g^n + (2ω_ie^n + ω_en^n) × v^n)``, integrated over each IMU interval
 into increments. The filter's own mechanisation code is not used. Injected errors:
 constant biases and scale factors drawn from the IMU grade, white noise (ARW, VRW), GNSS
-white noise with the given std and optional outages.
+white noise with the given std and, optionally, a time-correlated GNSS error (first-order
+Gauss–Markov / AR(1) with ``gnss_corr_std`` and ``gnss_corr_time_s``, as multipath and
+atmosphere make it); the GNSS file then reports the total std ``√(white² + correlated²)``,
+as a receiver's accuracy figure does.
 
 Profiles: ``vehicle`` (standstill, accelerations, straight runs, 90° turns, stops; body x
 along the velocity so the NHC holds) and ``vessel`` (slow survey turns at 2–3 m/s with
@@ -72,13 +75,21 @@ def simulate(duration_s: float = 120.0, kind: str = "vehicle", grade: str = "tac
              imu_rate_hz: float = 100.0, gnss_rate_hz: float = 1.0,
              gnss_std=(0.01, 0.01, 0.02), lever_arm_m=(0.5, -0.3, -1.2),
              lat_deg: float = 52.0, lon_deg: float = 4.5, height_m: float = 40.0,
-             t0: float = 345600.0, seed: int = 0, noise_free: bool = False) -> dict:
+             t0: float = 345600.0, seed: int = 0, noise_free: bool = False,
+             gnss_corr_std=(0.0, 0.0, 0.0), gnss_corr_time_s: float = 60.0,
+             init_errors: bool = False) -> dict:
     """Simulate a drive or a vessel track.
 
     Returns ``imu`` (:class:`ImuData`), ``gnss`` (:class:`GnssData`), ``truth``
     (:class:`NavData` at IMU rate), ``config`` (:class:`SensorConfig` with the grade's
     noise, the lever arm and the true initial state) and ``errors`` (injected biases in
     deg/h and mGal, scale factors in ppm).
+
+    The configuration's initial state is the truth with the std of ``init_*_std`` — unless
+    *init_errors*, which draws the initial position, velocity and attitude errors from
+    those std (independent generator), so that the σ a run reports can be checked against
+    the truth from the first epoch (an exact start with a nonzero σ makes them look
+    conservative).
     """
     rng = np.random.default_rng(seed)
     sub = 10
@@ -166,19 +177,39 @@ def simulate(duration_s: float = 120.0, kind: str = "vehicle", grade: str = "tac
     gstep = int(round(imu_rate_hz / gnss_rate_hz)) * sub
     gi = np.arange(gstep, tf.size, gstep)
     la = np.einsum("kij,j->ki", C[gi], np.asarray(lever_arm_m, float))
-    std = np.tile(np.asarray(gnss_std, float), (gi.size, 1))
-    e = np.zeros((gi.size, 3)) if noise_free else rng.normal(0, 1, (gi.size, 3)) * std
+    sw = np.asarray(gnss_std, float)
+    sc = np.asarray(gnss_corr_std, float)
+    std = np.tile(np.sqrt(sw ** 2 + sc ** 2), (gi.size, 1))
+    e = np.zeros((gi.size, 3)) if noise_free else rng.normal(0, 1, (gi.size, 3)) * sw
+    if not noise_free and np.any(sc > 0):
+        rho = math.exp(-1.0 / (gnss_rate_hz * gnss_corr_time_s))
+        c = np.empty((gi.size, 3))
+        c[0] = rng.normal(0, 1, 3) * sc
+        drive = rng.normal(0, 1, (gi.size, 3)) * sc * math.sqrt(1 - rho * rho)
+        for i in range(1, gi.size):
+            c[i] = rho * c[i - 1] + drive[i]
+        e = e + c
     glat = lat[gi] + (la[:, 0] + e[:, 0]) / (rm[gi] + h[gi])
     glon = lon[gi] + (la[:, 1] + e[:, 1]) / ((rn[gi] + h[gi]) * np.cos(lat[gi]))
     gh = h[gi] - la[:, 2] - e[:, 2]
     gnss = GnssData(t0 + tf[gi], np.column_stack([np.degrees(glat), np.degrees(glon), gh]), std,
                     "simulated GNSS")
     del k
+    pos_sd, vel_sd = np.array([0.02, 0.02, 0.04]), np.array([0.01, 0.01, 0.01])
+    att_sd = np.array([0.05, 0.05, 0.5]) * D2R
+    d_pos, d_vel, d_att = np.zeros(3), np.zeros(3), np.zeros(3)
+    if init_errors:
+        r2 = np.random.default_rng([seed, 1])
+        d_pos, d_vel, d_att = (r2.normal(0, 1, 3) * sd for sd in (pos_sd, vel_sd, att_sd))
     cfg = SensorConfig(noise=noise, lever_arm_m=tuple(float(v) for v in lever_arm_m),
-                       init_pos=(float(lat[0]), float(lon[0]), float(h[0])),
-                       init_vel=tuple(float(v) for v in vn[0]),
-                       init_att=(float(phi[0]), float(theta[0]), float(psi[0])),
-                       init_pos_std=(0.02, 0.02, 0.04), init_vel_std=(0.01, 0.01, 0.01),
-                       init_att_std=(0.05 * D2R, 0.05 * D2R, 0.5 * D2R),
+                       init_pos=(float(lat[0] + d_pos[0] / (rm[0] + h[0])),
+                                 float(lon[0] + d_pos[1] / ((rn[0] + h[0]) * np.cos(lat[0]))),
+                                 float(h[0] - d_pos[2])),
+                       init_vel=tuple(float(v) for v in vn[0] + d_vel),
+                       init_att=(float(phi[0] + d_att[0]), float(theta[0] + d_att[1]),
+                                 float(psi[0] + d_att[2])),
+                       init_pos_std=tuple(map(float, pos_sd)),
+                       init_vel_std=tuple(map(float, vel_sd)),
+                       init_att_std=tuple(map(float, att_sd)),
                        start_time=t0, imu_rate_hz=imu_rate_hz, source="simulation")
     return {"imu": imu, "gnss": gnss, "truth": truth, "config": cfg, "errors": errors}

@@ -161,10 +161,11 @@ def test_compiled_csv_parser_returns_the_generic_readers_doubles(tmp_path, monke
     path = tmp_path / "attitude.csv"
     path.write_bytes(("time,roll,pitch,heading,heave\n" + text).replace(
         "\n", newline).encode()[: -len(newline)] + last.encode())
-    names, header = fastcsv._header(path)
+    names, header = shared_fastcsv._header(path)
     keep = ["time", "roll", "pitch", "heave"]
     from hydrosync_core import plausible
-    compiled = fastcsv._read_compiled(path, names, header, names, keep, plausible.ATTITUDE, 2)
+    compiled = shared_fastcsv._read_compiled(path, names, header, names, keep,
+                                             plausible.ATTITUDE, 2)
     assert compiled is not None  # the compiled parser took this file
     slow = survey_csv.read_attitude_csv(path)
     for key in keep:
@@ -185,9 +186,9 @@ def test_compiled_csv_parser_returns_the_generic_readers_doubles(tmp_path, monke
 def test_compiled_csv_parser_leaves_other_shapes_to_the_general_readers(tmp_path, body):
     path = tmp_path / "gnss.csv"
     path.write_text(body)
-    names, header = fastcsv._header(path)
+    names, header = shared_fastcsv._header(path)
     from hydrosync_core import plausible
-    assert fastcsv._read_compiled(path, names, header, ["time", "height"],
+    assert shared_fastcsv._read_compiled(path, names, header, ["time", "height"],
                                   ["time", "height"], plausible.GNSS, 2) is None
     fast, slow = fastcsv.read_gnss_csv(path), survey_csv.read_gnss_csv(path)
     for key in slow:

@@ -18,13 +18,7 @@ from pathlib import Path
 import numpy as np
 
 from hydrosync_core import plausible
-from hydrosync_core.importers.fastcsv import (  # noqa: F401 - re-exported for callers/tests
-    COMPILED_CHUNK,
-    PIECE_BYTES,
-    _header,
-    _read_compiled,
-    read_numeric_fast,
-)
+from hydrosync_core.importers.fastcsv import read_numeric_fast
 
 
 def read_gnss_csv(path: str | os.PathLike) -> dict[str, np.ndarray]:

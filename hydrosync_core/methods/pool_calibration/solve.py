@@ -68,8 +68,8 @@ REMEDY = {
 def _budget(fit) -> dict[str, dict[str, float | None]]:
     """σ budget of the joint fit in user units (° for angles, m for the lever arm)."""
     out = {}
+    scale = np.array([np.degrees(1.0)] * 3 + [1.0] * 3)
     for source, sig in fit.budget.items():
-        scale = np.array([np.degrees(1.0)] * 3 + [1.0] * 3)
         out[source] = {n: (None if not np.isfinite(v) else float(v * f))
                        for n, v, f in zip(NAMES, sig, scale, strict=True)}
     return out

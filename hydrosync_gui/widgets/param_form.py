@@ -95,6 +95,11 @@ class _Editor(QWidget):
             spin.valueChanged.connect(self.sig_changed)
         if m.unit:
             spin.setSuffix(f" {m.unit}")
+        # An unbounded range sizes the box for "-1000000000000.000": three of them (a
+        # tuple) pushed the form wider than its column and forced a horizontal scroll bar.
+        sample = "−000." + "0" * m.decimals if kind == "float" else "−00000"
+        digits = spin.fontMetrics().horizontalAdvance(sample)
+        spin.setMinimumWidth(min(spin.minimumSizeHint().width(), digits + 20))
         return spin
 
     def _make_parts(self, info: FieldInfo) -> list[QWidget]:

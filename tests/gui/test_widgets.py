@@ -116,3 +116,18 @@ def test_task_status_follows_the_latest_task(qtbot):
     assert cancelled == ["a"]
     status.end("a")
     assert status.isHidden()
+
+
+def test_param_form_unbounded_tuple_fits_a_narrow_column(qtbot):
+    """An unbounded float range must not size a box for 13 digits: a lever arm's three boxes
+    fit beside their label in a 420 px column (the GNSS/INS panel at 1366 px scrolled
+    sideways before)."""
+    form = ParamForm(DemoParams)
+    qtbot.addWidget(form)
+    form.set_params({"arm": [0.0, 0.0, 0.0]})
+    arm = form.editors["arm"]
+    widths = [part.minimumWidth() or part.minimumSizeHint().width() for part in arm.parts]
+    assert max(widths) < 100
+    assert arm.minimumSizeHint().width() < 330
+    form.set_params({"arm": [-123.456, 0.0, 999.999]})
+    assert form.values()["arm"] == (-123.456, 0.0, 999.999)  # narrow, still every digit kept

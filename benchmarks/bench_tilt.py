@@ -26,6 +26,7 @@ import numpy as np
 
 from hydrosync_core.methods.tilt_alignment.montecarlo import run_monte_carlo, statistics
 from hydrosync_core.methods.tilt_alignment.params import TiltParams
+from hydrosync_core.methods.tilt_alignment.simulate import GRADES
 
 ORDER = ("mbgd", "bgd", "sgd", "svd", "closed_form", "joint")
 
@@ -79,6 +80,16 @@ def main() -> None:
                   f"{1000 * s['h_max_m']:>8.1f} {1000 * s['v_rms_m']:>8.1f} "
                   f"{_pct(s['coverage_e'])}/{_pct(s['coverage_n'])}/{_pct(s['coverage_u'])} "
                   f"{100 * s['warned']:>5.0f}% {_pct(s['h_within_1cm_quiet']):>8}%")
+    if "joint" in args.methods.split(","):
+        print("joint by IMU grade (accelerometer bias 1σ; the issue's example is 'mems'):")
+        for k, (grade, (_, _, _, bias)) in enumerate(GRADES.items()):
+            for label, mask in (("<40°", tilt < 40.0), ("40-60°", tilt >= 40.0)):
+                s = statistics(mc, "joint", mask & (mc["imu_grade"] == k))
+                print(f"  {grade:<11} {bias:5.3f} m/s² {label:<7} {s['runs']:>4} runs, "
+                      f"H≤1cm {100 * s['h_within_1cm']:3.0f}%, H max "
+                      f"{1000 * s['h_max_m']:5.1f} mm, H RMS {1000 * s['h_rms_m']:4.1f} mm, "
+                      f"warned {100 * s['warned']:3.0f}%, quiet≤1cm "
+                      f"{_pct(s['h_within_1cm_quiet'])}%")
     j = np.hypot(mc["joint_tip_err_e"], mc["joint_tip_err_n"])
     worst = np.argsort(np.nan_to_num(j, nan=np.inf))[-5:][::-1]
     print("joint: worst horizontal tip errors (mm) and the shot tilt (deg): "

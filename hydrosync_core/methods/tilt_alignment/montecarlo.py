@@ -15,7 +15,7 @@ import numpy as np
 from hydrosync_core.methods.tilt_alignment.geometry import yaw_of
 from hydrosync_core.methods.tilt_alignment.params import METHODS, TiltParams
 from hydrosync_core.methods.tilt_alignment.pipeline import solve_record
-from hydrosync_core.methods.tilt_alignment.simulate import random_config, simulate_swing
+from hydrosync_core.methods.tilt_alignment.simulate import GRADES, random_config, simulate_swing
 from hydrosync_core.progress import check_cancel, report
 
 
@@ -51,14 +51,15 @@ def run_monte_carlo(n_runs: int, params: TiltParams, seed: int = 0,
 
     Returns
     -------
-    dict: ``run``, ``hold_tilt_deg``, ``max_tilt_deg``, ``pole_length_m`` and per method
+    dict: ``run``, ``hold_tilt_deg``, ``max_tilt_deg``, ``pole_length_m``, ``imu_grade``
+    (index into :data:`.simulate.GRADES`, −1 when the noise matches no grade) and per method
     ``<m>_heading_err_deg``, ``<m>_tip_err_e``, ``_n``, ``_u`` (m) and the tip σ the method
     reported, ``<m>_tip_std_e``, ``_n``, ``_u`` (m), and ``<m>_warned`` (1 when the method
     warned that its tip is weaker than the tolerance).
     """
     rng = np.random.default_rng(seed)
     cols: dict[str, list] = {"run": [], "hold_tilt_deg": [], "max_tilt_deg": [],
-                             "pole_length_m": []}
+                             "pole_length_m": [], "imu_grade": []}
     for m in METHODS:
         for k in ("heading_err_deg", "tip_err_e", "tip_err_n", "tip_err_u", "tip_std_e",
                   "tip_std_n", "tip_std_u", "warned"):
@@ -74,6 +75,7 @@ def run_monte_carlo(n_runs: int, params: TiltParams, seed: int = 0,
         cols["hold_tilt_deg"].append(sim["truth"]["hold_tilt_deg"])
         cols["max_tilt_deg"].append(sim["truth"]["max_tilt_deg"])
         cols["pole_length_m"].append(cfg.pole_length_m)
+        cols["imu_grade"].append(_grade_index(cfg))
         for m in METHODS:
             he, te, ts, warned = res[m]
             cols[f"{m}_heading_err_deg"].append(he)
@@ -83,6 +85,14 @@ def run_monte_carlo(n_runs: int, params: TiltParams, seed: int = 0,
                 cols[f"{m}_tip_std_{a}"].append(ts[i])
         report(progress, (r + 1) / max(n_runs, 1), f"Monte-Carlo run {r + 1}/{n_runs}")
     return {k: np.asarray(v, float) for k, v in cols.items()}
+
+
+def _grade_index(cfg) -> int:
+    """Which of :data:`.simulate.GRADES` the record's gyro and accelerometer noise is."""
+    for k, (gn, _, an, _) in enumerate(GRADES.values()):
+        if (gn, an) == (cfg.gyro_noise_deg_s_rthz, cfg.accel_noise_m_s2_rthz):
+            return k
+    return -1
 
 
 def statistics(mc: dict[str, np.ndarray], method: str, mask: np.ndarray | None = None

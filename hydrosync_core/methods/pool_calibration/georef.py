@@ -130,18 +130,3 @@ def georeference(ctx: GeorefContext, r_m: np.ndarray, lever: np.ndarray,
         p = ctx.ping[sl]
         out[start:start + chunk] = ctx.origin[p] + np.einsum("nij,nj->ni", ctx.rot[p], body)
     return out
-
-
-def beam_directions(ctx: GeorefContext, r_m: np.ndarray, chunk: int = 500_000) -> np.ndarray:
-    """Unit beam directions (n, 3) in target ENU of the kept soundings: ``C R_b R_m x̂_m``.
-
-    A sounding's range error lies along this direction (the multibeam measures a range
-    along the beam).
-    """
-    out = np.empty((len(ctx.x_m), 3))
-    for start in range(0, len(ctx.x_m), chunk):
-        sl = slice(start, start + chunk)
-        body = ctx.x_m[sl] @ r_m.T
-        body /= np.maximum(np.linalg.norm(body, axis=1, keepdims=True), 1e-12)
-        out[sl] = np.einsum("nij,nj->ni", ctx.rot[ctx.ping[sl]], body)
-    return out

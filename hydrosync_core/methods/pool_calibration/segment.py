@@ -177,79 +177,34 @@ def band_refit(pts: np.ndarray, start: np.ndarray, k_sigma: float, limit: float,
     return sel
 
 
-def _water_side(pts: np.ndarray, water_level: float, margin: float, below: bool
-                ) -> np.ndarray:
-    """Mask of *pts* (n, 3, ENU m) more than *margin* m on the sensor's side of the water."""
-    return pts[:, 2] < water_level - margin if below else pts[:, 2] > water_level + margin
-
-
-def _on_plane_along_beam(pts: np.ndarray, dist: np.ndarray, dirs: np.ndarray,
-                         normal: np.ndarray, max_step: float, min_cos: float = 0.05
-                         ) -> tuple[np.ndarray, np.ndarray]:
-    """Where each point's beam meets the plane at signed distance *dist* (m) from it.
-
-    *pts* (n, 3) and *dirs* (n, 3, unit) ENU. Returns the points moved along their beams
-    onto the plane and a mask of those that belong to it: a sounding whose beam meets
-    the plane more than *max_step* m away is not a noisy sample of this face (a
-    neighbouring face's sounding close to a perpendicular face, which lies along the
-    beams). A beam within acos(*min_cos*) of grazing keeps its point: its range noise
-    hardly reaches the plane's normal.
-    """
-    cos = dirs @ normal
-    steep = np.abs(cos) >= min_cos
-    step = np.where(steep, dist / np.where(steep, cos, 1.0), 0.0)
-    return pts - step[:, None] * dirs, np.abs(step) <= max_step
-
-
 def segment_cloud(points: np.ndarray, faces: list[DesignFace], water_level: float,
                   side: str, *, tol: float = 0.3, margin: float = 0.1,
                   water_margin: float = 0.1, ransac_m: float = 0.05, dbscan_eps: float = 0.3,
                   min_points: int = 10, max_points: int = 20000, max_angle_deg: float = 15.0,
-                  band_sigma: float = 0.0, seed: int = 0, beams: np.ndarray | None = None,
-                  progress=None, cancel=None) -> dict[str, FaceSegment]:
+                  band_sigma: float = 0.0, seed: int = 0, progress=None,
+                  cancel=None) -> dict[str, FaceSegment]:
     """Segment *points* (N, 3, target ENU, m) into *faces*.
 
     *side* is ``"above"`` (laser) or ``"below"`` (multibeam). The polygon shrink *margin*
     is capped at half the face's inradius, so small faces keep a core. With ``band_sigma > 0`` the
     RANSAC/DBSCAN selection is replaced by the symmetric band of :func:`band_refit`
-    (±band_sigma robust σ about the face's own TLS plane, within the crop). With *beams*
-    (N, 3, unit vectors ENU: each point's beam direction) the polygon and water-line tests
-    use where the beam meets the face's plane instead of the point itself: a sounding's
-    range noise lies along its beam, so on an oblique face it moves the point both across
-    the plane and along it, and a cut on the noisy position near an edge keeps the points
-    whose noise leans one way (a bias of several σ in the weakly determined yaw/along-track
-    lever arm of a single-range pass). Returns a :class:`FaceSegment` per face name
-    (possibly empty).
+    (±band_sigma robust σ about the face's own TLS plane, within the crop). Returns a
+    :class:`FaceSegment` per face name (possibly empty).
     """
     rng = np.random.default_rng(seed)
     cand = np.flatnonzero(bbox_mask(points, faces, tol))
     pts = points[cand]
-    below = side != "above"
-    if beams is None:
-        ok = _water_side(pts, water_level, water_margin, below)
-        cand, pts = cand[ok], pts[ok]
+    if side == "above":
+        ok = pts[:, 2] > water_level + water_margin
     else:
-        dirs = beams[cand]
+        ok = pts[:, 2] < water_level - water_margin
+    cand, pts = cand[ok], pts[ok]
     out = {}
     for k, face in enumerate(faces):
         check_cancel(cancel)
-        dist = pts @ face.normal - face.d
-        idx = np.flatnonzero(np.abs(dist) < tol)
-        where = pts[idx]
-        shrink = min(margin, 0.5 * inradius(face))
-        if beams is not None and len(idx):
-            # Offsets from the face's soundings' own level, not the design plane's: what
-            # is left of the misfit of the parameters (a lever arm still centimetres off)
-            # is not noise along the beam, and divided by a grazing beam's cosine it would
-            # move every sounding of the face out of it. The level is taken inside the
-            # polygon: the band also holds the neighbouring faces' soundings.
-            core = inside_polygon(face, where, shrink)
-            level = np.median(dist[idx[core]] if core.any() else dist[idx])
-            where, ok = _on_plane_along_beam(where, dist[idx] - level, dirs[idx],
-                                             face.normal, tol / 2)
-            ok &= _water_side(where, water_level, water_margin, below)
-            idx, where = idx[ok], where[ok]
-        idx = idx[inside_polygon(face, where, shrink)]
+        near = np.abs(pts @ face.normal - face.d) < tol
+        idx = np.flatnonzero(near)
+        idx = idx[inside_polygon(face, pts[idx], min(margin, 0.5 * inradius(face)))]
         cropped = len(idx)
         if len(idx) > max_points:
             idx = np.sort(rng.choice(idx, max_points, replace=False))

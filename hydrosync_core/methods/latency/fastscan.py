@@ -101,7 +101,41 @@ def _sums_py(tags, w, ta, ha, dts, step):  # pragma: no cover - compiled below
 _sums = njit(cache=True, nogil=True)(_sums_py) if njit is not None else None
 
 
-def _lattice_sums_py(x, w, H, L, K):  # pragma: no cover - compiled below
+def _row_py(acc, c0, c1, c2, c3, v0, v1, v2, v3, n):  # pragma: no cover - compiled below
+    """``acc[:n] += c0·v0 + c1·v1 + c2·v2 + c3·v3``, element by element in that order."""
+    for i in range(n):
+        acc[i] += c0 * v0[i] + c1 * v1[i] + c2 * v2[i] + c3 * v3[i]
+
+
+def _combine_py(tf, t1, t2, a, u, g, off, n):  # pragma: no cover - compiled below
+    """One residue's share of F, S1, S2 at ``n`` candidates of one phase (see below)."""
+    a0, a1, a2, a3, a4 = a[0], a[1], a[2], a[3], a[4]
+    a5, a6, a7, a8, a9 = a[5], a[6], a[7], a[8], a[9]
+    for kap in range(n):
+        li = kap + off
+        tf[kap] += u * a0[li] - a1[li] + g * a0[li - 1] + a1[li - 1]
+        t1[kap] += u * a2[li] - a3[li] + g * a2[li - 1] + a3[li - 1]
+        t2[kap] += (u * u * a4[li] - 2.0 * u * a5[li] + a6[li]
+                    + 2.0 * (g * u * a7[li] + (1.0 - 2.0 * g) * a8[li] - a9[li])
+                    + g * g * a4[li - 1] + 2.0 * g * a5[li - 1] + a6[li - 1])
+
+
+if njit is not None:
+    # Inlined: a call per row would cost more than the row on short grids.
+    _row = njit(nogil=True, inline="always")(_row_py)
+    _combine = njit(nogil=True, inline="always")(_combine_py)
+
+SPLIT_MIN_LAGS = 16
+"""Lags from which :func:`_lattice_sums_py` updates each accumulator row in its own loop.
+
+With the ten rows updated in one loop LLVM cannot show that they do not overlap the heave
+arrays and emits scalar code; one row per loop it vectorises (with a run-time overlap
+check), which halves a 2001-candidate scan. Short lag ranges (the refinement's grid) keep
+the single loop, whose overhead is lower there. Both give the same sums to the last bit:
+every element sees the same operations in the same order."""
+
+
+def _lattice_sums_py(x, w, H, L, K, split_min):  # pragma: no cover - compiled below
     """Kernel of :func:`correlation_sums` on a uniform attitude grid (see LATTICE_TOLERANCE).
 
     *x*: epoch positions ``(tag − dts[0] − ta[0]) / step`` in steps; *H*: heave at the
@@ -111,6 +145,7 @@ def _lattice_sums_py(x, w, H, L, K):  # pragma: no cover - compiled below
     ``g = ((r − ρ) mod L)/L`` depend on (r, ρ) only. So per residue r the sums are
     correlations over the lag λ = κ + c of per-epoch weights (w, w·e, 1, e, e², e = ε/L)
     with H, H² and H_j·H_{j+1} — dense, contiguous loops — combined per candidate at the end.
+    *split_min*: see SPLIT_MIN_LAGS.
     """
     m = H.size
     kk = (K - 1) // L
@@ -169,6 +204,24 @@ def _lattice_sums_py(x, w, H, L, K):  # pragma: no cover - compiled below
             e0, e1, e2, e3 = c[0, 3], c[1, 3], c[2, 3], c[3, 3]
             f0, f1, f2, f3 = c[0, 4], c[1, 4], c[2, 4], c[3, 4]
             b0, b1, b2, b3 = b[0], b[1], b[2], b[3]
+            if nl >= split_min:
+                hr0, hr1 = Hr[b0:b0 + nl], Hr[b1:b1 + nl]
+                hr2, hr3 = Hr[b2:b2 + nl], Hr[b3:b3 + nl]
+                gr0, gr1 = H2r[b0:b0 + nl], H2r[b1:b1 + nl]
+                gr2, gr3 = H2r[b2:b2 + nl], H2r[b3:b3 + nl]
+                pr0, pr1 = Pr[b0:b0 + nl], Pr[b1:b1 + nl]
+                pr2, pr3 = Pr[b2:b2 + nl], Pr[b3:b3 + nl]
+                _row(a[0], w0, w1, w2, w3, hr0, hr1, hr2, hr3, nl)
+                _row(a[1], x0, x1, x2, x3, hr0, hr1, hr2, hr3, nl)
+                _row(a[2], o0, o1, o2, o3, hr0, hr1, hr2, hr3, nl)
+                _row(a[3], e0, e1, e2, e3, hr0, hr1, hr2, hr3, nl)
+                _row(a[4], o0, o1, o2, o3, gr0, gr1, gr2, gr3, nl)
+                _row(a[5], e0, e1, e2, e3, gr0, gr1, gr2, gr3, nl)
+                _row(a[6], f0, f1, f2, f3, gr0, gr1, gr2, gr3, nl)
+                _row(a[7], o0, o1, o2, o3, pr0, pr1, pr2, pr3, nl)
+                _row(a[8], e0, e1, e2, e3, pr0, pr1, pr2, pr3, nl)
+                _row(a[9], f0, f1, f2, f3, pr0, pr1, pr2, pr3, nl)
+                continue
             for li in range(nl):
                 h0 = Hr[b0 + li]
                 h1 = Hr[b1 + li]
@@ -193,6 +246,29 @@ def _lattice_sums_py(x, w, H, L, K):  # pragma: no cover - compiled below
                 a[8, li] += e0 * p0 + e1 * p1 + e2 * p2 + e3 * p3
                 a[9, li] += f0 * p0 + f1 * p1 + f2 * p2 + f3 * p3
         start = stop
+    if nl >= split_min:
+        # Candidate by candidate below; here phase by phase (k = L·κ + ρ, ρ fixed): the
+        # rows are read contiguously in κ. Each candidate still sums its residues in order.
+        F = np.empty(K)
+        S1 = np.empty(K)
+        S2 = np.empty(K)
+        tf = np.empty(kk + 1)
+        t1 = np.empty(kk + 1)
+        t2 = np.empty(kk + 1)
+        for rho in range(min(L, K)):
+            nk = (K - 1 - rho) // L + 1
+            tf[:nk] = 0.0
+            t1[:nk] = 0.0
+            t2[:nk] = 0.0
+            for r in range(L):
+                cr = 1 if r < rho else 0
+                g = (r - rho + cr * L) / L
+                _combine(tf, t1, t2, acc[r], 1.0 - g, g, cr + 1, nk)
+            for kap in range(nk):
+                F[kap * L + rho] = tf[kap]
+                S1[kap * L + rho] = t1[kap]
+                S2[kap * L + rho] = t2[kap]
+        return F, S1, S2
     F = np.zeros(K)
     S1 = np.zeros(K)
     S2 = np.zeros(K)
@@ -222,6 +298,7 @@ def _lattice_sums_py(x, w, H, L, K):  # pragma: no cover - compiled below
 
 _lattice_sums = (njit(cache=True, nogil=True)(_lattice_sums_py) if njit is not None
                  else None)
+
 
 def _departure_py(ta, interval):  # pragma: no cover - compiled below
     """Largest |ta[j] − ta[0] − j·interval| (s)."""
@@ -297,7 +374,8 @@ def correlation_sums(tags: np.ndarray, w: np.ndarray, t_att: np.ndarray, h_att: 
     lattice = _lattice(tags, t_att, dts, step)
     if lattice is not None:
         x, L = lattice
-        return _lattice_sums(x, w, np.ascontiguousarray(h_att, dtype=float), L, dts.size)
+        return _lattice_sums(x, w, np.ascontiguousarray(h_att, dtype=float), L, dts.size,
+                             SPLIT_MIN_LAGS)
     return _sums(np.ascontiguousarray(tags, dtype=float), np.ascontiguousarray(w, dtype=float),
                  np.ascontiguousarray(t_att, dtype=float),
                  np.ascontiguousarray(h_att, dtype=float),

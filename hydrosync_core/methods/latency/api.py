@@ -21,6 +21,7 @@ from hydrosync_core.methods.latency.detrend import detrend
 from hydrosync_core.methods.latency.diagnose import diagnose
 from hydrosync_core.methods.latency.heave import total_heave, total_heave_deg
 from hydrosync_core.methods.latency.lines import (
+    LinePeak,
     attitude_window,
     line_epochs,
     prepare_line,
@@ -115,43 +116,30 @@ def implausible_uncertainty(unc: np.ndarray, used: np.ndarray, limit_s: float) -
 
 
 SCAN_THREADS = 2
-"""Lines scanned concurrently (the compiled kernel releases the GIL)."""
+"""Lines processed concurrently (the compiled kernels and the FFTs release the GIL)."""
 
 
 class _Attitude:
-    """Total heave (eq. 2) of the attitude records, computed per line window on demand.
+    """Attitude records and lever arm: total heave (eq. 2) of line windows on demand.
 
     A day of 100 Hz attitude is ~10⁷ records: the whole-day total heave would be one more
-    80 MB array; the windows the lines need are computed when a line needs them. With a
-    *response* (callable of f in Hz) the window is padded by ``prefilter.PAD_S`` seconds
-    of records, filtered zero-phase and cropped back (anti-alias / coherence weighting).
+    80 MB array; the windows the lines need are computed when a line needs them.
     """
 
-    def __init__(self, att: dict, arm: np.ndarray, response=None, interval: float = 0.0):
+    def __init__(self, att: dict, arm: np.ndarray):
         self.t, self.att, self.arm = att["time"], att, arm
-        self.response, self.interval = response, interval
-        self.cache: dict = {}  # the response per FFT length (prefilter.fft_filter)
 
-    def window(self, tags: np.ndarray, lo: float, hi: float) -> tuple[np.ndarray, np.ndarray]:
-        """(times, total heave) of the records needed for ``tags − Δt``, Δt in [lo, hi]."""
-        if tags.size == 0:
-            return self.t[:0], self.t[:0]
-        win = attitude_window(self.t, tags, lo, hi)
-        if self.response is not None:
-            from hydrosync_core.methods.latency.prefilter import PAD_S
-
-            pad = int(round(PAD_S / self.interval))
-            win = slice(max(win.start - pad, 0), min(win.stop + pad, self.t.size))
-        a = self.att
-        h = total_heave_deg(a["heave"][win], a["roll"][win], a["pitch"][win], self.arm)
-        if self.response is None:
-            return self.t[win], h
-        from hydrosync_core.methods.latency.prefilter import fft_filter
-
+    def windows(self, tags: np.ndarray, lo: float, hi: float, pad: int = 0
+                ) -> tuple[slice, slice]:
+        """(records needed for ``tags − Δt``, Δt in [lo, hi]; the same widened by *pad*
+        records on each side, for filtering)."""
         inner = attitude_window(self.t, tags, lo, hi)
-        crop = slice(inner.start - win.start, inner.stop - win.start)
-        return self.t[inner], fft_filter(h, self.interval, self.response, self.cache)[crop]
+        return inner, slice(max(inner.start - pad, 0), min(inner.stop + pad, self.t.size))
 
+    def heave(self, win: slice) -> np.ndarray:
+        """Total heave (m, up) of the records *win*."""
+        a = self.att
+        return total_heave_deg(a["heave"][win], a["roll"][win], a["pitch"][win], self.arm)
 
     def at(self, times: np.ndarray) -> np.ndarray:
         """Total heave linearly interpolated at *times* (eq. 3), unfiltered.
@@ -163,6 +151,23 @@ class _Attitude:
 
         a = self.att
         return total_heave_at(times, self.t, a["heave"], a["roll"], a["pitch"], self.arm)
+
+
+@dataclasses.dataclass
+class _LineWork:
+    """What the weighted estimator's later passes need of one line's first pass.
+
+    Kept between the passes instead of recomputed: the line's window, the spectrum of its
+    padded total heave (only the bins below the GNSS Nyquist frequency, where the
+    coherence weight can be non-zero: ~10 % of them at 10 Hz GNSS and 100 Hz attitude)
+    and its anti-aliased total heave (for the pooled spectra, about 50 MB for a survey
+    day of 500 two-minute lines, dropped once the weighting is known).
+    """
+
+    inner: slice
+    padded: slice
+    spectrum: object  # prefilter.Spectrum
+    antialiased: np.ndarray | None
 
 
 def _filtered_line(line, t_g: np.ndarray, hgt: np.ndarray, response, interval: float,
@@ -180,9 +185,15 @@ def _filtered_line(line, t_g: np.ndarray, hgt: np.ndarray, response, interval: f
     return dataclasses.replace(line, h=h, warnings=line.warnings)
 
 
-def _pooled_weighting(prepared: list, peaks: list, source: _Attitude, min_r: float,
-                      g_int: float):
-    """Coherence weighting from all usable lines, aligned at the median first-pass delay."""
+def _pooled_weighting(prepared: list, peaks: list, works: list, t_att: np.ndarray,
+                      min_r: float, g_int: float):
+    """Coherence weighting from all usable lines, aligned at the median first-pass delay.
+
+    The anti-aliased heave at ``tags − Δt0`` comes from each line's first-pass window
+    (*works*), filtered once for the whole scan range: it differs from a window filtered
+    around Δt0 alone only by the filter's tail beyond the PAD_S padding (~1e-11 m; the
+    day's Δt changes by < 1e-10 s).
+    """
     from hydrosync_core.methods.latency.prefilter import pooled_weighting
 
     good = [i for i, (ln, pk) in enumerate(zip(prepared, peaks, strict=True))
@@ -193,9 +204,9 @@ def _pooled_weighting(prepared: list, peaks: list, source: _Attitude, min_r: flo
     dt0 = float(np.median([peaks[i].latency_s for i in sel]))
     pairs = []
     for i in good:
-        ln = prepared[i]
-        ta, ha = source.window(ln.tags, dt0, dt0)
-        pairs.append((ln.h, heave_at(ln.tags, np.array([dt0]), ta, ha)[0]))
+        ln, work = prepared[i], works[i]
+        pairs.append((ln.h, heave_at(ln.tags, np.array([dt0]), t_att[work.inner],
+                                     work.antialiased)[0]))
     return pooled_weighting(pairs, g_int)
 
 
@@ -213,9 +224,10 @@ WINDOW_SIGMAS = 10.0
 """Half-width of the window in the line's own σ (qi2010 pass), when that is wider."""
 
 
-def _scan_one(line, source: _Attitude, dts: np.ndarray, uncertainty: bool = True,
-              window: tuple[int, int] | None = None):
-    ta, ha = source.window(line.tags, float(dts[0]), float(dts[-1]))
+def _scan(line, ta: np.ndarray, ha: np.ndarray, dts: np.ndarray, uncertainty: bool = True,
+          window: tuple[int, int] | None = None):
+    """:func:`scan_line` of one line on its attitude window (times *ta*, heave *ha*), or
+    :func:`scan_line_window` over the candidates *window* when that settles the peak."""
     if window is not None:
         peak = scan_line_window(line, ta, ha, dts, *window, uncertainty=uncertainty)
         if peak is not None:
@@ -256,30 +268,154 @@ def _scan_windows(first: list, hints, dts: np.ndarray) -> list:
     return out
 
 
-def _scan_lines(prepared: list, source: _Attitude, dts: np.ndarray, progress, cancel,
-                uncertainty: bool = True, windows: list | None = None) -> list:
-    """:func:`scan_line` of every line, in order, on up to SCAN_THREADS threads.
-
-    *windows*: per line None (every candidate) or ``(k0, k1)`` (:func:`scan_line_window`,
-    with the full scan when the window fails its checks).
-    """
+def _per_line(task, count: int, names: list, progress, cancel) -> list:
+    """``task(i)`` for every line index, in order, on up to SCAN_THREADS threads."""
     from concurrent.futures import ThreadPoolExecutor
 
-    windows = windows or [None] * len(prepared)
-    peaks = []
+    out = []
     with ThreadPoolExecutor(SCAN_THREADS) as pool:
-        futures = [pool.submit(_scan_one, line, source, dts, uncertainty, win)
-                   for line, win in zip(prepared, windows, strict=True)]
+        futures = [pool.submit(task, i) for i in range(count)]
         try:
             for i, future in enumerate(futures):
                 check_cancel(cancel)
-                report(progress, i / len(futures), f"line {prepared[i].name}")
-                peaks.append(future.result())
+                report(progress, i / max(count, 1), f"line {names[i]}")
+                out.append(future.result())
         except BaseException:
             for future in futures:
                 future.cancel()
             raise
-    return peaks
+    return out
+
+
+def _unscanned(dts: np.ndarray) -> LinePeak:
+    """What :func:`scan_line` gives a line that is not usable."""
+    return LinePeak(np.full(dts.size, np.nan))
+
+
+def _first_passes(setup: _Setup, raw: list | None, antialias: list | None, progress, cancel,
+                  aa_sigma: bool = True, keep: bool = False):
+    """The scans on the raw total heave (qi2010) and on the anti-aliased one, line by line.
+
+    *raw* / *antialias*: the lines (:class:`LineData`, one list per estimator, their
+    warnings their own) to scan with that heave, or None to skip that scan. Each line's
+    total heave is computed once, on the window padded for filtering, and serves both.
+    *aa_sigma*: the anti-aliased scan's uncertainty; *keep*: return each line's
+    :class:`_LineWork` for the weighted passes (else None). Returns ``(raw peaks,
+    anti-aliased peaks, works)``, lists (None for a scan skipped).
+    """
+    from hydrosync_core.methods.latency import prefilter
+
+    dts, a_int = setup.dts, setup.a_int
+    source = _Attitude(setup.att, setup.arm)
+    pad = int(round(prefilter.PAD_S / a_int)) if antialias is not None else 0
+    cutoff = prefilter.ANTIALIAS_FRACTION * 0.5 / setup.g_int
+    aa_cache: dict = {}
+
+    def response(f):
+        return prefilter.antialias_response(f, cutoff)
+
+    def task(i: int):
+        lead = (raw or antialias)[i]
+        if not lead.usable:
+            return _unscanned(dts), _unscanned(dts), None
+        inner, padded = source.windows(lead.tags, float(dts[0]), float(dts[-1]), pad)
+        h = source.heave(padded)
+        crop = slice(inner.start - padded.start, inner.stop - padded.start)
+        ta = source.t[inner]
+        pk_raw = pk_aa = work = None
+        if raw is not None:
+            pk_raw = _scan(raw[i], ta, h[crop], dts)
+        if antialias is not None:
+            spec = prefilter.spectrum(h)
+            del h
+            ha = prefilter.filtered(spec, prefilter.response_gains(response, spec.size, a_int,
+                                                                   aa_cache), crop)
+            pk_aa = _scan(antialias[i], ta, ha, dts, uncertainty=aa_sigma)
+            if keep:
+                work = _LineWork(inner, padded, spec.head(_band_bins(spec.size, a_int,
+                                                                     setup.g_int)), ha)
+        return pk_raw, pk_aa, work
+
+    out = _per_line(task, len(setup.prepared), setup.names, progress, cancel)
+    raw_peaks = [o[0] for o in out] if raw is not None else None
+    aa_peaks = [o[1] for o in out] if antialias is not None else None
+    return raw_peaks, aa_peaks, [o[2] for o in out]
+
+
+def _band_bins(size: int, a_int: float, g_int: float) -> int:
+    """``rfft`` bins of *size* samples every *a_int* s up to the GNSS Nyquist frequency
+    ``0.5/g_int`` (and one more): beyond them the coherence weight is zero."""
+    return min(int(np.floor(0.5 / g_int * size * a_int * (1.0 + 1e-9))) + 2, size // 2 + 1)
+
+
+def _weighted_pass(setup: _Setup, p: LatencyParams, works: list, weighting, windows: list,
+                   progress, cancel) -> list:
+    """The weighted scan: heights and total heave filtered with the coherence weight.
+
+    The heave comes from each line's kept spectrum (:class:`_LineWork`), released as
+    the line is done.
+    """
+    from hydrosync_core.methods.latency import prefilter
+
+    dts, a_int, att = setup.dts, setup.a_int, setup.att
+    source = _Attitude(att, setup.arm)
+    gnss_cache: dict = {}
+    heave_cache: dict = {}
+    degree = int(p.detrend_degree)
+
+    def task(i: int):
+        line = setup.prepared[i]
+        if not line.usable:
+            return _unscanned(dts)
+        scan_input = _filtered_line(line, setup.t_g, setup.hgt, weighting.response,
+                                    setup.g_int, degree, gnss_cache)
+        work, works[i] = works[i], None
+        spec = work.spectrum
+        gains = prefilter.response_gains(weighting.response, spec.size, a_int, heave_cache)
+        if not spec.covers(gains[0]):  # a weight beyond the kept bins: the whole spectrum
+            spec = prefilter.spectrum(source.heave(work.padded))
+        crop = slice(work.inner.start - work.padded.start, work.inner.stop - work.padded.start)
+        ha = prefilter.filtered(spec, gains, crop)
+        return _scan(scan_input, source.t[work.inner], ha, dts, window=windows[i])
+
+    return _per_line(task, len(setup.prepared), setup.names, progress, cancel)
+
+
+def _weighted(setup: _Setup, p: LatencyParams, first: list, works: list, progress, cancel,
+              hints=None) -> tuple[list, list]:
+    """The weighted estimator's passes after its anti-aliased first pass *first*.
+
+    Returns ``(peaks, run warnings)``: the weighted peaks carrying the first pass's R
+    (curve, R_max), or the first pass's own peaks when the weighting is not possible.
+    """
+    weighting = _pooled_weighting(setup.prepared, first, works, setup.att["time"], p.min_r,
+                                  setup.g_int)
+    if weighting is None:
+        _add_uncertainty(setup, first, works)
+        return first, ["coherence weighting not possible (too few epochs): "
+                       "the anti-aliased correlation is used"]
+    for work in works:
+        if work is not None:
+            work.antialiased = None  # the pooled spectra are done: free it before the pass
+    peaks = _weighted_pass(setup, p, works, weighting, _scan_windows(first, hints, setup.dts),
+                           progress, cancel)
+    # R (the selection threshold, the curves shown) stays on the scale of the published
+    # R: the anti-aliased correlation; Δt and σ come from the weighted one.
+    for pk, pk1 in zip(peaks, first, strict=True):
+        pk.curve, pk.r_max = pk1.curve, pk1.r_max
+        pk.at_edge = pk.at_edge or pk1.at_edge
+    return peaks, []
+
+
+def _add_uncertainty(setup: _Setup, peaks: list, works: list) -> None:
+    """The σ of first-pass peaks scanned without it (same window, same Δt)."""
+    from hydrosync_core.methods.latency.correlation import peak_uncertainty
+
+    t_att = setup.att["time"]
+    for ln, pk, work in zip(setup.prepared, peaks, works, strict=True):
+        if ln.usable and np.isfinite(pk.latency_s) and not pk.at_edge:
+            pk.uncertainty_s = peak_uncertainty(ln.tags, ln.h, t_att[work.inner],
+                                                work.antialiased, pk.latency_s)
 
 
 def estimate_latency(
@@ -336,66 +472,45 @@ def _setup(gnss, attitude, lines, lever_arm, p: LatencyParams) -> _Setup:
         raise InputError("lines", "no survey lines")
     prepared = [prepare_line(name, starts[i], ends[i], t_g, hgt, t_att, p, g_int, a_int)
                 for i, name in enumerate(names)]
-    return _Setup(t_g, hgt, att, arm, dts, g_int, a_int, names, starts, ends, prepared)
-
-
-def _estimate(setup: _Setup, p: LatencyParams, progress, cancel, hints=None) -> LatencyResult:
-    """One estimator (not auto) from :func:`_setup`'s inputs.
-
-    *hints*: per-line ``(Δt, σ)`` of another estimator on the same lines (``auto`` gives
-    its qi2010 run's), used only to place the weighted pass's scan windows.
-    """
-    t_g, hgt, att, arm = setup.t_g, setup.hgt, setup.att, setup.arm
-    t_att = att["time"]
-    dts, g_int, a_int = setup.dts, setup.g_int, setup.a_int
-    names, starts, ends, prepared = setup.names, setup.starts, setup.ends, setup.prepared
-    lo, hi = p.range_s
-    # Seed eq. 2: total heave at the antenna, at attitude rate (per line window).
-    source = _Attitude(att, arm)
-    raw_source = source
-    weighting = None
-    if p.estimator != "qi2010":
-        from hydrosync_core.methods.latency import prefilter
-
-        cutoff = prefilter.ANTIALIAS_FRACTION * 0.5 / g_int
-        source = _Attitude(att, arm, lambda f: prefilter.antialias_response(f, cutoff), a_int)
-    # The weighted estimator keeps only R_max, Δt and the edge flag of its first pass:
-    # no σ there (unless the weighting proves impossible, then that pass is the answer).
-    weighted = p.estimator == "weighted"
-    first_sigma = not (weighted and WINDOWED_SCAN)
-    peaks = _scan_lines(prepared, source, dts,
-                        sub_progress(progress, 0, 0.45 if weighted else 0.9), cancel,
-                        uncertainty=first_sigma)
-    if weighted:
-        weighting = _pooled_weighting(prepared, peaks, source, p.min_r, g_int)
-        if weighting is None:
-            warnings_pre = ["coherence weighting not possible (too few epochs): "
-                            "the anti-aliased correlation is used"]
-            if not first_sigma:
-                _add_uncertainty(prepared, peaks, source, dts)
-        else:
-            warnings_pre = []
-            source = _Attitude(att, arm, weighting.response, a_int)
-            gnss_cache: dict = {}
-            scan_input = [_filtered_line(ln, t_g, hgt, weighting.response, g_int,
-                                         int(p.detrend_degree), gnss_cache)
-                          for ln in prepared]
-            first = peaks
-            peaks = _scan_lines(scan_input, source, dts, sub_progress(progress, 0.45, 0.9),
-                                cancel, windows=_scan_windows(first, hints, dts))
-            # R (the selection threshold, the curves shown) stays on the scale of the
-            # published R: the anti-aliased correlation; Δt and σ come from the weighted one.
-            for pk, pk1 in zip(peaks, first, strict=True):
-                pk.curve, pk.r_max = pk1.curve, pk1.r_max
-                pk.at_edge = pk.at_edge or pk1.at_edge
-    else:
-        warnings_pre = []
+    setup = _Setup(t_g, hgt, att, arm, dts, g_int, a_int, names, starts, ends, prepared)
     if not any(line.usable for line in prepared):
         raise InputError("lines", f"no line has {p.min_epochs} or more GNSS epochs with attitude "
                          "data: lines span " + _span_text(np.r_[starts, ends])
                          + ", GNSS " + _span_text(t_g) + ", attitude " + _span_text(t_att)
                          + " (lines must be on the loggers' time scale)")
+    return setup
 
+
+def _estimate(setup: _Setup, p: LatencyParams, progress, cancel) -> LatencyResult:
+    """One estimator (not auto) from :func:`_setup`'s inputs."""
+    if p.estimator == "qi2010":
+        peaks, _, _ = _first_passes(setup, setup.prepared, None,
+                                    sub_progress(progress, 0, 0.9), cancel)
+        return _finish(setup, p, peaks, [], progress, cancel)
+    weighted = p.estimator == "weighted"
+    # The weighted estimator keeps only R_max, Δt and the edge flag of its first pass:
+    # no σ there (unless the weighting proves impossible, then that pass is the answer).
+    _, first, works = _first_passes(setup, None, setup.prepared,
+                                    sub_progress(progress, 0, 0.45 if weighted else 0.9),
+                                    cancel, aa_sigma=not weighted, keep=weighted)
+    if not weighted:
+        return _finish(setup, p, first, [], progress, cancel)
+    peaks, warnings_pre = _weighted(setup, p, first, works, sub_progress(progress, 0.45, 0.9),
+                                    cancel)
+    return _finish(setup, p, peaks, warnings_pre, progress, cancel)
+
+
+def _finish(setup: _Setup, p: LatencyParams, peaks: list, warnings_pre: list, progress,
+            cancel, quality: bool = True) -> LatencyResult:
+    """An estimator's result from its per-line peaks: selection, combination, quality.
+
+    *quality* False leaves the lines' σ0 before/after NaN (:func:`_with_quality` adds
+    them): ``auto`` computes them for the estimator it keeps only.
+    """
+    att, arm, dts = setup.att, setup.arm, setup.dts
+    t_att = att["time"]
+    names, prepared = setup.names, setup.prepared
+    lo, hi = p.range_s
     r_max = np.array([pk.r_max for pk in peaks])
     lat = np.array([pk.latency_s for pk in peaks])
     unc = np.array([pk.uncertainty_s for pk in peaks])
@@ -425,21 +540,8 @@ def _estimate(setup: _Setup, p: LatencyParams, progress, cancel, hints=None) -> 
 
     check_cancel(cancel)
     report(progress, 0.92, "quality")
-    final = float(np.nan_to_num(comb.latency_s))
-
-    def quality(ln) -> tuple[float, float]:
-        if not ln.usable:
-            return float("nan"), float("nan")
-        # Seed eqs. 5–6 before (Δt = 0) and after (final Δt) synchronisation, always on
-        # the raw series (as published).
-        H0 = raw_source.at(np.concatenate([ln.tags, ln.tags - final])).reshape(2, -1)
-        after = sigma0(ln.h, H0[1]) if np.isfinite(comb.latency_s) else float("nan")
-        return sigma0(ln.h, H0[0]), after
-
-    from concurrent.futures import ThreadPoolExecutor
-
-    with ThreadPoolExecutor(SCAN_THREADS) as pool:  # the interpolation releases the GIL
-        sigmas = list(pool.map(quality, prepared))
+    nan2 = (float("nan"), float("nan"))
+    sigmas = (_quality(setup, comb.latency_s) if quality else [nan2] * len(prepared))
     out_lines = []
     for ln, pk, u, (before, after) in zip(prepared, peaks, used, sigmas, strict=True):
         out_lines.append(LineResult(
@@ -470,37 +572,66 @@ def _estimate(setup: _Setup, p: LatencyParams, progress, cancel, hints=None) -> 
         p.to_dict(), converged, message, tuple(warnings), diagnostics, p.estimator)
 
 
-def _add_uncertainty(prepared: list, peaks: list, source: _Attitude, dts: np.ndarray) -> None:
-    """The σ that a pass scanned without uncertainty would have had (same window, same Δt)."""
-    from hydrosync_core.methods.latency.correlation import peak_uncertainty
+def _quality(setup: _Setup, latency_s: float) -> list[tuple[float, float]]:
+    """Per line (σ0 before, σ0 after) in m: seed eqs. 5–6 at Δt = 0 and at *latency_s*.
 
-    for ln, pk in zip(prepared, peaks, strict=True):
-        if ln.usable and np.isfinite(pk.latency_s) and not pk.at_edge:
-            ta, ha = source.window(ln.tags, float(dts[0]), float(dts[-1]))
-            pk.uncertainty_s = peak_uncertainty(ln.tags, ln.h, ta, ha, pk.latency_s)
+    Always on the raw series (as published); NaN for lines that are not usable, and
+    "after" NaN when *latency_s* is not finite.
+    """
+    source = _Attitude(setup.att, setup.arm)
+    final = float(np.nan_to_num(latency_s))
+
+    def quality(ln) -> tuple[float, float]:
+        if not ln.usable:
+            return float("nan"), float("nan")
+        H0 = source.at(np.concatenate([ln.tags, ln.tags - final])).reshape(2, -1)
+        after = sigma0(ln.h, H0[1]) if np.isfinite(latency_s) else float("nan")
+        return sigma0(ln.h, H0[0]), after
+
+    from concurrent.futures import ThreadPoolExecutor
+
+    with ThreadPoolExecutor(SCAN_THREADS) as pool:  # the interpolation releases the GIL
+        return list(pool.map(quality, setup.prepared))
+
+
+def _with_quality(result: LatencyResult, setup: _Setup) -> LatencyResult:
+    """*result* with its lines' σ0 before/after (a :func:`_finish` with quality False)."""
+    sigmas = _quality(setup, result.latency_s)
+    lines = tuple(dataclasses.replace(ln, sigma0_before_m=before, sigma0_after_m=after)
+                  for ln, (before, after) in zip(result.lines, sigmas, strict=True))
+    return dataclasses.replace(result, lines=lines)
 
 
 def _auto(gnss, attitude, lines, lever_arm, p: LatencyParams, progress, cancel
           ) -> LatencyResult:
     """``estimator = auto``: qi2010 and weighted, the one with the smaller uncertainty.
 
-    One set-up; the weighted run's second pass scans each line only around its
-    anti-aliased and qi2010 peaks (:func:`_scan_windows`), with the full scan for any line
-    whose window does not settle the answer (:func:`.lines.scan_line_window`).
+    One set-up, and one pass over the lines for the qi2010 scan and the weighted
+    estimator's anti-aliased first pass (each line's total heave computed once); the
+    σ0 quality figures are computed for the estimator kept only.
     """
-    runs = {}
     setup = _setup(gnss, attitude, lines, lever_arm, p)  # checked and prepared once
-    runs["qi2010"] = _estimate(setup.fresh(), dataclasses.replace(p, estimator="qi2010"),
-                               sub_progress(progress, 0.0, 0.4), cancel)
-    hints = [(ln.latency_s, ln.uncertainty_s) for ln in runs["qi2010"].lines]
-    runs["weighted"] = _estimate(setup.fresh(), dataclasses.replace(p, estimator="weighted"),
-                                 sub_progress(progress, 0.4, 1.0), cancel, hints=hints)
+    s_qi, s_w = setup.fresh(), setup.fresh()
+    p_qi = dataclasses.replace(p, estimator="qi2010")
+    p_w = dataclasses.replace(p, estimator="weighted")
+    raw, first, works = _first_passes(setup, s_qi.prepared, s_w.prepared,
+                                      sub_progress(progress, 0.0, 0.6), cancel,
+                                      aa_sigma=False, keep=True)
+    hints = [(pk.latency_s, pk.uncertainty_s) for pk in raw]
+    peaks, warnings_pre = _weighted(s_w, p_w, first, works, sub_progress(progress, 0.6, 0.9),
+                                    cancel, hints=hints)
+    runs = {"qi2010": (_finish(s_qi, p_qi, raw, [], None, cancel, quality=False), s_qi),
+            "weighted": (_finish(s_w, p_w, peaks, warnings_pre, None, cancel, quality=False),
+                         s_w)}
 
     def key(r: LatencyResult) -> float:
         return r.uncertainty_s if r.converged and np.isfinite(r.uncertainty_s) else np.inf
 
-    best = min(runs.values(), key=key)
-    other = runs["weighted" if best.estimator == "qi2010" else "qi2010"]
+    best = min((r for r, _ in runs.values()), key=key)
+    other = runs["weighted" if best.estimator == "qi2010" else "qi2010"][0]
+    report(progress, 0.95, "quality")
+    best = _with_quality(best, runs[best.estimator][1])
+    report(progress, 1.0, "done")
     note = (f"auto: {best.estimator} (σ {best.uncertainty_s * 1e3:.2f} ms; {other.estimator} "
             f"{other.uncertainty_s * 1e3:.2f} ms, Δt {other.latency_s:+.4f} s)")
     return dataclasses.replace(best, params=p.to_dict(),

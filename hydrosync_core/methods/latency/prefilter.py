@@ -27,7 +27,7 @@ Times in seconds, frequencies in Hz, heights and heave in metres (up).
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -59,18 +59,41 @@ RESPONSE_CACHE_SIZE = 32
 """Responses kept per cache (one per FFT length; a day's line windows share a few)."""
 
 
-def fft_filter(x: np.ndarray, dt: float, response, cache: dict | None = None) -> np.ndarray:
-    """Apply the real, zero-phase frequency *response* (callable of f in Hz) to *x*.
+@dataclass(frozen=True)
+class Spectrum:
+    """A series made ready for :func:`fft_filter`'s filtering: everything but the response.
 
-    The series is sampled every *dt* seconds (regular sampling assumed). Its linear trend
-    is taken out before and put back after (scaled by the response at 0 Hz), and the
-    series is mirrored on both sides so that the FFT sees no jump next to the data.
-    *cache* (a dict owned by the caller, for one *response* and *dt*) keeps the response
-    evaluated per FFT length: the same numbers, computed once instead of once per line.
+    The linear trend ``intercept + slope·k_c`` (k_c the sample index centred on the
+    series) is taken out, the rest mirrored on both sides to *size* samples (the series
+    starts at *left*) and transformed. *bins* may hold the first bins only
+    (:meth:`head`): enough for a response that is zero beyond them. A series of fewer
+    than 4 samples is kept as it is (*raw*); filtering returns it unchanged.
     """
+
+    n: int
+    size: int
+    left: int
+    intercept: float
+    slope: float
+    bins: np.ndarray | None
+    raw: np.ndarray | None = None
+
+    def head(self, count: int) -> Spectrum:
+        """The same spectrum with only its first *count* bins (a copy: the rest is freed)."""
+        if self.bins is None or count >= self.bins.size:
+            return self
+        return replace(self, bins=self.bins[:count].copy())
+
+    def covers(self, gains: np.ndarray) -> bool:
+        """True when *gains* (one per bin of the full spectrum) are zero beyond *bins*."""
+        return self.bins is None or not np.any(gains[self.bins.size:])
+
+
+def spectrum(x: np.ndarray) -> Spectrum:
+    """:class:`Spectrum` of the regularly sampled series *x* (see :func:`fft_filter`)."""
     n = x.size
     if n < 4:
-        return x.copy()
+        return Spectrum(n, n, 0, 0.0, 0.0, None, x.copy())
     kc = np.arange(n, dtype=float) - 0.5 * (n - 1)
     # Least-squares line in closed form (kc is centred): polyfit's numbers without
     # lstsq, and no BLAS (a threaded BLAS dot wakes its threads for 10^4+ elements:
@@ -85,13 +108,65 @@ def fft_filter(x: np.ndarray, dt: float, response, cache: dict | None = None) ->
     size = fft.next_fast_len(2 * n, real=True)
     left = (size - n) // 2
     y = np.pad(x - trend, (left, size - n - left), mode="symmetric")
+    return Spectrum(n, size, left, intercept, slope, fft.rfft(y))
+
+
+def response_gains(response, size: int, dt: float, cache: dict | None = None
+                   ) -> tuple[np.ndarray, float]:
+    """(*response* at the ``rfft`` bins of *size* samples every *dt* s, response at 0 Hz).
+
+    *cache* (a dict owned by the caller, for one *response* and *dt*) keeps them per
+    *size*: the same numbers, computed once instead of once per line.
+    """
     gains = cache.get(size) if cache is not None else None
     if gains is None:
         gains = (response(np.fft.rfftfreq(size, dt)), float(response(np.zeros(1))[0]))
         if cache is not None and len(cache) < RESPONSE_CACHE_SIZE:
             cache[size] = gains
-    out = fft.irfft(fft.rfft(y) * gains[0], size)[left:left + n]
-    return out + trend * gains[1]
+    return gains
+
+
+def filtered(spec: Spectrum, gains: tuple[np.ndarray, float], crop: slice | None = None
+             ) -> np.ndarray:
+    """The series of *spec* filtered with *gains* (:func:`response_gains`), samples *crop*.
+
+    The same numbers as :func:`fft_filter` followed by ``[crop]``. Raises ValueError when
+    *spec* keeps too few bins for *gains* (:meth:`Spectrum.covers`).
+    """
+    crop = crop if crop is not None else slice(0, spec.n)
+    if spec.bins is None:
+        return spec.raw[crop].copy()
+    from scipy import fft
+
+    full = spec.size // 2 + 1
+    if spec.bins.size == full:
+        product = spec.bins * gains[0]
+    else:
+        if not spec.covers(gains[0]):
+            raise ValueError("the response is not zero beyond the kept bins")
+        # Zero beyond the kept bins, as the product with a zero gain would be.
+        product = np.zeros(full, dtype=complex)
+        np.multiply(spec.bins, gains[0][:spec.bins.size], out=product[:spec.bins.size])
+    lo, hi, _ = crop.indices(spec.n)
+    out = fft.irfft(product, spec.size)[spec.left + lo:spec.left + hi]
+    kc = np.arange(lo, hi, dtype=float) - 0.5 * (spec.n - 1)
+    return out + (spec.intercept + spec.slope * kc) * gains[1]
+
+
+def fft_filter(x: np.ndarray, dt: float, response, cache: dict | None = None) -> np.ndarray:
+    """Apply the real, zero-phase frequency *response* (callable of f in Hz) to *x*.
+
+    The series is sampled every *dt* seconds (regular sampling assumed). Its linear trend
+    is taken out before and put back after (scaled by the response at 0 Hz), and the
+    series is mirrored on both sides so that the FFT sees no jump next to the data.
+    *cache*: see :func:`response_gains`. The steps are :func:`spectrum`,
+    :func:`response_gains` and :func:`filtered`, which callers that filter one series
+    with several responses use directly (one forward FFT for all of them).
+    """
+    if x.size < 4:
+        return x.copy()
+    spec = spectrum(x)
+    return filtered(spec, response_gains(response, spec.size, dt, cache))
 
 
 @dataclass(frozen=True)

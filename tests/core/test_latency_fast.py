@@ -273,9 +273,11 @@ def test_total_heave_at_equals_interpolated_total_heave():
     rng = np.random.default_rng(3)
     t = np.cumsum(rng.uniform(0.005, 0.015, 5000))
     heave, roll, pitch = rng.normal(size=5000), rng.normal(size=5000) * 5, rng.normal(size=5000) * 2
-    # Sorted and unsorted times, times on the samples and beyond both ends.
+    # Sorted and unsorted times, times on the samples and beyond both ends, sorted times
+    # further apart than the walk from one to the next goes (WALK_STEPS), repeated times.
     times = np.concatenate([np.sort(rng.uniform(t[0] - 1, t[-1] + 1, 3000)),
-                            rng.uniform(t[0], t[-1], 500), t[:50]])
+                            rng.uniform(t[0], t[-1], 500), t[:50],
+                            np.sort(rng.uniform(t[0], t[-1], 30)), t[[7, 7, 7, 4000, 4999]]])
     arm = (-1.5, 2.0, -6.0)
     np.testing.assert_allclose(total_heave_at(times, t, heave, roll, pitch, arm),
                                np.interp(times, t, total_heave_deg(heave, roll, pitch, arm)),

@@ -81,8 +81,13 @@ def _joint_peak(curves: np.ndarray, weights: np.ndarray, dts: np.ndarray) -> flo
     """Δt maximising the epoch-weighted mean Fisher-z of the used lines' curves."""
     if curves.size == 0 or not np.any(np.isfinite(curves)):
         return float("nan")
-    z = np.arctanh(np.clip(curves, -0.999999, 0.999999))
-    mean = np.nansum(z * weights[:, None], axis=0) / weights.sum()
+    # In place after the one copy: a survey day's curves are 8 MB, and the temporaries
+    # of the expression (np.nansum(np.arctanh(...) * w)) set the estimate's peak memory.
+    z = np.clip(curves, -0.999999, 0.999999)
+    np.arctanh(z, out=z)
+    z *= weights[:, None]
+    z[np.isnan(z)] = 0.0  # np.nansum's own replacement, then the same sum
+    mean = z.sum(axis=0) / weights.sum()
     k = int(np.argmax(mean))
     if 0 < k < dts.size - 1:
         # Parabola through the three grid points around the maximum.
@@ -303,11 +308,26 @@ def _first_passes(setup: _Setup, raw: list | None, antialias: list | None, progr
     :class:`_LineWork` for the weighted passes (else None). Returns ``(raw peaks,
     anti-aliased peaks, works)``, lists (None for a scan skipped).
     """
+    from scipy import fft
+
     from hydrosync_core.methods.latency import prefilter
 
     dts, a_int = setup.dts, setup.a_int
     source = _Attitude(setup.att, setup.arm)
     pad = int(round(prefilter.PAD_S / a_int)) if antialias is not None else 0
+    lead = raw if raw is not None else antialias
+    windows = [source.windows(ln.tags, float(dts[0]), float(dts[-1]), pad) if ln.usable
+               else None for ln in lead]
+    if keep:
+        # What the later passes need, in two blocks allocated here rather than per line
+        # in the worker threads: long-lived rows scattered among the threads' temporaries
+        # would keep their heap from shrinking (~60 MB more peak memory on a survey day).
+        spans = [(w[0].stop - w[0].start, w[1].stop - w[1].start) for w in windows if w]
+        inner_max = max(n for n, _ in spans)
+        bins_max = max(_band_bins(fft.next_fast_len(2 * n, real=True), a_int, setup.g_int)
+                       for _, n in spans)
+        aa_rows = np.empty((len(lead), inner_max))
+        bin_rows = np.empty((len(lead), bins_max), dtype=complex)
     cutoff = prefilter.ANTIALIAS_FRACTION * 0.5 / setup.g_int
     aa_cache: dict = {}
 
@@ -315,10 +335,9 @@ def _first_passes(setup: _Setup, raw: list | None, antialias: list | None, progr
         return prefilter.antialias_response(f, cutoff)
 
     def task(i: int):
-        lead = (raw or antialias)[i]
-        if not lead.usable:
+        if windows[i] is None:
             return _unscanned(dts), _unscanned(dts), None
-        inner, padded = source.windows(lead.tags, float(dts[0]), float(dts[-1]), pad)
+        inner, padded = windows[i]
         h = source.heave(padded)
         crop = slice(inner.start - padded.start, inner.stop - padded.start)
         ta = source.t[inner]
@@ -328,15 +347,15 @@ def _first_passes(setup: _Setup, raw: list | None, antialias: list | None, progr
         if antialias is not None:
             spec = prefilter.spectrum(h)
             del h
-            ha = prefilter.filtered(spec, prefilter.response_gains(response, spec.size, a_int,
-                                                                   aa_cache), crop)
+            gains = prefilter.response_gains(response, spec.size, a_int, aa_cache)
+            ha = prefilter.filtered(spec, gains, crop, out=aa_rows[i] if keep else None)
             pk_aa = _scan(antialias[i], ta, ha, dts, uncertainty=aa_sigma)
             if keep:
-                work = _LineWork(inner, padded, spec.head(_band_bins(spec.size, a_int,
-                                                                     setup.g_int)), ha)
+                work = _LineWork(inner, padded, spec.head(
+                    _band_bins(spec.size, a_int, setup.g_int), out=bin_rows[i]), ha)
         return pk_raw, pk_aa, work
 
-    out = _per_line(task, len(setup.prepared), setup.names, progress, cancel)
+    out = _per_line(task, len(lead), setup.names, progress, cancel)
     raw_peaks = [o[0] for o in out] if raw is not None else None
     aa_peaks = [o[1] for o in out] if antialias is not None else None
     return raw_peaks, aa_peaks, [o[2] for o in out]

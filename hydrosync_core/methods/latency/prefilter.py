@@ -78,11 +78,16 @@ class Spectrum:
     bins: np.ndarray | None
     raw: np.ndarray | None = None
 
-    def head(self, count: int) -> Spectrum:
-        """The same spectrum with only its first *count* bins (a copy: the rest is freed)."""
-        if self.bins is None or count >= self.bins.size:
+    def head(self, count: int, out: np.ndarray | None = None) -> Spectrum:
+        """The same spectrum with only its first *count* bins, copied (to *out*, complex,
+        at least *count* long, when given) so that the rest can be freed."""
+        if self.bins is None:
             return self
-        return replace(self, bins=self.bins[:count].copy())
+        count = min(count, self.bins.size)
+        if out is None:
+            return replace(self, bins=self.bins[:count].copy())
+        out[:count] = self.bins[:count]
+        return replace(self, bins=out[:count])
 
     def covers(self, gains: np.ndarray) -> bool:
         """True when *gains* (one per bin of the full spectrum) are zero beyond *bins*."""
@@ -126,16 +131,21 @@ def response_gains(response, size: int, dt: float, cache: dict | None = None
     return gains
 
 
-def filtered(spec: Spectrum, gains: tuple[np.ndarray, float], crop: slice | None = None
-             ) -> np.ndarray:
+def filtered(spec: Spectrum, gains: tuple[np.ndarray, float], crop: slice | None = None,
+             out: np.ndarray | None = None) -> np.ndarray:
     """The series of *spec* filtered with *gains* (:func:`response_gains`), samples *crop*.
 
-    The same numbers as :func:`fft_filter` followed by ``[crop]``. Raises ValueError when
-    *spec* keeps too few bins for *gains* (:meth:`Spectrum.covers`).
+    The same numbers as :func:`fft_filter` followed by ``[crop]``, written to *out* when
+    given (its first ``len(crop)`` elements; returned). Raises ValueError when *spec*
+    keeps too few bins for *gains* (:meth:`Spectrum.covers`).
     """
     crop = crop if crop is not None else slice(0, spec.n)
+    lo, hi, _ = crop.indices(spec.n)
     if spec.bins is None:
-        return spec.raw[crop].copy()
+        if out is None:
+            return spec.raw[crop].copy()
+        out[:hi - lo] = spec.raw[crop]
+        return out[:hi - lo]
     from scipy import fft
 
     full = spec.size // 2 + 1
@@ -147,10 +157,12 @@ def filtered(spec: Spectrum, gains: tuple[np.ndarray, float], crop: slice | None
         # Zero beyond the kept bins, as the product with a zero gain would be.
         product = np.zeros(full, dtype=complex)
         np.multiply(spec.bins, gains[0][:spec.bins.size], out=product[:spec.bins.size])
-    lo, hi, _ = crop.indices(spec.n)
-    out = fft.irfft(product, spec.size)[spec.left + lo:spec.left + hi]
+    series = fft.irfft(product, spec.size)[spec.left + lo:spec.left + hi]
     kc = np.arange(lo, hi, dtype=float) - 0.5 * (spec.n - 1)
-    return out + (spec.intercept + spec.slope * kc) * gains[1]
+    trend = (spec.intercept + spec.slope * kc) * gains[1]
+    if out is None:
+        return series + trend
+    return np.add(series, trend, out=out[:hi - lo])
 
 
 def fft_filter(x: np.ndarray, dt: float, response, cache: dict | None = None) -> np.ndarray:

@@ -22,10 +22,9 @@ def _run(day, cfg, monkeypatch, windowed: bool, estimator: str = "auto", shift=N
     modes: list[list[str]] = []
 
     def spy_first(*args, **kwargs):
-        raw, antialiased, works = FIRST_PASSES(*args, **kwargs)
-        modes.extend([pk.scan for pk in peaks] for peaks in (raw, antialiased)
-                     if peaks is not None)
-        return raw, antialiased, works
+        out = FIRST_PASSES(*args, **kwargs)
+        modes.extend([pk.scan for pk in peaks] for peaks in out[:2] if peaks is not None)
+        return out
 
     def spy_weighted(*args, **kwargs):
         peaks = WEIGHTED_PASS(*args, **kwargs)

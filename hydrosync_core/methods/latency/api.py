@@ -306,7 +306,10 @@ def _first_passes(setup: _Setup, raw: list | None, antialias: list | None, progr
     total heave is computed once, on the window padded for filtering, and serves both.
     *aa_sigma*: the anti-aliased scan's uncertainty; *keep*: return each line's
     :class:`_LineWork` for the weighted passes (else None). Returns ``(raw peaks,
-    anti-aliased peaks, works)``, lists (None for a scan skipped).
+    anti-aliased peaks, works, σ0 before)``, lists (None for a scan skipped); σ0 before
+    (seed eqs. 5–6 at Δt = 0, m, NaN for a line not usable) is the same for every
+    estimator and comes from the raw window here: :func:`_quality` then interpolates at
+    the final Δt only.
     """
     from scipy import fft
 
@@ -336,11 +339,14 @@ def _first_passes(setup: _Setup, raw: list | None, antialias: list | None, progr
 
     def task(i: int):
         if windows[i] is None:
-            return _unscanned(dts), _unscanned(dts), None
+            return _unscanned(dts), _unscanned(dts), None, float("nan")
         inner, padded = windows[i]
         h = source.heave(padded)
         crop = slice(inner.start - padded.start, inner.stop - padded.start)
         ta = source.t[inner]
+        line = lead[i]
+        # The numbers of _Attitude.at(tags): same records, same interpolation formula.
+        before = sigma0(line.h, heave_at(line.tags, np.zeros(1), ta, h[crop])[0])
         pk_raw = pk_aa = work = None
         if raw is not None:
             pk_raw = _scan(raw[i], ta, h[crop], dts)
@@ -353,12 +359,12 @@ def _first_passes(setup: _Setup, raw: list | None, antialias: list | None, progr
             if keep:
                 work = _LineWork(inner, padded, spec.head(
                     _band_bins(spec.size, a_int, setup.g_int), out=bin_rows[i]), ha)
-        return pk_raw, pk_aa, work
+        return pk_raw, pk_aa, work, before
 
     out = _per_line(task, len(lead), setup.names, progress, cancel)
     raw_peaks = [o[0] for o in out] if raw is not None else None
     aa_peaks = [o[1] for o in out] if antialias is not None else None
-    return raw_peaks, aa_peaks, [o[2] for o in out]
+    return raw_peaks, aa_peaks, [o[2] for o in out], [o[3] for o in out]
 
 
 def _band_bins(size: int, a_int: float, g_int: float) -> int:
@@ -503,28 +509,29 @@ def _setup(gnss, attitude, lines, lever_arm, p: LatencyParams) -> _Setup:
 def _estimate(setup: _Setup, p: LatencyParams, progress, cancel) -> LatencyResult:
     """One estimator (not auto) from :func:`_setup`'s inputs."""
     if p.estimator == "qi2010":
-        peaks, _, _ = _first_passes(setup, setup.prepared, None,
-                                    sub_progress(progress, 0, 0.9), cancel)
-        return _finish(setup, p, peaks, [], progress, cancel)
+        peaks, _, _, before = _first_passes(setup, setup.prepared, None,
+                                            sub_progress(progress, 0, 0.9), cancel)
+        return _finish(setup, p, peaks, [], progress, cancel, before)
     weighted = p.estimator == "weighted"
     # The weighted estimator keeps only R_max, Δt and the edge flag of its first pass:
     # no σ there (unless the weighting proves impossible, then that pass is the answer).
-    _, first, works = _first_passes(setup, None, setup.prepared,
+    _, first, works, before = _first_passes(setup, None, setup.prepared,
                                     sub_progress(progress, 0, 0.45 if weighted else 0.9),
                                     cancel, aa_sigma=not weighted, keep=weighted)
     if not weighted:
-        return _finish(setup, p, first, [], progress, cancel)
+        return _finish(setup, p, first, [], progress, cancel, before)
     peaks, warnings_pre = _weighted(setup, p, first, works, sub_progress(progress, 0.45, 0.9),
                                     cancel)
-    return _finish(setup, p, peaks, warnings_pre, progress, cancel)
+    return _finish(setup, p, peaks, warnings_pre, progress, cancel, before)
 
 
 def _finish(setup: _Setup, p: LatencyParams, peaks: list, warnings_pre: list, progress,
-            cancel, quality: bool = True) -> LatencyResult:
+            cancel, before: list | None = None) -> LatencyResult:
     """An estimator's result from its per-line peaks: selection, combination, quality.
 
-    *quality* False leaves the lines' σ0 before/after NaN (:func:`_with_quality` adds
-    them): ``auto`` computes them for the estimator it keeps only.
+    *before*: the lines' σ0 before (:func:`_first_passes`); None leaves σ0 before and
+    after NaN (:func:`_with_quality` adds them): ``auto`` computes them for the
+    estimator it keeps only.
     """
     att, arm, dts = setup.att, setup.arm, setup.dts
     t_att = att["time"]
@@ -560,7 +567,8 @@ def _finish(setup: _Setup, p: LatencyParams, peaks: list, warnings_pre: list, pr
     check_cancel(cancel)
     report(progress, 0.92, "quality")
     nan2 = (float("nan"), float("nan"))
-    sigmas = (_quality(setup, comb.latency_s) if quality else [nan2] * len(prepared))
+    sigmas = (_quality(setup, comb.latency_s, before) if before is not None
+              else [nan2] * len(prepared))
     out_lines = []
     for ln, pk, u, (before, after) in zip(prepared, peaks, used, sigmas, strict=True):
         out_lines.append(LineResult(
@@ -591,8 +599,9 @@ def _finish(setup: _Setup, p: LatencyParams, peaks: list, warnings_pre: list, pr
         p.to_dict(), converged, message, tuple(warnings), diagnostics, p.estimator)
 
 
-def _quality(setup: _Setup, latency_s: float) -> list[tuple[float, float]]:
-    """Per line (σ0 before, σ0 after) in m: seed eqs. 5–6 at Δt = 0 and at *latency_s*.
+def _quality(setup: _Setup, latency_s: float, before: list) -> list[tuple[float, float]]:
+    """Per line (σ0 before, σ0 after) in m: seed eqs. 5–6 at Δt = 0 (*before*, from
+    :func:`_first_passes`) and at *latency_s*.
 
     Always on the raw series (as published); NaN for lines that are not usable, and
     "after" NaN when *latency_s* is not finite.
@@ -600,22 +609,20 @@ def _quality(setup: _Setup, latency_s: float) -> list[tuple[float, float]]:
     source = _Attitude(setup.att, setup.arm)
     final = float(np.nan_to_num(latency_s))
 
-    def quality(ln) -> tuple[float, float]:
-        if not ln.usable:
-            return float("nan"), float("nan")
-        H0 = source.at(np.concatenate([ln.tags, ln.tags - final])).reshape(2, -1)
-        after = sigma0(ln.h, H0[1]) if np.isfinite(latency_s) else float("nan")
-        return sigma0(ln.h, H0[0]), after
+    def after(ln) -> float:
+        if not ln.usable or not np.isfinite(latency_s):
+            return float("nan")
+        return sigma0(ln.h, source.at(ln.tags - final))
 
     from concurrent.futures import ThreadPoolExecutor
 
     with ThreadPoolExecutor(SCAN_THREADS) as pool:  # the interpolation releases the GIL
-        return list(pool.map(quality, setup.prepared))
+        return list(zip(before, pool.map(after, setup.prepared), strict=True))
 
 
-def _with_quality(result: LatencyResult, setup: _Setup) -> LatencyResult:
-    """*result* with its lines' σ0 before/after (a :func:`_finish` with quality False)."""
-    sigmas = _quality(setup, result.latency_s)
+def _with_quality(result: LatencyResult, setup: _Setup, before: list) -> LatencyResult:
+    """*result* with its lines' σ0 before/after (a :func:`_finish` without *before*)."""
+    sigmas = _quality(setup, result.latency_s, before)
     lines = tuple(dataclasses.replace(ln, sigma0_before_m=before, sigma0_after_m=after)
                   for ln, (before, after) in zip(result.lines, sigmas, strict=True))
     return dataclasses.replace(result, lines=lines)
@@ -633,15 +640,14 @@ def _auto(gnss, attitude, lines, lever_arm, p: LatencyParams, progress, cancel
     s_qi, s_w = setup.fresh(), setup.fresh()
     p_qi = dataclasses.replace(p, estimator="qi2010")
     p_w = dataclasses.replace(p, estimator="weighted")
-    raw, first, works = _first_passes(setup, s_qi.prepared, s_w.prepared,
+    raw, first, works, before = _first_passes(setup, s_qi.prepared, s_w.prepared,
                                       sub_progress(progress, 0.0, 0.6), cancel,
                                       aa_sigma=False, keep=True)
     hints = [(pk.latency_s, pk.uncertainty_s) for pk in raw]
     peaks, warnings_pre = _weighted(s_w, p_w, first, works, sub_progress(progress, 0.6, 0.9),
                                     cancel, hints=hints)
-    runs = {"qi2010": (_finish(s_qi, p_qi, raw, [], None, cancel, quality=False), s_qi),
-            "weighted": (_finish(s_w, p_w, peaks, warnings_pre, None, cancel, quality=False),
-                         s_w)}
+    runs = {"qi2010": (_finish(s_qi, p_qi, raw, [], None, cancel), s_qi),
+            "weighted": (_finish(s_w, p_w, peaks, warnings_pre, None, cancel), s_w)}
 
     def key(r: LatencyResult) -> float:
         return r.uncertainty_s if r.converged and np.isfinite(r.uncertainty_s) else np.inf
@@ -649,7 +655,7 @@ def _auto(gnss, attitude, lines, lever_arm, p: LatencyParams, progress, cancel
     best = min((r for r, _ in runs.values()), key=key)
     other = runs["weighted" if best.estimator == "qi2010" else "qi2010"][0]
     report(progress, 0.95, "quality")
-    best = _with_quality(best, runs[best.estimator][1])
+    best = _with_quality(best, runs[best.estimator][1], before)
     report(progress, 1.0, "done")
     note = (f"auto: {best.estimator} (σ {best.uncertainty_s * 1e3:.2f} ms; {other.estimator} "
             f"{other.uncertainty_s * 1e3:.2f} ms, Δt {other.latency_s:+.4f} s)")

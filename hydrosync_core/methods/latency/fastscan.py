@@ -145,7 +145,8 @@ def _lattice_sums_py(x, w, H, L, K, split_min):  # pragma: no cover - compiled b
     ``g = ((r − ρ) mod L)/L`` depend on (r, ρ) only. So per residue r the sums are
     correlations over the lag λ = κ + c of per-epoch weights (w, w·e, 1, e, e², e = ε/L)
     with H, H² and H_j·H_{j+1} — dense, contiguous loops — combined per candidate at the end.
-    *split_min*: see SPLIT_MIN_LAGS.
+    *split_min*: see SPLIT_MIN_LAGS. A residue without epochs adds +0 to each sum (its
+    accumulators are +0 and u, g ≥ 0), which leaves every sum as it is: it is skipped.
     """
     m = H.size
     kk = (K - 1) // L
@@ -172,7 +173,21 @@ def _lattice_sums_py(x, w, H, L, K, split_min):  # pragma: no cover - compiled b
         ni = int(n)
         q_of[i] = ni // L
         r_of[i] = ni - q_of[i] * L
-    order = np.argsort(r_of, kind="mergesort")
+    # Epochs by residue, in their order within a residue: a stable counting sort (the
+    # order of np.argsort(r_of, kind="mergesort"), without its O(n log n)).
+    first = np.zeros(L + 1, dtype=np.int64)
+    for i in range(n_ep):
+        first[r_of[i] + 1] += 1
+    # Residues without epochs add exact zeros to every candidate: skipped below. Regular
+    # GNSS tags on regular attitude all share one residue (9 in 10 empty at L = 10).
+    filled = np.zeros(L, dtype=np.bool_)
+    for r in range(L):
+        filled[r] = first[r + 1] > 0
+        first[r + 1] += first[r]
+    order = np.empty(n_ep, dtype=np.int64)
+    for i in range(n_ep):
+        order[first[r_of[i]]] = i
+        first[r_of[i]] += 1
     c = np.zeros((4, 10))
     b = np.zeros(4, dtype=np.int64)
     start = 0
@@ -261,6 +276,8 @@ def _lattice_sums_py(x, w, H, L, K, split_min):  # pragma: no cover - compiled b
             t1[:nk] = 0.0
             t2[:nk] = 0.0
             for r in range(L):
+                if not filled[r]:
+                    continue
                 cr = 1 if r < rho else 0
                 g = (r - rho + cr * L) / L
                 _combine(tf, t1, t2, acc[r], 1.0 - g, g, cr + 1, nk)
@@ -279,6 +296,8 @@ def _lattice_sums_py(x, w, H, L, K, split_min):  # pragma: no cover - compiled b
         s1 = 0.0
         s2 = 0.0
         for r in range(L):
+            if not filled[r]:
+                continue
             c = 1 if r < rho else 0
             g = (r - rho + c * L) / L
             u = 1.0 - g

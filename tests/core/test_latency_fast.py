@@ -92,6 +92,17 @@ def test_lattice_kernel_row_loops_equal_the_single_loop_bit_for_bit():
             np.testing.assert_array_equal(a, b)
         np.testing.assert_array_equal(
             fastscan.correlation_sums(tags, w, t_att, h_att, dts, step)[0], split[0])
+    # Regular tags on the regular attitude: the epochs in one residue (or two: rounding puts
+    # a position just below its integer), the others skipped.
+    tags = 1010.0 + np.arange(1000) * 0.1
+    h = np.sin(tags * 1.3 - 0.4) + 0.05 * rng.standard_normal(tags.size)
+    for dts in (np.linspace(-1, 1, 2001), np.linspace(0.1, 0.1002, 41)):
+        step = fastscan.uniform_step(dts)
+        x, L = fastscan._lattice(tags, t_att, dts, step)
+        assert np.unique(np.floor(x).astype(int) % L).size <= 2
+        np.testing.assert_allclose(correlation_curve(tags, h, t_att, h_att, dts),
+                                   correlation_curve_direct(tags, h, t_att, h_att, dts),
+                                   rtol=0, atol=1e-10)
 
 
 def test_fast_scan_constant_heave_is_nan():

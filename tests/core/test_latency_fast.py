@@ -390,3 +390,21 @@ def test_first_pass_windows_equal_per_line_filtering():
         np.testing.assert_allclose(heave_at(line.tags, np.array([dt0]), ta, ha),
                                    heave_at(line.tags, np.array([dt0]), ta0, ha0),
                                    rtol=0, atol=1e-10)
+
+
+def test_next_fast_len_and_numpy_fft_match_scipy_fft():
+    """The filter's FFT length and transforms are scipy.fft's (numpy.fft is the same
+    pocketfft), without importing scipy.fft on the command line."""
+    from scipy import fft
+
+    from hydrosync_core.methods.latency import prefilter
+
+    for n in [*range(1, 2000), 36401, 36450, 36865, 99991, 131073]:
+        assert prefilter.next_fast_len(n) == fft.next_fast_len(n, real=True), n
+    rng = np.random.default_rng(2)
+    for size in (36864, 3600, 640):
+        x = rng.standard_normal(size)
+        spec = np.fft.rfft(x)
+        np.testing.assert_allclose(spec, fft.rfft(x), rtol=0, atol=1e-12)
+        np.testing.assert_allclose(np.fft.irfft(spec, size), fft.irfft(spec, size), rtol=0,
+                                   atol=1e-12)

@@ -311,8 +311,6 @@ def _first_passes(setup: _Setup, raw: list | None, antialias: list | None, progr
     estimator and comes from the raw window here: :func:`_quality` then interpolates at
     the final Δt only.
     """
-    from scipy import fft
-
     from hydrosync_core.methods.latency import prefilter
 
     dts, a_int = setup.dts, setup.a_int
@@ -327,7 +325,7 @@ def _first_passes(setup: _Setup, raw: list | None, antialias: list | None, progr
         # would keep their heap from shrinking (~60 MB more peak memory on a survey day).
         spans = [(w[0].stop - w[0].start, w[1].stop - w[1].start) for w in windows if w]
         inner_max = max(n for n, _ in spans)
-        bins_max = max(_band_bins(fft.next_fast_len(2 * n, real=True), a_int, setup.g_int)
+        bins_max = max(_band_bins(prefilter.next_fast_len(2 * n), a_int, setup.g_int)
                        for _, n in spans)
         aa_rows = np.empty((len(lead), inner_max))
         bin_rows = np.empty((len(lead), bins_max), dtype=complex)

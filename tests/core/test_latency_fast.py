@@ -337,6 +337,15 @@ def test_filter_steps_equal_fft_filter():
         np.testing.assert_allclose(prefilter.filtered(head, gains, crop),
                                    prefilter.fft_filter(x, 0.01, weighting.response)[crop],
                                    rtol=0, atol=1e-12)
+    # The mirrored padding is np.pad(mode="symmetric")'s.
+    for n in range(4, 60):
+        x = rng.standard_normal(n)
+        spec = prefilter.spectrum(x)
+        d = x - (spec.intercept + spec.slope * (np.arange(n, dtype=float) - 0.5 * (n - 1)))
+        np.testing.assert_array_equal(spec.bins, np.fft.rfft(np.pad(
+            d, (spec.left, spec.size - n - spec.left), mode="symmetric")))
+    spec = prefilter.spectrum(np.cumsum(rng.standard_normal(18231)))
+    head = spec.head(api._band_bins(spec.size, 0.01, 0.1))
     # A response beyond the kept bins is refused, not silently cut.
     gains = prefilter.response_gains(lambda f: prefilter.antialias_response(f, 4.0),
                                      spec.size, 0.01)

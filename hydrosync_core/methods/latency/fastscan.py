@@ -337,30 +337,51 @@ sampling interval, for the lattice kernel (10 ns at 100 Hz: the interpolated hea
 differs from the exact one by less than 1e-7 m at 10 m/s)."""
 
 
+def _lattice_py(tags, ta, d0, step, K, tolerance):  # pragma: no cover - compiled below
+    """Kernel of :func:`_lattice`: (x, L), L = 0 when the grid does not fit."""
+    none = (np.empty(0), 0)
+    m = ta.size
+    if m < 4 or tags.size == 0:
+        return none
+    interval = (ta[m - 1] - ta[0]) / (m - 1)
+    ratio = interval / step
+    L = int(np.rint(ratio))  # round(): halves to even, as np.rint
+    if L < 1 or abs(ratio - L) > 1e-9 * ratio:
+        return none
+    if _departure(ta, interval) > tolerance * interval:
+        return none
+    x = np.empty(tags.size)
+    unit = interval / L
+    lo = np.inf
+    hi = -np.inf
+    for i in range(tags.size):
+        x[i] = (tags[i] - ta[0] - d0) / unit
+        if x[i] < lo:
+            lo = x[i]
+        if x[i] > hi:
+            hi = x[i]
+        if x[i] != x[i]:  # NaN: every comparison below is False, the grid "fits"
+            return x, L
+    kk = (K - 1) // L
+    if int(np.floor(lo)) // L - kk - 1 < 0 or int(np.floor(hi)) // L + 1 > m - 2:
+        return none
+    return x, L
+
+
+_lattice_nb = njit(cache=True, nogil=True)(_lattice_py) if njit is not None else None
+
+
 def _lattice(tags, ta, dts, step):
     """(positions x, L) for :func:`_lattice_sums`, or None when the grid does not fit.
 
     Needs uniformly sampled attitude whose interval is a whole number L of steps, and
     every epoch at every candidate strictly inside the samples (one to spare each side).
+    Positions ``(tag − ta[0] − dts[0]) / (interval / L)`` in steps.
     """
-    m = ta.size
-    if m < 4 or tags.size == 0:
-        return None
-    interval = (float(ta[-1]) - float(ta[0])) / (m - 1)
-    ratio = interval / step
-    L = int(round(ratio))
-    if L < 1 or abs(ratio - L) > 1e-9 * ratio:
-        return None
-    if _departure(ta, interval) > LATTICE_TOLERANCE * interval:
-        return None
-    x = (tags - ta[0] - dts[0]) / (interval / L)
-    K = dts.size
-    kk = (K - 1) // L
-    lo = np.floor(x.min()) // L - kk - 1
-    hi = np.floor(x.max()) // L + 1
-    if lo < 0 or hi > m - 2:
-        return None
-    return x, L
+    x, L = _lattice_nb(np.ascontiguousarray(tags, dtype=float),
+                       np.ascontiguousarray(ta, dtype=float), float(dts[0]), float(step),
+                       int(dts.size), LATTICE_TOLERANCE)
+    return (x, L) if L else None
 
 
 def available() -> bool:
@@ -368,16 +389,83 @@ def available() -> bool:
     return _sums is not None
 
 
-def uniform_step(dts: np.ndarray) -> float | None:
-    """The step of *dts* if it is an increasing uniform grid of ≥ 2 points, else None."""
-    if dts.size < 2:
-        return None
-    step = (float(dts[-1]) - float(dts[0])) / (dts.size - 1)
+def _uniform_step_py(dts):  # pragma: no cover - compiled below
+    """Kernel of :func:`uniform_step`: the step, or 0.0 for None."""
+    n = dts.size
+    if n < 2:
+        return 0.0
+    step = (dts[n - 1] - dts[0]) / (n - 1)
     if not step > 0:
-        return None
-    if np.max(np.abs(np.diff(dts) - step)) > 1e-9 * max(step, 1e-300):
-        return None
-    return step
+        return 0.0
+    limit = 1e-9 * max(step, 1e-300)
+    over = False
+    for i in range(n - 1):
+        d = abs((dts[i + 1] - dts[i]) - step)
+        if d != d:
+            return step  # np.max is NaN then, and NaN > limit is False
+        if d > limit:
+            over = True
+    return 0.0 if over else step
+
+
+_uniform_step = njit(cache=True, nogil=True)(_uniform_step_py) if njit is not None else None
+
+
+def uniform_step(dts: np.ndarray) -> float | None:
+    """The step of *dts* if it is an increasing uniform grid of ≥ 2 points, else None.
+
+    Uniform: every difference within 1e-9 of the step (relative).
+    """
+    kernel = _uniform_step if _uniform_step is not None else _uniform_step_py
+    step = float(kernel(np.ascontiguousarray(dts, dtype=float)))
+    return step if step > 0 else None
+
+
+def _grid_py(start, stop, num):  # pragma: no cover - compiled below
+    """Kernel of :func:`grid`."""
+    out = np.empty(num)
+    div = num - 1
+    delta = stop - start
+    step = delta / div
+    for i in range(num):
+        # np.linspace's arithmetic, operation for operation (also for a zero step).
+        out[i] = (i / div * delta if step == 0 else i * step) + start
+    out[num - 1] = stop
+    return out
+
+
+_grid = njit(cache=True, nogil=True)(_grid_py) if njit is not None else None
+
+
+def grid(start: float, stop: float, num: int) -> np.ndarray:
+    """``np.linspace(start, stop, num)`` (num ≥ 2), the same numbers without its Python
+    overhead (the refinement and uncertainty grids of every line and pass)."""
+    if _grid is None or num < 2:
+        return np.linspace(start, stop, num)
+    return _grid(float(start), float(stop), int(num))
+
+
+def _pearson_py(F, S1, S2, n, mean_w):  # pragma: no cover - compiled below
+    """Kernel of :func:`pearson`."""
+    r = np.empty(F.size)
+    for k in range(F.size):
+        var = S2[k] - S1[k] * S1[k] / n
+        if var > 1e-12 * abs(S2[k]) + 1e-300:
+            r[k] = (F[k] - S1[k] * mean_w) / np.sqrt(var)
+        else:
+            r[k] = np.nan
+    return r
+
+
+_pearson = njit(cache=True, nogil=True)(_pearson_py) if njit is not None else None
+
+
+def pearson(F: np.ndarray, S1: np.ndarray, S2: np.ndarray, n: int, mean_w: float
+            ) -> np.ndarray:
+    """Seed eq. 4 from the sums: ``(F − S1·w̄) / sqrt(S2 − S1²/n)`` per candidate, NaN
+    where the heave varies by less than 1e-12 of S2 (constant); *w* unit-normed heights
+    of mean *mean_w*."""
+    return _pearson(F, S1, S2, int(n), float(mean_w))
 
 
 def correlation_sums(tags: np.ndarray, w: np.ndarray, t_att: np.ndarray, h_att: np.ndarray,

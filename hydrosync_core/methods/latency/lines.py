@@ -11,9 +11,15 @@ from hydrosync_core.methods.latency.correlation import (
     correlation_curve_direct,
     peak_uncertainty,
     refine_peak,
+    unit_centred,
 )
 from hydrosync_core.methods.latency.detrend import detrend
 from hydrosync_core.methods.latency.params import LatencyParams
+
+try:  # numba is a dependency; numpy remains if it cannot load
+    from numba import njit
+except ImportError:  # pragma: no cover
+    njit = None
 
 MARGIN_S = 0.15
 """Attitude needed beyond the scan range (refinement and curvature fit around the peak)."""
@@ -133,13 +139,14 @@ def scan_line(
         return LinePeak(np.full(dts.size, np.nan))
     win = attitude_window(t_att, line.tags, float(dts[0]), float(dts[-1]))
     ta, ha = t_att[win], h_att[win]
-    curve = correlation_curve(line.tags, line.h, ta, ha, dts)
-    if not np.any(np.isfinite(curve)):
+    unit = unit_centred(line.h)  # shared by the scan, the refinement and σ
+    curve = correlation_curve(line.tags, line.h, ta, ha, dts, unit)
+    k, low = _argmax_min(curve)
+    if k < 0:
         line.warnings.append(f"line {line.name}: total heave is constant, no correlation")
         return LinePeak(curve)
-    k = int(np.nanargmax(curve))
     peak = LinePeak(curve, r_max=float(curve[k]), latency_s=float(dts[k]))
-    span = float(np.nanmax(curve) - np.nanmin(curve))
+    span = float(curve[k] - low)
     if span < FLAT_R_SPAN:
         line.warnings.append(
             f"line {line.name}: R is flat over the scan (varies by {span:.3f}), no clear peak"
@@ -152,10 +159,43 @@ def scan_line(
         )
         return peak
     if refine:
-        peak.latency_s, peak.r_max = refine_peak(line.tags, line.h, ta, ha, dts, curve, k)
+        peak.latency_s, peak.r_max = refine_peak(line.tags, line.h, ta, ha, dts, curve, k,
+                                                 unit=unit)
     if uncertainty:
-        peak.uncertainty_s = peak_uncertainty(line.tags, line.h, ta, ha, peak.latency_s)
+        peak.uncertainty_s = peak_uncertainty(line.tags, line.h, ta, ha, peak.latency_s,
+                                              unit=unit)
     return peak
+
+
+def _argmax_min(curve: np.ndarray) -> tuple[int, float]:
+    """(``np.nanargmax``, ``np.nanmin``) of *curve*, (−1, NaN) when nothing is finite.
+
+    One pass instead of np.any(np.isfinite), nanargmax, nanmax and nanmin (their Python
+    overhead, per line and pass, held the GIL the scan threads share)."""
+    if _argmax_min_nb is None:  # pragma: no cover
+        if not np.any(np.isfinite(curve)):
+            return -1, float("nan")
+        return int(np.nanargmax(curve)), float(np.nanmin(curve))
+    k, low = _argmax_min_nb(np.ascontiguousarray(curve, dtype=float))
+    return int(k), float(low)
+
+
+def _argmax_min_py(curve):  # pragma: no cover - compiled below
+    k = -1
+    high = low = np.nan
+    for i in range(curve.size):
+        v = curve[i]
+        if v != v:
+            continue
+        if k < 0 or v > high:  # the first of equal maxima, as np.nanargmax
+            k = i
+            high = v
+        if not v >= low:  # also the first finite value (low NaN)
+            low = v
+    return k, low
+
+
+_argmax_min_nb = njit(cache=True, nogil=True)(_argmax_min_py) if njit is not None else None
 
 
 def scan_line_window(

@@ -128,7 +128,14 @@ def spectrum(x: np.ndarray) -> Spectrum:
     # same numbers), without scipy.fft's import.
     size = next_fast_len(2 * n)
     left = (size - n) // 2
-    y = np.pad(x - trend, (left, size - n - left), mode="symmetric")
+    right = size - n - left
+    if left > n or right > n:  # reflections of reflections
+        y = np.pad(x - trend, (left, right), mode="symmetric")
+    else:  # np.pad(mode="symmetric")'s numbers without its Python overhead
+        y = np.empty(size)
+        inner = np.subtract(x, trend, out=y[left:left + n])
+        y[:left] = inner[left - 1::-1] if left else inner[:0]
+        y[left + n:] = inner[:n - right - 1:-1] if n > right else inner[::-1]
     return Spectrum(n, size, left, intercept, slope, np.fft.rfft(y))
 
 

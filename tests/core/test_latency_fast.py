@@ -417,3 +417,49 @@ def test_next_fast_len_and_numpy_fft_match_scipy_fft():
         np.testing.assert_allclose(spec, fft.rfft(x), rtol=0, atol=1e-12)
         np.testing.assert_allclose(np.fft.irfft(spec, size), fft.irfft(spec, size), rtol=0,
                                    atol=1e-12)
+
+
+def test_compiled_scan_helpers_equal_numpy():
+    """The compiled replacements of numpy steps in the scan give numpy's numbers."""
+    from hydrosync_core.methods.latency import lines
+
+    rng = np.random.default_rng(4)
+    cases = [(0.1, 0.1002, 41), (-1.0, 1.0, 2001), (0.3 - 0.1, 0.3 + 0.1, 21), (2.5, 2.5, 7),
+             (-3.7, 11.0, 2), *((rng.normal(), rng.normal(), int(rng.integers(2, 500)))
+                                for _ in range(50))]
+    for start, stop, num in cases:
+        np.testing.assert_array_equal(fastscan.grid(start, stop, num),
+                                      np.linspace(start, stop, num))
+
+    def old_uniform_step(dts):
+        if dts.size < 2:
+            return None
+        step = (float(dts[-1]) - float(dts[0])) / (dts.size - 1)
+        if not step > 0:
+            return None
+        if np.max(np.abs(np.diff(dts) - step)) > 1e-9 * max(step, 1e-300):
+            return None
+        return step
+
+    for dts in (np.linspace(-1, 1, 2001), np.array([0.0]), np.array([1.0, 0.0]),
+                np.array([-0.3, -0.1, 0.0, 0.4]), np.array([0.0, np.nan, 2.0]),
+                np.linspace(0, 1, 11) + np.r_[0, 1e-12, np.zeros(9)]):
+        assert fastscan.uniform_step(dts) == old_uniform_step(dts)
+
+    for curve in (rng.normal(size=50), np.r_[np.nan, 0.3, 0.7, np.nan, 0.7, -0.2],
+                  np.full(5, np.nan), np.r_[np.nan, np.nan, -0.5], np.array([0.2])):
+        k, low = lines._argmax_min(curve)
+        if np.any(np.isfinite(curve)):
+            assert (k, low) == (int(np.nanargmax(curve)), float(np.nanmin(curve)))
+        else:
+            assert k == -1
+
+    F, S1, S2 = rng.normal(size=(3, 300))
+    S2 = np.abs(S2) * 50.0
+    S2[:5], S1[:5] = 1.0, np.sqrt(1.0 * 40)  # constant heave: var = 0
+    n, mean_w = 40, 0.013
+    with np.errstate(invalid="ignore", divide="ignore"):
+        var = S2 - S1 * S1 / n
+        ref = (F - S1 * mean_w) / np.sqrt(var)
+    ref[~(var > 1e-12 * np.abs(S2) + 1e-300)] = np.nan
+    np.testing.assert_array_equal(fastscan.pearson(F, S1, S2, n, mean_w), ref)

@@ -553,12 +553,12 @@ def _estimate(setup: _Setup, p: LatencyParams, progress, cancel) -> LatencyResul
 
 
 def _finish(setup: _Setup, p: LatencyParams, peaks: list, warnings_pre: list, progress,
-            cancel, before: list | None = None) -> LatencyResult:
+            cancel, before: list | None = None, joint: bool = True) -> LatencyResult:
     """An estimator's result from its per-line peaks: selection, combination, quality.
 
     *before*: the lines' σ0 before (:func:`_first_passes`); None leaves σ0 before and
-    after NaN (:func:`_with_quality` adds them): ``auto`` computes them for the
-    estimator it keeps only.
+    after NaN (:func:`_with_quality` adds them). *joint* False leaves the joint peak NaN
+    (:func:`_with_joint_peak`). ``auto`` computes both for the estimator it keeps only.
     """
     att, arm, dts = setup.att, setup.arm, setup.dts
     t_att = att["time"]
@@ -589,7 +589,7 @@ def _finish(setup: _Setup, p: LatencyParams, peaks: list, warnings_pre: list, pr
     comb = combine(lat, r_max, unc, used, p.weighting)
     curves = np.array([pk.curve for pk in peaks])
     epochs = np.array([ln.tags.size for ln in prepared], dtype=float)
-    joint = _joint_peak(curves[used], epochs[used], dts)
+    joint = _joint_peak(curves[used], epochs[used], dts) if joint else float("nan")
 
     check_cancel(cancel)
     report(progress, 0.92, "quality")
@@ -655,6 +655,14 @@ def _with_quality(result: LatencyResult, setup: _Setup, before: list) -> Latency
     return dataclasses.replace(result, lines=lines)
 
 
+def _with_joint_peak(result: LatencyResult) -> LatencyResult:
+    """*result* with its joint peak (a :func:`_finish` with *joint* False)."""
+    used = np.array([ln.used for ln in result.lines], dtype=bool)
+    epochs = np.array([ln.epochs for ln in result.lines], dtype=float)
+    return dataclasses.replace(result, joint_latency_s=_joint_peak(
+        result.r_curves[used], epochs[used], result.dt_grid))
+
+
 def _auto(gnss, attitude, lines, lever_arm, p: LatencyParams, progress, cancel
           ) -> LatencyResult:
     """``estimator = auto``: qi2010 and weighted, the one with the smaller uncertainty.
@@ -673,8 +681,9 @@ def _auto(gnss, attitude, lines, lever_arm, p: LatencyParams, progress, cancel
     hints = [(pk.latency_s, pk.uncertainty_s) for pk in raw]
     peaks, warnings_pre = _weighted(s_w, p_w, first, works, sub_progress(progress, 0.6, 0.9),
                                     cancel, hints=hints)
-    runs = {"qi2010": (_finish(s_qi, p_qi, raw, [], None, cancel), s_qi),
-            "weighted": (_finish(s_w, p_w, peaks, warnings_pre, None, cancel), s_w)}
+    runs = {"qi2010": (_finish(s_qi, p_qi, raw, [], None, cancel, joint=False), s_qi),
+            "weighted": (_finish(s_w, p_w, peaks, warnings_pre, None, cancel, joint=False),
+                         s_w)}
 
     def key(r: LatencyResult) -> float:
         return r.uncertainty_s if r.converged and np.isfinite(r.uncertainty_s) else np.inf
@@ -682,7 +691,7 @@ def _auto(gnss, attitude, lines, lever_arm, p: LatencyParams, progress, cancel
     best = min((r for r, _ in runs.values()), key=key)
     other = runs["weighted" if best.estimator == "qi2010" else "qi2010"][0]
     report(progress, 0.95, "quality")
-    best = _with_quality(best, runs[best.estimator][1], before)
+    best = _with_joint_peak(_with_quality(best, runs[best.estimator][1], before))
     report(progress, 1.0, "done")
     note = (f"auto: {best.estimator} (σ {best.uncertainty_s * 1e3:.2f} ms; {other.estimator} "
             f"{other.uncertainty_s * 1e3:.2f} ms, Δt {other.latency_s:+.4f} s)")

@@ -14,9 +14,13 @@
 * the pre-v2 estimator (every candidate interpolated: ``correlation_curve_direct``) for the
   "identical to today's" check: final and per-line Δt must agree to 0.1 ms;
 * auto with the weighted pass windowed (``api.WINDOWED_SCAN = True``, opt-in) against the
-  default auto, which scans every candidate of every pass.
+  default auto, which scans every candidate of every pass;
+* the CLI's qi2010 and auto results against *reference* (``--reference``; by default
+  ``reference/latency_speed_day.json``: the default day's results before the auto
+  speed-up of issue #15 part 3): final and per-line Δt and σ must agree to 0.01 ms.
 
-Run: ``.venv/bin/python benchmarks/bench_latency_speed.py [--lines 500] [--dir DIR]``.
+Run: ``.venv/bin/python benchmarks/bench_latency_speed.py [--lines 500] [--dir DIR]
+[--reference JSON]``.
 """
 
 from __future__ import annotations
@@ -41,6 +45,32 @@ from hydrosync_core.methods.latency.simulate import DayConfig, simulate_day, wri
 
 CFG = dict(latency_s=0.123, line_s=120.0, run_in_s=10.0, turn_s=30.0, gnss_hz=10.0,
            attitude_hz=100.0)
+
+REFERENCE = Path(__file__).with_name("reference") / "latency_speed_day.json"
+"""Default day's CLI results before the auto speed-up (see the file's "about")."""
+
+
+def reference_diff(doc: dict, ref: dict | None) -> str:
+    """Largest |doc − ref| (ms) of the final (Δt, σ) and of the lines' (Δt, σ), as text.
+
+    *doc*: a ``hydrosync latency`` JSON; *ref*: one run of the reference file (or None).
+    """
+    if ref is None or len(ref["lines"]) != len(doc["lines"]):
+        return "n/a (no reference for this day)"
+
+    def diff(a, b) -> float:
+        a = np.nan if a is None else a
+        b = np.nan if b is None else b
+        if np.isnan(a) and np.isnan(b):
+            return 0.0
+        return abs(a - b)  # NaN against a number: NaN, reported as such
+
+    final = max(diff(doc["latency_s"], ref["latency_s"]),
+                diff(doc["uncertainty_s"], ref["uncertainty_s"]))
+    lines = max(max(diff(ln["latency_s"], r[0]), diff(ln["uncertainty_s"], r[1]))
+                for ln, r in zip(doc["lines"], ref["lines"], strict=True))
+    same = "" if doc["estimator"] == ref["estimator"] else f" (estimator {ref['estimator']}!)"
+    return f"final {final * 1e3:.2e} ms, lines {lines * 1e3:.2e} ms (goal <= 0.01 ms){same}"
 
 
 def straightforward_scan(gnss, att, lines, arm, dts) -> tuple[float, list[float]]:
@@ -95,7 +125,13 @@ def main() -> None:
     parser.add_argument("--lines", type=int, default=500)
     parser.add_argument("--step", type=float, default=0.001)
     parser.add_argument("--dir", type=Path, help="keep/reuse the CSV files here")
+    parser.add_argument("--reference", type=Path, default=REFERENCE,
+                        help="results to compare with (see reference_diff)")
     args = parser.parse_args()
+    refs = (json.loads(args.reference.read_text())["runs"]
+            if args.reference is not None and args.reference.exists() else {})
+    if args.reference == REFERENCE and (args.lines, args.step) != (500, 0.001):
+        refs = {}  # the stored results are the default day's
     cfg = DayConfig(n_lines=args.lines, **CFG)
     tmp = None
     if args.dir is None:
@@ -187,6 +223,8 @@ def main() -> None:
         ("max |new - pre-v2| per line", f"{line_diff * 1e3:.2e} ms"),
         ("auto: |CLI - windowed| Δt, σ", f"{auto_final_diff * 1e3:.2e} ms (goal <= 0.1 ms)"),
         ("auto: max |full - windowed| line", f"{auto_line_diff * 1e3:.2e} ms"),
+        ("qi2010 CLI vs reference", reference_diff(doc, refs.get("qi2010"))),
+        ("auto CLI vs reference", reference_diff(auto_doc, refs.get("auto"))),
         ("machine", f"{os.cpu_count()} cores, load {os.getloadavg()[0]:.1f} at the end"),
         ("this process maxrss", f"{resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024:.0f}"
                                 " MiB (incl. benchmark data)"),

@@ -454,6 +454,15 @@ def test_compiled_scan_helpers_equal_numpy():
         else:
             assert k == -1
 
+    for jitter in (0.0, 1e-9, 1e-8, 2e-8, 1e-6):
+        ta = 1000.0 + np.arange(5000) * 0.01 + jitter * rng.standard_normal(5000)
+        interval = (ta[-1] - ta[0]) / (ta.size - 1)
+        limit = fastscan.LATTICE_TOLERANCE * interval
+        assert fastscan._departs_py(ta, interval, limit) == (
+            fastscan._departure(ta, interval) > limit)
+        assert fastscan._departs(ta, interval, limit) == (
+            fastscan._departure(ta, interval) > limit)
+
     F, S1, S2 = rng.normal(size=(3, 300))
     S2 = np.abs(S2) * 50.0
     S2[:5], S1[:5] = 1.0, np.sqrt(1.0 * 40)  # constant heave: var = 0

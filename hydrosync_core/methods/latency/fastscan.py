@@ -331,6 +331,19 @@ def _departure_py(ta, interval):  # pragma: no cover - compiled below
 
 _departure = njit(cache=True, nogil=True)(_departure_py) if njit is not None else None
 
+
+def _departs_py(ta, interval, limit):  # pragma: no cover - compiled below
+    """``_departure(ta, interval) > limit``: any departure above *limit* (NaNs never are).
+
+    An OR over the samples rather than their maximum: LLVM vectorises it (a float
+    maximum it may not reorder), and every line's scans ask it again.
+    """
+    t0 = ta[0]
+    over = False
+    for j in range(ta.size):
+        over |= abs(ta[j] - t0 - j * interval) > limit
+    return over
+
 LATTICE_TOLERANCE = 1e-6
 """Largest departure of an attitude time from the uniform grid, as a fraction of the
 sampling interval, for the lattice kernel (10 ns at 100 Hz: the interpolated heave then
@@ -348,7 +361,7 @@ def _lattice_py(tags, ta, d0, step, K, tolerance):  # pragma: no cover - compile
     L = int(np.rint(ratio))  # round(): halves to even, as np.rint
     if L < 1 or abs(ratio - L) > 1e-9 * ratio:
         return none
-    if _departure(ta, interval) > tolerance * interval:
+    if _departs(ta, interval, tolerance * interval):
         return none
     x = np.empty(tags.size)
     unit = interval / L
@@ -368,6 +381,7 @@ def _lattice_py(tags, ta, d0, step, K, tolerance):  # pragma: no cover - compile
     return x, L
 
 
+_departs = njit(nogil=True, inline="always")(_departs_py) if njit is not None else _departs_py
 _lattice_nb = njit(cache=True, nogil=True)(_lattice_py) if njit is not None else None
 
 

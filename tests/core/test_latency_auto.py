@@ -23,7 +23,8 @@ def _run(day, cfg, monkeypatch, windowed: bool, estimator: str = "auto", shift=N
 
     def spy_first(*args, **kwargs):
         out = FIRST_PASSES(*args, **kwargs)
-        modes.extend([pk.scan for pk in peaks] for peaks in out[:2] if peaks is not None)
+        modes.extend([pk.scan for pk in peaks] for peaks in (out.raw_peaks, out.aa_peaks)
+                     if peaks is not None)
         return out
 
     def spy_weighted(*args, **kwargs):

@@ -367,8 +367,8 @@ def test_first_pass_windows_equal_per_line_filtering():
     d = simulate_day(cfg, seed=12)
     p = LatencyParams.from_dict({"estimator": "weighted"})
     setup = api._setup(d["gnss"], d["attitude"], d["lines"], cfg.lever_arm_m, p)
-    _, peaks, works, _ = api._first_passes(setup, None, setup.prepared, None, None,
-                                           aa_sigma=False, keep=True)
+    passes = api._first_passes(setup, p, False, True, None, None, aa_sigma=False, keep=True)
+    setup.prepared, peaks, works = passes.aa_lines, passes.aa_peaks, passes.works
     att, arm, t = setup.att, np.asarray(cfg.lever_arm_m), setup.att["time"]
     pad = int(round(prefilter.PAD_S / setup.a_int))
     cutoff = prefilter.ANTIALIAS_FRACTION * 0.5 / setup.g_int

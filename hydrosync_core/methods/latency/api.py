@@ -24,6 +24,7 @@ from hydrosync_core.methods.latency.lines import (
     LinePeak,
     attitude_window,
     line_epochs,
+    line_selection,
     prepare_line,
     scan_line,
     scan_line_window,
@@ -326,29 +327,41 @@ def _unscanned(dts: np.ndarray) -> LinePeak:
     return LinePeak(np.full(dts.size, np.nan))
 
 
-def _first_passes(setup: _Setup, raw: list | None, antialias: list | None, progress, cancel,
-                  aa_sigma: bool = True, keep: bool = False):
-    """The scans on the raw total heave (qi2010) and on the anti-aliased one, line by line.
+@dataclasses.dataclass
+class _Passes:
+    """What :func:`_first_passes` returns: per line, in order (None for a scan skipped)."""
 
-    *raw* / *antialias*: the lines (:class:`LineData`, one list per estimator, their
-    warnings their own) to scan with that heave, or None to skip that scan. Each line's
-    total heave is computed once, on the window padded for filtering, and serves both.
-    *aa_sigma*: the anti-aliased scan's uncertainty; *keep*: return each line's
-    :class:`_LineWork` for the weighted passes (else None). Returns ``(raw peaks,
-    anti-aliased peaks, works, σ0 before)``, lists (None for a scan skipped); σ0 before
-    (seed eqs. 5–6 at Δt = 0, m, NaN for a line not usable) is the same for every
-    estimator and comes from the raw window here: :func:`_quality` then interpolates at
-    the final Δt only.
+    raw_lines: list | None     # LineData of the qi2010 scan (its warnings its own)
+    raw_peaks: list | None
+    aa_lines: list | None      # LineData of the anti-aliased scan (the weighted estimator's)
+    aa_peaks: list | None
+    works: list                # _LineWork (keep) or None
+    before: list               # σ0 before (m), NaN for a line not usable
+
+
+def _first_passes(setup: _Setup, p: LatencyParams, raw: bool, antialias: bool, progress,
+                  cancel, aa_sigma: bool = True, keep: bool = False) -> _Passes:
+    """Each line prepared (:func:`prepare_line`) and scanned on its raw total heave
+    (qi2010, *raw*) and on the anti-aliased one (*antialias*), one task per line.
+
+    Each line's total heave is computed once, on the window padded for filtering, and
+    serves both scans; the line is prepared in its task too (its detrending overlaps the
+    other thread's compiled work). *aa_sigma*: the anti-aliased scan's uncertainty;
+    *keep*: each line's :class:`_LineWork` for the weighted passes. σ0 before (seed
+    eqs. 5–6 at Δt = 0) is the same for every estimator and comes from the raw window
+    here: :func:`_quality` then interpolates at the final Δt only.
     """
     from hydrosync_core.methods.latency import prefilter
 
-    dts, a_int = setup.dts, setup.a_int
+    dts, a_int, t_g, t_att = setup.dts, setup.a_int, setup.t_g, setup.att["time"]
     source = _Attitude(setup.att, setup.arm)
-    pad = int(round(prefilter.PAD_S / a_int)) if antialias is not None else 0
-    lead = raw if raw is not None else antialias
-    windows = [source.windows(ln.tags, float(dts[0]), float(dts[-1]), pad) if ln.usable
-               else None for ln in lead]
-    if keep:
+    pad = int(round(prefilter.PAD_S / a_int)) if antialias else 0
+    # The lines' epochs (binary searches) and windows first: they size the kept rows.
+    sels = [line_selection(setup.starts[i], setup.ends[i], t_g, t_att, p)
+            for i in range(len(setup.names))]
+    windows = [source.windows(t_g[sel], float(dts[0]), float(dts[-1]), pad)
+               if sel.stop - sel.start >= p.min_epochs else None for sel in sels]
+    if keep and any(w is not None for w in windows):
         # What the later passes need, in two blocks allocated here rather than per line
         # in the worker threads: long-lived rows scattered among the threads' temporaries
         # would keep their heap from shrinking (~60 MB more peak memory on a survey day).
@@ -356,8 +369,8 @@ def _first_passes(setup: _Setup, raw: list | None, antialias: list | None, progr
         inner_max = max(n for n, _ in spans)
         bins_max = max(_band_bins(prefilter.next_fast_len(2 * n), a_int, setup.g_int)
                        for _, n in spans)
-        aa_rows = np.empty((len(lead), inner_max))
-        bin_rows = np.empty((len(lead), bins_max), dtype=complex)
+        aa_rows = np.empty((len(sels), inner_max))
+        bin_rows = np.empty((len(sels), bins_max), dtype=complex)
     cutoff = prefilter.ANTIALIAS_FRACTION * 0.5 / setup.g_int
     aa_cache: dict = {}
 
@@ -365,33 +378,39 @@ def _first_passes(setup: _Setup, raw: list | None, antialias: list | None, progr
         return prefilter.antialias_response(f, cutoff)
 
     def task(i: int):
+        line = prepare_line(setup.names[i], setup.starts[i], setup.ends[i], t_g, setup.hgt,
+                            t_att, p, setup.g_int, a_int, sels[i])
+        # One LineData per estimator: each appends its own warnings.
+        line_raw = line if raw else None
+        line_aa = (dataclasses.replace(line, warnings=list(line.warnings)) if raw else line
+                   ) if antialias else None
         if windows[i] is None:
-            return _unscanned(dts), _unscanned(dts), None, float("nan")
+            return line_raw, _unscanned(dts), line_aa, _unscanned(dts), None, float("nan")
         inner, padded = windows[i]
         h = source.heave(padded)
         crop = slice(inner.start - padded.start, inner.stop - padded.start)
         ta = source.t[inner]
-        line = lead[i]
         # The numbers of _Attitude.at(tags): same records, same interpolation formula.
         before = sigma0(line.h, heave_at(line.tags, np.zeros(1), ta, h[crop])[0])
         pk_raw = pk_aa = work = None
-        if raw is not None:
-            pk_raw = _scan(raw[i], ta, h[crop], dts)
-        if antialias is not None:
+        if raw:
+            pk_raw = _scan(line_raw, ta, h[crop], dts)
+        if antialias:
             spec = prefilter.spectrum(h)
             del h
             gains = prefilter.response_gains(response, spec.size, a_int, aa_cache)
             ha = prefilter.filtered(spec, gains, crop, out=aa_rows[i] if keep else None)
-            pk_aa = _scan(antialias[i], ta, ha, dts, uncertainty=aa_sigma)
+            pk_aa = _scan(line_aa, ta, ha, dts, uncertainty=aa_sigma)
             if keep:
                 work = _LineWork(inner, padded, spec.head(
                     _band_bins(spec.size, a_int, setup.g_int), out=bin_rows[i]), ha)
-        return pk_raw, pk_aa, work, before
+        return line_raw, pk_raw, line_aa, pk_aa, work, before
 
-    out = _per_line(task, len(lead), setup.names, progress, cancel)
-    raw_peaks = [o[0] for o in out] if raw is not None else None
-    aa_peaks = [o[1] for o in out] if antialias is not None else None
-    return raw_peaks, aa_peaks, [o[2] for o in out], [o[3] for o in out]
+    out = _per_line(task, len(sels), setup.names, progress, cancel)
+    raw_lines, raw_peaks, aa_lines, aa_peaks, works, before = map(list, zip(*out, strict=True))
+    return _Passes(raw_lines if raw else None, raw_peaks if raw else None,
+                   aa_lines if antialias else None, aa_peaks if antialias else None,
+                   works, before)
 
 
 def _band_bins(size: int, a_int: float, g_int: float) -> int:
@@ -488,7 +507,8 @@ def estimate_latency(
 
 @dataclasses.dataclass
 class _Setup:
-    """Checked inputs and prepared lines: what every estimator starts from."""
+    """Checked inputs: what every estimator starts from; *prepared* (the lines' LineData)
+    is filled by :func:`_first_passes`, one list per estimator."""
 
     t_g: np.ndarray
     hgt: np.ndarray
@@ -501,11 +521,6 @@ class _Setup:
     starts: np.ndarray
     ends: np.ndarray
     prepared: list
-
-    def fresh(self) -> _Setup:
-        """A copy whose lines have their own warning lists (an estimator appends to them)."""
-        return dataclasses.replace(self, prepared=[
-            dataclasses.replace(ln, warnings=list(ln.warnings)) for ln in self.prepared])
 
 
 def _setup(gnss, attitude, lines, lever_arm, p: LatencyParams) -> _Setup:
@@ -522,33 +537,39 @@ def _setup(gnss, attitude, lines, lever_arm, p: LatencyParams) -> _Setup:
     ends = np.asarray(lines["end"], dtype=float).ravel()
     if not names:
         raise InputError("lines", "no survey lines")
-    prepared = [prepare_line(name, starts[i], ends[i], t_g, hgt, t_att, p, g_int, a_int)
-                for i, name in enumerate(names)]
-    setup = _Setup(t_g, hgt, att, arm, dts, g_int, a_int, names, starts, ends, prepared)
+    return _Setup(t_g, hgt, att, arm, dts, g_int, a_int, names, starts, ends, [])
+
+
+def _check_usable(setup: _Setup, p: LatencyParams, prepared: list) -> None:
+    """Raise InputError when no prepared line has enough epochs with attitude."""
     if not any(line.usable for line in prepared):
         raise InputError("lines", f"no line has {p.min_epochs} or more GNSS epochs with attitude "
-                         "data: lines span " + _span_text(np.r_[starts, ends])
-                         + ", GNSS " + _span_text(t_g) + ", attitude " + _span_text(t_att)
+                         "data: lines span " + _span_text(np.r_[setup.starts, setup.ends])
+                         + ", GNSS " + _span_text(setup.t_g) + ", attitude "
+                         + _span_text(setup.att["time"])
                          + " (lines must be on the loggers' time scale)")
-    return setup
 
 
 def _estimate(setup: _Setup, p: LatencyParams, progress, cancel) -> LatencyResult:
     """One estimator (not auto) from :func:`_setup`'s inputs."""
     if p.estimator == "qi2010":
-        peaks, _, _, before = _first_passes(setup, setup.prepared, None,
-                                            sub_progress(progress, 0, 0.9), cancel)
-        return _finish(setup, p, peaks, [], progress, cancel, before)
+        passes = _first_passes(setup, p, True, False, sub_progress(progress, 0, 0.9), cancel)
+        _check_usable(setup, p, passes.raw_lines)
+        setup = dataclasses.replace(setup, prepared=passes.raw_lines)
+        return _finish(setup, p, passes.raw_peaks, [], progress, cancel, passes.before)
     weighted = p.estimator == "weighted"
     # The weighted estimator keeps only R_max, Δt and the edge flag of its first pass:
     # no σ there (unless the weighting proves impossible, then that pass is the answer).
-    _, first, works, before = _first_passes(setup, None, setup.prepared,
-                                    sub_progress(progress, 0, 0.45 if weighted else 0.9),
-                                    cancel, aa_sigma=not weighted, keep=weighted)
+    passes = _first_passes(setup, p, False, True,
+                           sub_progress(progress, 0, 0.45 if weighted else 0.9), cancel,
+                           aa_sigma=not weighted, keep=weighted)
+    _check_usable(setup, p, passes.aa_lines)
+    setup = dataclasses.replace(setup, prepared=passes.aa_lines)
+    first, before = passes.aa_peaks, passes.before
     if not weighted:
         return _finish(setup, p, first, [], progress, cancel, before)
-    peaks, warnings_pre = _weighted(setup, p, first, works, sub_progress(progress, 0.45, 0.9),
-                                    cancel)
+    peaks, warnings_pre = _weighted(setup, p, first, passes.works,
+                                    sub_progress(progress, 0.45, 0.9), cancel)
     return _finish(setup, p, peaks, warnings_pre, progress, cancel, before)
 
 
@@ -671,13 +692,15 @@ def _auto(gnss, attitude, lines, lever_arm, p: LatencyParams, progress, cancel
     estimator's anti-aliased first pass (each line's total heave computed once); the
     σ0 quality figures are computed for the estimator kept only.
     """
-    setup = _setup(gnss, attitude, lines, lever_arm, p)  # checked and prepared once
-    s_qi, s_w = setup.fresh(), setup.fresh()
+    setup = _setup(gnss, attitude, lines, lever_arm, p)  # checked once
     p_qi = dataclasses.replace(p, estimator="qi2010")
     p_w = dataclasses.replace(p, estimator="weighted")
-    raw, first, works, before = _first_passes(setup, s_qi.prepared, s_w.prepared,
-                                      sub_progress(progress, 0.0, 0.6), cancel,
-                                      aa_sigma=False, keep=True)
+    passes = _first_passes(setup, p, True, True, sub_progress(progress, 0.0, 0.6), cancel,
+                           aa_sigma=False, keep=True)
+    _check_usable(setup, p, passes.raw_lines)
+    s_qi = dataclasses.replace(setup, prepared=passes.raw_lines)
+    s_w = dataclasses.replace(setup, prepared=passes.aa_lines)
+    raw, first, works, before = passes.raw_peaks, passes.aa_peaks, passes.works, passes.before
     hints = [(pk.latency_s, pk.uncertainty_s) for pk in raw]
     peaks, warnings_pre = _weighted(s_w, p_w, first, works, sub_progress(progress, 0.6, 0.9),
                                     cancel, hints=hints)

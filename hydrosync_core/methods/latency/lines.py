@@ -102,13 +102,25 @@ def line_slice(t_g: np.ndarray, start: float, end: float, skip_s: float, t_att: 
     return slice(i0 + int(idx[0]), i0 + int(idx[-1]) + 1)
 
 
+def line_selection(start: float, end: float, t_g: np.ndarray, t_att: np.ndarray,
+                   params: LatencyParams) -> slice:
+    """The GNSS epochs (slice of *t_g*) that :func:`prepare_line` keeps for a line (s)."""
+    lo, hi = params.range_s
+    return line_slice(t_g, start, end, params.skip_s, t_att, lo - MARGIN_S, hi + MARGIN_S)
+
+
 def prepare_line(
     name: str, start: float, end: float, t_g: np.ndarray, height: np.ndarray,
     t_att: np.ndarray, params: LatencyParams, gnss_interval: float, att_interval: float,
+    sel: slice | None = None,
 ) -> LineData:
-    """Select the line's epochs (after *skip_s*, inside the attitude coverage) and detrend."""
+    """Select the line's epochs (after *skip_s*, inside the attitude coverage) and detrend.
+
+    *sel*: :func:`line_selection`, when the caller has it.
+    """
     lo, hi = params.range_s
-    sel = line_slice(t_g, start, end, params.skip_s, t_att, lo - MARGIN_S, hi + MARGIN_S)
+    if sel is None:
+        sel = line_selection(start, end, t_g, t_att, params)
     tags, hgt = t_g[sel], height[sel]
     line = LineData(name, start, end, tags, hgt)
     if tags.size < params.min_epochs:

@@ -151,3 +151,33 @@ def test_auto_equals_the_estimator_it_keeps_run_alone(noise, seed):
     for key in ("message", "params"):
         a.pop(key), b.pop(key)
     assert a == b
+
+
+def test_weighted_pass_without_the_kept_bins_recomputes_the_spectrum(monkeypatch):
+    """A weight beyond the bins kept from the first pass (not possible with the pooled
+    weighting, which is zero above the GNSS Nyquist frequency) falls back to the whole
+    spectrum of the line's window: the same numbers."""
+    cfg = scenario("coloured", **DAY)
+    day = simulate_day(cfg, seed=6)
+    args = (day["gnss"], day["attitude"], day["lines"], cfg.lever_arm_m,
+            {**PARAMS, "estimator": "weighted"})
+    ref = estimate_latency(*args)
+    monkeypatch.setattr(api, "_band_bins", lambda size, a_int, g_int: 3)
+    _assert_same(estimate_latency(*args), ref, tol=0)
+
+
+def test_weighted_without_a_weighting_is_the_antialiased_estimator(monkeypatch):
+    """When the pooled weighting is not possible the anti-aliased first pass is the answer,
+    its σ computed afterwards on the kept windows: qi2010_antialias's numbers."""
+    cfg = scenario("coloured", **DAY)
+    day = simulate_day(cfg, seed=7)
+    args = (day["gnss"], day["attitude"], day["lines"], cfg.lever_arm_m)
+    ref = estimate_latency(*args, {**PARAMS, "estimator": "qi2010_antialias"})
+    monkeypatch.setattr(api, "_pooled_weighting", lambda *a, **k: None)
+    res = estimate_latency(*args, {**PARAMS, "estimator": "weighted"})
+    assert res.estimator == "weighted" and "coherence weighting not possible" in res.warnings[0]
+    assert res.latency_s == ref.latency_s and res.uncertainty_s == ref.uncertainty_s
+    for a, b in zip(res.lines, ref.lines, strict=True):
+        assert (a.latency_s, a.uncertainty_s, a.r_max, a.used, a.sigma0_after_m) == (
+            b.latency_s, b.uncertainty_s, b.r_max, b.used, b.sigma0_after_m)
+    np.testing.assert_array_equal(res.r_curves, ref.r_curves)

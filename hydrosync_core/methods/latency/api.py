@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import dataclasses
 from collections.abc import Mapping
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -34,6 +35,9 @@ from hydrosync_core.methods.latency.quality import sigma0
 from hydrosync_core.methods.latency.result import LatencyResult, LineResult
 from hydrosync_core.progress import check_cancel, report, sub_progress
 from hydrosync_core.timespan import span_of
+
+if TYPE_CHECKING:
+    from hydrosync_core.methods.latency.prefilter import Spectrum
 
 
 def _all_finite_py(values):  # pragma: no cover - compiled below
@@ -201,7 +205,7 @@ class _LineWork:
 
     inner: slice
     padded: slice
-    spectrum: object  # prefilter.Spectrum
+    spectrum: Spectrum
     antialiased: np.ndarray | None
 
 

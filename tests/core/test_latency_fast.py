@@ -447,7 +447,8 @@ def test_compiled_scan_helpers_equal_numpy():
         assert fastscan.uniform_step(dts) == old_uniform_step(dts)
 
     for curve in (rng.normal(size=50), np.r_[np.nan, 0.3, 0.7, np.nan, 0.7, -0.2],
-                  np.full(5, np.nan), np.r_[np.nan, np.nan, -0.5], np.array([0.2])):
+                  np.full(5, np.nan), np.r_[np.nan, np.nan, -0.5], np.array([0.2]),
+                  np.r_[np.nan, np.inf, 0.1, -np.inf], np.r_[np.inf, np.nan, -np.inf]):
         k, low = lines._argmax_min(curve)
         if np.any(np.isfinite(curve)):
             assert (k, low) == (int(np.nanargmax(curve)), float(np.nanmin(curve)))

@@ -180,7 +180,7 @@ def scan_line(
 
 
 def _argmax_min(curve: np.ndarray) -> tuple[int, float]:
-    """(``np.nanargmax``, ``np.nanmin``) of *curve*, (−1, NaN) when nothing is finite.
+    """(``np.nanargmax``, ``np.nanmin``) of *curve*; index −1 when nothing is finite.
 
     One pass instead of np.any(np.isfinite), nanargmax, nanmax and nanmin (their Python
     overhead, per line and pass, held the GIL the scan threads share)."""
@@ -195,16 +195,18 @@ def _argmax_min(curve: np.ndarray) -> tuple[int, float]:
 def _argmax_min_py(curve):  # pragma: no cover - compiled below
     k = -1
     high = low = np.nan
+    finite = False
     for i in range(curve.size):
         v = curve[i]
         if v != v:
             continue
+        finite |= np.isfinite(v)
         if k < 0 or v > high:  # the first of equal maxima, as np.nanargmax
             k = i
             high = v
-        if not v >= low:  # also the first finite value (low NaN)
+        if not v >= low:  # also the first value (low NaN)
             low = v
-    return k, low
+    return (k if finite else -1), low
 
 
 _argmax_min_nb = njit(cache=True, nogil=True)(_argmax_min_py) if njit is not None else None

@@ -12,14 +12,23 @@ from hydrosync_core.methods.latency.simulate import scenario, simulate_day
 
 DAY = dict(n_lines=6, line_s=90.0, turn_s=15.0, run_in_s=5.0, gnss_hz=5.0, attitude_hz=50.0)
 PARAMS = {"range_s": (-1.0, 1.0), "step_s": 0.002}
-SCAN_LINES, SCAN_WINDOWS = api._scan_lines, api._scan_windows
+FIRST_PASSES, WEIGHTED_PASS = api._first_passes, api._weighted_pass
+SCAN_WINDOWS = api._scan_windows
 
 
 def _run(day, cfg, monkeypatch, windowed: bool, estimator: str = "auto", shift=None):
-    """The estimate and the scan modes of every pass ("full", "window", "fallback")."""
+    """The estimate and the scan modes of every pass ("full", "window", "fallback"), in
+    order: qi2010 (auto only), anti-aliased, weighted."""
     modes: list[list[str]] = []
-    def spy(*args, **kwargs):
-        peaks = SCAN_LINES(*args, **kwargs)
+
+    def spy_first(*args, **kwargs):
+        out = FIRST_PASSES(*args, **kwargs)
+        modes.extend([pk.scan for pk in peaks] for peaks in (out.raw_peaks, out.aa_peaks)
+                     if peaks is not None)
+        return out
+
+    def spy_weighted(*args, **kwargs):
+        peaks = WEIGHTED_PASS(*args, **kwargs)
         modes.append([pk.scan for pk in peaks])
         return peaks
 
@@ -34,7 +43,8 @@ def _run(day, cfg, monkeypatch, windowed: bool, estimator: str = "auto", shift=N
         return out
 
     monkeypatch.setattr(api, "WINDOWED_SCAN", windowed)
-    monkeypatch.setattr(api, "_scan_lines", spy)
+    monkeypatch.setattr(api, "_first_passes", spy_first)
+    monkeypatch.setattr(api, "_weighted_pass", spy_weighted)
     if shift is not None:
         monkeypatch.setattr(api, "_scan_windows", shifted)
     res = estimate_latency(day["gnss"], day["attitude"], day["lines"], cfg.lever_arm_m,
@@ -117,3 +127,57 @@ def test_scan_line_window_checks():
     full = scan_line(LineData("F", 20.0, 180.0, tags, flat.h.copy()), ta, ha, dts)
     if np.nanmax(full.curve) - np.nanmin(full.curve) < FLAT_R_SPAN:
         assert scan_line_window(flat, ta, ha, dts, 400, 600) is None
+
+
+@pytest.mark.parametrize(("noise", "seed"), [("clean", 1), ("coloured", 3)])
+def test_auto_equals_the_estimator_it_keeps_run_alone(noise, seed):
+    """auto shares the set-up, each line's total heave and the anti-aliased pass between
+    its two estimators and computes σ0 for the one it keeps only: the same numbers as
+    running that estimator alone; the note quotes the other one's."""
+    cfg = scenario(noise, **DAY)
+    day = simulate_day(cfg, seed=seed)
+    alone = {e: estimate_latency(day["gnss"], day["attitude"], day["lines"], cfg.lever_arm_m,
+                                 {**PARAMS, "estimator": e}) for e in ("qi2010", "weighted")}
+    auto = estimate_latency(day["gnss"], day["attitude"], day["lines"], cfg.lever_arm_m,
+                            {**PARAMS, "estimator": "auto"})
+    kept = alone[auto.estimator]
+    other = alone["weighted" if auto.estimator == "qi2010" else "qi2010"]
+    assert auto.estimator == ("qi2010" if noise == "clean" else "weighted")
+    assert auto.uncertainty_s <= other.uncertainty_s
+    assert auto.message.startswith(kept.message + "; auto: ")
+    assert f"Δt {other.latency_s:+.4f} s" in auto.message
+    assert auto.params["estimator"] == "auto"
+    a, b = auto.to_dict(curves=True), kept.to_dict(curves=True)
+    for key in ("message", "params"):
+        a.pop(key), b.pop(key)
+    assert a == b
+
+
+def test_weighted_pass_without_the_kept_bins_recomputes_the_spectrum(monkeypatch):
+    """A weight beyond the bins kept from the first pass (not possible with the pooled
+    weighting, which is zero above the GNSS Nyquist frequency) falls back to the whole
+    spectrum of the line's window: the same numbers."""
+    cfg = scenario("coloured", **DAY)
+    day = simulate_day(cfg, seed=6)
+    args = (day["gnss"], day["attitude"], day["lines"], cfg.lever_arm_m,
+            {**PARAMS, "estimator": "weighted"})
+    ref = estimate_latency(*args)
+    monkeypatch.setattr(api, "_band_bins", lambda size, a_int, g_int: 3)
+    _assert_same(estimate_latency(*args), ref, tol=0)
+
+
+def test_weighted_without_a_weighting_is_the_antialiased_estimator(monkeypatch):
+    """When the pooled weighting is not possible the anti-aliased first pass is the answer,
+    its σ computed afterwards on the kept windows: qi2010_antialias's numbers."""
+    cfg = scenario("coloured", **DAY)
+    day = simulate_day(cfg, seed=7)
+    args = (day["gnss"], day["attitude"], day["lines"], cfg.lever_arm_m)
+    ref = estimate_latency(*args, {**PARAMS, "estimator": "qi2010_antialias"})
+    monkeypatch.setattr(api, "_pooled_weighting", lambda *a, **k: None)
+    res = estimate_latency(*args, {**PARAMS, "estimator": "weighted"})
+    assert res.estimator == "weighted" and "coherence weighting not possible" in res.warnings[0]
+    assert res.latency_s == ref.latency_s and res.uncertainty_s == ref.uncertainty_s
+    for a, b in zip(res.lines, ref.lines, strict=True):
+        assert (a.latency_s, a.uncertainty_s, a.r_max, a.used, a.sigma0_after_m) == (
+            b.latency_s, b.uncertainty_s, b.r_max, b.used, b.sigma0_after_m)
+    np.testing.assert_array_equal(res.r_curves, ref.r_curves)

@@ -19,7 +19,7 @@ from hydrosync_core.methods.latency.correlation import (
     correlation_curve_direct,
 )
 from hydrosync_core.methods.latency.heave import total_heave, total_heave_at, total_heave_deg
-from hydrosync_core.methods.latency.lines import line_epochs, line_slice
+from hydrosync_core.methods.latency.lines import attitude_window, line_epochs, line_slice
 from hydrosync_core.methods.latency.simulate import DayConfig, simulate_day, write_day_csv
 
 DAY = DayConfig(n_lines=3, line_s=60.0, turn_s=10.0, run_in_s=5.0, gnss_hz=10.0,
@@ -72,6 +72,37 @@ def test_lattice_scan_equals_direct_interpolation_on_regular_attitude():
         sums = fastscan.correlation_sums(tags, h, t_att, h_att, dts, step)
         general = fastscan._sums(tags, h, t_att, h_att, dts, step)
         np.testing.assert_allclose(sums, general, rtol=1e-11, atol=1e-9)
+
+
+def test_lattice_kernel_row_loops_equal_the_single_loop_bit_for_bit():
+    """The vectorisable per-row loops (long lag ranges) and the single fused loop (short
+    ones) perform the same operations per element: the same sums to the last bit."""
+    rng = np.random.default_rng(7)
+    t_att = 1000.0 + np.arange(12000) * 0.01
+    h_att = np.sin(t_att * 1.3) + 0.1 * rng.standard_normal(t_att.size)
+    tags = np.sort(rng.uniform(1005.0, 1115.0, 1100))
+    w = rng.standard_normal(tags.size)
+    for dts in (np.linspace(-1, 1, 2001), np.linspace(-1, 1, 401), np.linspace(0.1, 0.1002, 41),
+                np.linspace(0.02, 0.22, 21), np.linspace(-0.5, 0.5, 1001), np.array([0.3, 0.301])):
+        step = fastscan.uniform_step(dts)
+        x, L = fastscan._lattice(tags, t_att, dts, step)
+        split = fastscan._lattice_sums(x, w, h_att, L, dts.size, 0)
+        fused = fastscan._lattice_sums(x, w, h_att, L, dts.size, 10**9)
+        for a, b in zip(split, fused, strict=True):
+            np.testing.assert_array_equal(a, b)
+        np.testing.assert_array_equal(
+            fastscan.correlation_sums(tags, w, t_att, h_att, dts, step)[0], split[0])
+    # Regular tags on the regular attitude: the epochs in one residue (or two: rounding puts
+    # a position just below its integer), the others skipped.
+    tags = 1010.0 + np.arange(1000) * 0.1
+    h = np.sin(tags * 1.3 - 0.4) + 0.05 * rng.standard_normal(tags.size)
+    for dts in (np.linspace(-1, 1, 2001), np.linspace(0.1, 0.1002, 41)):
+        step = fastscan.uniform_step(dts)
+        x, L = fastscan._lattice(tags, t_att, dts, step)
+        assert np.unique(np.floor(x).astype(int) % L).size <= 2
+        np.testing.assert_allclose(correlation_curve(tags, h, t_att, h_att, dts),
+                                   correlation_curve_direct(tags, h, t_att, h_att, dts),
+                                   rtol=0, atol=1e-10)
 
 
 def test_fast_scan_constant_heave_is_nan():
@@ -253,9 +284,11 @@ def test_total_heave_at_equals_interpolated_total_heave():
     rng = np.random.default_rng(3)
     t = np.cumsum(rng.uniform(0.005, 0.015, 5000))
     heave, roll, pitch = rng.normal(size=5000), rng.normal(size=5000) * 5, rng.normal(size=5000) * 2
-    # Sorted and unsorted times, times on the samples and beyond both ends.
+    # Sorted and unsorted times, times on the samples and beyond both ends, sorted times
+    # further apart than the walk from one to the next goes (WALK_STEPS), repeated times.
     times = np.concatenate([np.sort(rng.uniform(t[0] - 1, t[-1] + 1, 3000)),
-                            rng.uniform(t[0], t[-1], 500), t[:50]])
+                            rng.uniform(t[0], t[-1], 500), t[:50],
+                            np.sort(rng.uniform(t[0], t[-1], 30)), t[[7, 7, 7, 4000, 4999]]])
     arm = (-1.5, 2.0, -6.0)
     np.testing.assert_allclose(total_heave_at(times, t, heave, roll, pitch, arm),
                                np.interp(times, t, total_heave_deg(heave, roll, pitch, arm)),
@@ -277,3 +310,166 @@ def test_pooled_weighting_gives_noise_only_frequencies_no_weight():
     # Spurious coherence of the noise band (≈ 1/K per bin) no longer gets weight.
     assert np.mean(w.coherence[noise] == 0) > 0.99 and np.mean(w.gain[noise] == 0) > 0.99
     assert w.coherence[np.argmin(np.abs(w.f - 0.15))] > 0.9
+
+
+def test_filter_steps_equal_fft_filter():
+    """spectrum → response_gains → filtered is fft_filter; a spectrum cut to its first bins
+    gives the same numbers for a response that is zero beyond them."""
+    from hydrosync_core.methods.latency import prefilter
+
+    rng = np.random.default_rng(8)
+    f_w = np.fft.rfftfreq(640, 0.1)  # a weighting estimated at 10 Hz GNSS
+    weighting = prefilter.Weighting(f_w, rng.uniform(0, 0.9, f_w.size),
+                                    rng.uniform(0, 1, f_w.size), 5.0)
+    for n in (3, 4, 17, 1000, 18231):
+        x = np.cumsum(rng.standard_normal(n)) + 0.01 * np.arange(n)
+        crop = slice(n // 5, n - n // 7)
+        for response in (lambda f: prefilter.antialias_response(f, 4.0), weighting.response):
+            ref = prefilter.fft_filter(x, 0.01, response)
+            spec = prefilter.spectrum(x)
+            gains = prefilter.response_gains(response, spec.size, 0.01)
+            np.testing.assert_array_equal(prefilter.filtered(spec, gains, crop), ref[crop])
+        keep = api._band_bins(spec.size, 0.01, 0.1)
+        head = spec.head(keep)
+        assert n < 4 or head.bins.size == keep < spec.bins.size
+        gains = prefilter.response_gains(weighting.response, spec.size, 0.01)
+        assert head.covers(gains[0])
+        np.testing.assert_allclose(prefilter.filtered(head, gains, crop),
+                                   prefilter.fft_filter(x, 0.01, weighting.response)[crop],
+                                   rtol=0, atol=1e-12)
+    # The mirrored padding is np.pad(mode="symmetric")'s.
+    for n in range(4, 60):
+        x = rng.standard_normal(n)
+        spec = prefilter.spectrum(x)
+        d = x - (spec.intercept + spec.slope * (np.arange(n, dtype=float) - 0.5 * (n - 1)))
+        np.testing.assert_array_equal(spec.bins, np.fft.rfft(np.pad(
+            d, (spec.left, spec.size - n - spec.left), mode="symmetric")))
+    spec = prefilter.spectrum(np.cumsum(rng.standard_normal(18231)))
+    head = spec.head(api._band_bins(spec.size, 0.01, 0.1))
+    # A response beyond the kept bins is refused, not silently cut.
+    gains = prefilter.response_gains(lambda f: prefilter.antialias_response(f, 4.0),
+                                     spec.size, 0.01)
+    assert not head.covers(gains[0])
+    with pytest.raises(ValueError):
+        prefilter.filtered(head, gains)
+
+
+def test_first_pass_windows_equal_per_line_filtering():
+    """The anti-aliased heave and the kept spectra of the first pass equal each line's
+    padded window filtered on its own; the pooled pairs read from the scan window differ
+    from those of a window filtered around Δt0 alone only by the filter's tail beyond the
+    PAD_S padding (~1e-11 m on heave of ~0.1 m)."""
+    from hydrosync_core.methods.latency import prefilter
+    from hydrosync_core.methods.latency.correlation import heave_at
+    from hydrosync_core.methods.latency.params import LatencyParams
+
+    cfg = replace(DAY, n_lines=4, gnss_hz=5.0)
+    d = simulate_day(cfg, seed=12)
+    p = LatencyParams.from_dict({"estimator": "weighted"})
+    setup = api._setup(d["gnss"], d["attitude"], d["lines"], cfg.lever_arm_m, p)
+    passes = api._first_passes(setup, p, False, True, None, None, aa_sigma=False, keep=True)
+    setup.prepared, peaks, works = passes.aa_lines, passes.aa_peaks, passes.works
+    att, arm, t = setup.att, np.asarray(cfg.lever_arm_m), setup.att["time"]
+    pad = int(round(prefilter.PAD_S / setup.a_int))
+    cutoff = prefilter.ANTIALIAS_FRACTION * 0.5 / setup.g_int
+    weighting = api._pooled_weighting(setup.prepared, peaks, works, t, p.min_r, setup.g_int)
+    assert weighting is not None
+    dt0 = float(np.median([pk.latency_s for pk in peaks]))
+    lo, hi = float(setup.dts[0]), float(setup.dts[-1])
+
+    def filtered_window(tags, a, b, response):  # the per-line filtering this replaces
+        inner = attitude_window(t, tags, a, b)
+        win = slice(max(inner.start - pad, 0), min(inner.stop + pad, t.size))
+        h = total_heave_deg(att["heave"][win], att["roll"][win], att["pitch"][win], arm)
+        crop = slice(inner.start - win.start, inner.stop - win.start)
+        return t[inner], prefilter.fft_filter(h, setup.a_int, response)[crop]
+
+    for line, work in zip(setup.prepared, works, strict=True):
+        ta, ha = filtered_window(line.tags, lo, hi,
+                                 lambda f: prefilter.antialias_response(f, cutoff))
+        np.testing.assert_array_equal(t[work.inner], ta)
+        np.testing.assert_array_equal(work.antialiased, ha)
+        _, hw = filtered_window(line.tags, lo, hi, weighting.response)
+        gains = prefilter.response_gains(weighting.response, work.spectrum.size, setup.a_int)
+        crop = slice(work.inner.start - work.padded.start, work.inner.stop - work.padded.start)
+        np.testing.assert_allclose(prefilter.filtered(work.spectrum, gains, crop), hw,
+                                   rtol=0, atol=1e-12)
+        ta0, ha0 = filtered_window(line.tags, dt0, dt0,
+                                   lambda f: prefilter.antialias_response(f, cutoff))
+        np.testing.assert_allclose(heave_at(line.tags, np.array([dt0]), ta, ha),
+                                   heave_at(line.tags, np.array([dt0]), ta0, ha0),
+                                   rtol=0, atol=1e-10)
+
+
+def test_next_fast_len_and_numpy_fft_match_scipy_fft():
+    """The filter's FFT length and transforms are scipy.fft's (numpy.fft is the same
+    pocketfft), without importing scipy.fft on the command line."""
+    from scipy import fft
+
+    from hydrosync_core.methods.latency import prefilter
+
+    for n in [*range(1, 2000), 36401, 36450, 36865, 99991, 131073]:
+        assert prefilter.next_fast_len(n) == fft.next_fast_len(n, real=True), n
+    rng = np.random.default_rng(2)
+    for size in (36864, 3600, 640):
+        x = rng.standard_normal(size)
+        spec = np.fft.rfft(x)
+        np.testing.assert_allclose(spec, fft.rfft(x), rtol=0, atol=1e-12)
+        np.testing.assert_allclose(np.fft.irfft(spec, size), fft.irfft(spec, size), rtol=0,
+                                   atol=1e-12)
+
+
+def test_compiled_scan_helpers_equal_numpy():
+    """The compiled replacements of numpy steps in the scan give numpy's numbers."""
+    from hydrosync_core.methods.latency import lines
+
+    rng = np.random.default_rng(4)
+    cases = [(0.1, 0.1002, 41), (-1.0, 1.0, 2001), (0.3 - 0.1, 0.3 + 0.1, 21), (2.5, 2.5, 7),
+             (-3.7, 11.0, 2), *((rng.normal(), rng.normal(), int(rng.integers(2, 500)))
+                                for _ in range(50))]
+    for start, stop, num in cases:
+        np.testing.assert_array_equal(fastscan.grid(start, stop, num),
+                                      np.linspace(start, stop, num))
+
+    def old_uniform_step(dts):
+        if dts.size < 2:
+            return None
+        step = (float(dts[-1]) - float(dts[0])) / (dts.size - 1)
+        if not step > 0:
+            return None
+        if np.max(np.abs(np.diff(dts) - step)) > 1e-9 * max(step, 1e-300):
+            return None
+        return step
+
+    for dts in (np.linspace(-1, 1, 2001), np.array([0.0]), np.array([1.0, 0.0]),
+                np.array([-0.3, -0.1, 0.0, 0.4]), np.array([0.0, np.nan, 2.0]),
+                np.linspace(0, 1, 11) + np.r_[0, 1e-12, np.zeros(9)]):
+        assert fastscan.uniform_step(dts) == old_uniform_step(dts)
+
+    for curve in (rng.normal(size=50), np.r_[np.nan, 0.3, 0.7, np.nan, 0.7, -0.2],
+                  np.full(5, np.nan), np.r_[np.nan, np.nan, -0.5], np.array([0.2]),
+                  np.r_[np.nan, np.inf, 0.1, -np.inf], np.r_[np.inf, np.nan, -np.inf]):
+        k, low = lines._argmax_min(curve)
+        if np.any(np.isfinite(curve)):
+            assert (k, low) == (int(np.nanargmax(curve)), float(np.nanmin(curve)))
+        else:
+            assert k == -1
+
+    for jitter in (0.0, 1e-9, 1e-8, 2e-8, 1e-6):
+        ta = 1000.0 + np.arange(5000) * 0.01 + jitter * rng.standard_normal(5000)
+        interval = (ta[-1] - ta[0]) / (ta.size - 1)
+        limit = fastscan.LATTICE_TOLERANCE * interval
+        assert fastscan._departs_py(ta, interval, limit) == (
+            fastscan._departure(ta, interval) > limit)
+        assert fastscan._departs(ta, interval, limit) == (
+            fastscan._departure(ta, interval) > limit)
+
+    F, S1, S2 = rng.normal(size=(3, 300))
+    S2 = np.abs(S2) * 50.0
+    S2[:5], S1[:5] = 1.0, np.sqrt(1.0 * 40)  # constant heave: var = 0
+    n, mean_w = 40, 0.013
+    with np.errstate(invalid="ignore", divide="ignore"):
+        var = S2 - S1 * S1 / n
+        ref = (F - S1 * mean_w) / np.sqrt(var)
+    ref[~(var > 1e-12 * np.abs(S2) + 1e-300)] = np.nan
+    np.testing.assert_array_equal(fastscan.pearson(F, S1, S2, n, mean_w), ref)

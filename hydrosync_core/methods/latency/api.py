@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import dataclasses
 from collections.abc import Mapping
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -21,8 +22,10 @@ from hydrosync_core.methods.latency.detrend import detrend
 from hydrosync_core.methods.latency.diagnose import diagnose
 from hydrosync_core.methods.latency.heave import total_heave, total_heave_deg
 from hydrosync_core.methods.latency.lines import (
+    LinePeak,
     attitude_window,
     line_epochs,
+    line_selection,
     prepare_line,
     scan_line,
     scan_line_window,
@@ -33,12 +36,44 @@ from hydrosync_core.methods.latency.result import LatencyResult, LineResult
 from hydrosync_core.progress import check_cancel, report, sub_progress
 from hydrosync_core.timespan import span_of
 
+if TYPE_CHECKING:
+    from hydrosync_core.methods.latency.prefilter import Spectrum
+
+
+def _all_finite_py(values):  # pragma: no cover - compiled below
+    ok = True
+    for i in range(values.size):
+        x = values[i]
+        ok &= (x - x) == 0.0  # NaN and ±inf give NaN; no branch: the loop vectorises
+    return ok
+
+
+def _increasing_py(times):  # pragma: no cover - compiled below
+    ok = True
+    for i in range(1, times.size):
+        ok &= times[i] > times[i - 1]
+    return ok
+
+
+try:  # numba is a dependency; numpy remains if it cannot load
+    from numba import njit
+
+    _all_finite = njit(cache=True, nogil=True)(_all_finite_py)
+    _increasing = njit(cache=True, nogil=True)(_increasing_py)
+except ImportError:  # pragma: no cover
+    def _all_finite(values):
+        return bool(np.all(np.isfinite(values)))
+
+    def _increasing(times):
+        return not np.any(times[1:] <= times[:-1])
+
 
 def _column(table: Mapping, name: str, source: str) -> np.ndarray:
     if name not in table:
         raise InputError(source, f"missing column {name}", field=name)
     values = np.asarray(table[name], dtype=float).ravel()
-    if not np.all(np.isfinite(values)):
+    # One pass without an 8 MB mask per column of a day's attitude (page faults each).
+    if not _all_finite(values):
         raise InputError(source, "non-finite values", field=name)
     return values
 
@@ -48,9 +83,9 @@ def _check_inputs(gnss: Mapping, attitude: Mapping, lever_arm) -> tuple:
     att = {c: _column(attitude, c, "attitude") for c in ("time", "roll", "pitch", "heave")}
     if t_g.size < 2 or att["time"].size < 2:
         raise InputError("gnss" if t_g.size < 2 else "attitude", "fewer than 2 epochs")
-    if np.any(t_g[1:] <= t_g[:-1]):
+    if not _increasing(t_g):
         raise InputError("gnss", "time tags are not strictly increasing", field="time")
-    if np.any(att["time"][1:] <= att["time"][:-1]):
+    if not _increasing(att["time"]):
         raise InputError("attitude", "time tags are not strictly increasing", field="time")
     arm = np.asarray(lever_arm, dtype=float).ravel()
     if arm.size != 3 or not np.all(np.isfinite(arm)):
@@ -80,8 +115,13 @@ def _joint_peak(curves: np.ndarray, weights: np.ndarray, dts: np.ndarray) -> flo
     """Δt maximising the epoch-weighted mean Fisher-z of the used lines' curves."""
     if curves.size == 0 or not np.any(np.isfinite(curves)):
         return float("nan")
-    z = np.arctanh(np.clip(curves, -0.999999, 0.999999))
-    mean = np.nansum(z * weights[:, None], axis=0) / weights.sum()
+    # In place after the one copy: a survey day's curves are 8 MB, and the temporaries
+    # of the expression (np.nansum(np.arctanh(...) * w)) set the estimate's peak memory.
+    z = np.clip(curves, -0.999999, 0.999999)
+    np.arctanh(z, out=z)
+    z *= weights[:, None]
+    z[np.isnan(z)] = 0.0  # np.nansum's own replacement, then the same sum
+    mean = z.sum(axis=0) / weights.sum()
     k = int(np.argmax(mean))
     if 0 < k < dts.size - 1:
         # Parabola through the three grid points around the maximum.
@@ -115,43 +155,30 @@ def implausible_uncertainty(unc: np.ndarray, used: np.ndarray, limit_s: float) -
 
 
 SCAN_THREADS = 2
-"""Lines scanned concurrently (the compiled kernel releases the GIL)."""
+"""Lines processed concurrently (the compiled kernels and the FFTs release the GIL)."""
 
 
 class _Attitude:
-    """Total heave (eq. 2) of the attitude records, computed per line window on demand.
+    """Attitude records and lever arm: total heave (eq. 2) of line windows on demand.
 
     A day of 100 Hz attitude is ~10⁷ records: the whole-day total heave would be one more
-    80 MB array; the windows the lines need are computed when a line needs them. With a
-    *response* (callable of f in Hz) the window is padded by ``prefilter.PAD_S`` seconds
-    of records, filtered zero-phase and cropped back (anti-alias / coherence weighting).
+    80 MB array; the windows the lines need are computed when a line needs them.
     """
 
-    def __init__(self, att: dict, arm: np.ndarray, response=None, interval: float = 0.0):
+    def __init__(self, att: dict, arm: np.ndarray):
         self.t, self.att, self.arm = att["time"], att, arm
-        self.response, self.interval = response, interval
-        self.cache: dict = {}  # the response per FFT length (prefilter.fft_filter)
 
-    def window(self, tags: np.ndarray, lo: float, hi: float) -> tuple[np.ndarray, np.ndarray]:
-        """(times, total heave) of the records needed for ``tags − Δt``, Δt in [lo, hi]."""
-        if tags.size == 0:
-            return self.t[:0], self.t[:0]
-        win = attitude_window(self.t, tags, lo, hi)
-        if self.response is not None:
-            from hydrosync_core.methods.latency.prefilter import PAD_S
-
-            pad = int(round(PAD_S / self.interval))
-            win = slice(max(win.start - pad, 0), min(win.stop + pad, self.t.size))
-        a = self.att
-        h = total_heave_deg(a["heave"][win], a["roll"][win], a["pitch"][win], self.arm)
-        if self.response is None:
-            return self.t[win], h
-        from hydrosync_core.methods.latency.prefilter import fft_filter
-
+    def windows(self, tags: np.ndarray, lo: float, hi: float, pad: int = 0
+                ) -> tuple[slice, slice]:
+        """(records needed for ``tags − Δt``, Δt in [lo, hi]; the same widened by *pad*
+        records on each side, for filtering)."""
         inner = attitude_window(self.t, tags, lo, hi)
-        crop = slice(inner.start - win.start, inner.stop - win.start)
-        return self.t[inner], fft_filter(h, self.interval, self.response, self.cache)[crop]
+        return inner, slice(max(inner.start - pad, 0), min(inner.stop + pad, self.t.size))
 
+    def heave(self, win: slice) -> np.ndarray:
+        """Total heave (m, up) of the records *win*."""
+        a = self.att
+        return total_heave_deg(a["heave"][win], a["roll"][win], a["pitch"][win], self.arm)
 
     def at(self, times: np.ndarray) -> np.ndarray:
         """Total heave linearly interpolated at *times* (eq. 3), unfiltered.
@@ -163,6 +190,23 @@ class _Attitude:
 
         a = self.att
         return total_heave_at(times, self.t, a["heave"], a["roll"], a["pitch"], self.arm)
+
+
+@dataclasses.dataclass
+class _LineWork:
+    """What the weighted estimator's later passes need of one line's first pass.
+
+    Kept between the passes instead of recomputed: the line's window, the spectrum of its
+    padded total heave (only the bins below the GNSS Nyquist frequency, where the
+    coherence weight can be non-zero: ~10 % of them at 10 Hz GNSS and 100 Hz attitude)
+    and its anti-aliased total heave (for the pooled spectra, about 50 MB for a survey
+    day of 500 two-minute lines, dropped once the weighting is known).
+    """
+
+    inner: slice
+    padded: slice
+    spectrum: Spectrum
+    antialiased: np.ndarray | None
 
 
 def _filtered_line(line, t_g: np.ndarray, hgt: np.ndarray, response, interval: float,
@@ -180,9 +224,15 @@ def _filtered_line(line, t_g: np.ndarray, hgt: np.ndarray, response, interval: f
     return dataclasses.replace(line, h=h, warnings=line.warnings)
 
 
-def _pooled_weighting(prepared: list, peaks: list, source: _Attitude, min_r: float,
-                      g_int: float):
-    """Coherence weighting from all usable lines, aligned at the median first-pass delay."""
+def _pooled_weighting(prepared: list, peaks: list, works: list, t_att: np.ndarray,
+                      min_r: float, g_int: float):
+    """Coherence weighting from all usable lines, aligned at the median first-pass delay.
+
+    The anti-aliased heave at ``tags − Δt0`` comes from each line's first-pass window
+    (*works*), filtered once for the whole scan range: it differs from a window filtered
+    around Δt0 alone only by the filter's tail beyond the PAD_S padding (~1e-11 m; the
+    day's Δt changes by < 1e-10 s).
+    """
     from hydrosync_core.methods.latency.prefilter import pooled_weighting
 
     good = [i for i, (ln, pk) in enumerate(zip(prepared, peaks, strict=True))
@@ -193,9 +243,9 @@ def _pooled_weighting(prepared: list, peaks: list, source: _Attitude, min_r: flo
     dt0 = float(np.median([peaks[i].latency_s for i in sel]))
     pairs = []
     for i in good:
-        ln = prepared[i]
-        ta, ha = source.window(ln.tags, dt0, dt0)
-        pairs.append((ln.h, heave_at(ln.tags, np.array([dt0]), ta, ha)[0]))
+        ln, work = prepared[i], works[i]
+        pairs.append((ln.h, heave_at(ln.tags, np.array([dt0]), t_att[work.inner],
+                                     work.antialiased)[0]))
     return pooled_weighting(pairs, g_int)
 
 
@@ -213,9 +263,10 @@ WINDOW_SIGMAS = 10.0
 """Half-width of the window in the line's own σ (qi2010 pass), when that is wider."""
 
 
-def _scan_one(line, source: _Attitude, dts: np.ndarray, uncertainty: bool = True,
-              window: tuple[int, int] | None = None):
-    ta, ha = source.window(line.tags, float(dts[0]), float(dts[-1]))
+def _scan(line, ta: np.ndarray, ha: np.ndarray, dts: np.ndarray, uncertainty: bool = True,
+          window: tuple[int, int] | None = None):
+    """:func:`scan_line` of one line on its attitude window (times *ta*, heave *ha*), or
+    :func:`scan_line_window` over the candidates *window* when that settles the peak."""
     if window is not None:
         peak = scan_line_window(line, ta, ha, dts, *window, uncertainty=uncertainty)
         if peak is not None:
@@ -256,30 +307,190 @@ def _scan_windows(first: list, hints, dts: np.ndarray) -> list:
     return out
 
 
-def _scan_lines(prepared: list, source: _Attitude, dts: np.ndarray, progress, cancel,
-                uncertainty: bool = True, windows: list | None = None) -> list:
-    """:func:`scan_line` of every line, in order, on up to SCAN_THREADS threads.
-
-    *windows*: per line None (every candidate) or ``(k0, k1)`` (:func:`scan_line_window`,
-    with the full scan when the window fails its checks).
-    """
+def _per_line(task, count: int, names: list, progress, cancel) -> list:
+    """``task(i)`` for every line index, in order, on up to SCAN_THREADS threads."""
     from concurrent.futures import ThreadPoolExecutor
 
-    windows = windows or [None] * len(prepared)
-    peaks = []
+    out = []
     with ThreadPoolExecutor(SCAN_THREADS) as pool:
-        futures = [pool.submit(_scan_one, line, source, dts, uncertainty, win)
-                   for line, win in zip(prepared, windows, strict=True)]
+        futures = [pool.submit(task, i) for i in range(count)]
         try:
             for i, future in enumerate(futures):
                 check_cancel(cancel)
-                report(progress, i / len(futures), f"line {prepared[i].name}")
-                peaks.append(future.result())
+                report(progress, i / max(count, 1), f"line {names[i]}")
+                out.append(future.result())
         except BaseException:
             for future in futures:
                 future.cancel()
             raise
-    return peaks
+    return out
+
+
+def _unscanned(dts: np.ndarray) -> LinePeak:
+    """What :func:`scan_line` gives a line that is not usable."""
+    return LinePeak(np.full(dts.size, np.nan))
+
+
+@dataclasses.dataclass
+class _Passes:
+    """What :func:`_first_passes` returns: per line, in order (None for a scan skipped)."""
+
+    raw_lines: list | None     # LineData of the qi2010 scan (its warnings its own)
+    raw_peaks: list | None
+    aa_lines: list | None      # LineData of the anti-aliased scan (the weighted estimator's)
+    aa_peaks: list | None
+    works: list                # _LineWork (keep) or None
+    before: list               # σ0 before (m), NaN for a line not usable
+
+
+def _first_passes(setup: _Setup, p: LatencyParams, raw: bool, antialias: bool, progress,
+                  cancel, aa_sigma: bool = True, keep: bool = False) -> _Passes:
+    """Each line prepared (:func:`prepare_line`) and scanned on its raw total heave
+    (qi2010, *raw*) and on the anti-aliased one (*antialias*), one task per line.
+
+    Each line's total heave is computed once, on the window padded for filtering, and
+    serves both scans; the line is prepared in its task too (its detrending overlaps the
+    other thread's compiled work). *aa_sigma*: the anti-aliased scan's uncertainty;
+    *keep*: each line's :class:`_LineWork` for the weighted passes. σ0 before (seed
+    eqs. 5–6 at Δt = 0) is the same for every estimator and comes from the raw window
+    here: :func:`_quality` then interpolates at the final Δt only.
+    """
+    from hydrosync_core.methods.latency import prefilter
+
+    dts, a_int, t_g, t_att = setup.dts, setup.a_int, setup.t_g, setup.att["time"]
+    source = _Attitude(setup.att, setup.arm)
+    pad = int(round(prefilter.PAD_S / a_int)) if antialias else 0
+    # The lines' epochs (binary searches) and windows first: they size the kept rows.
+    sels = [line_selection(setup.starts[i], setup.ends[i], t_g, t_att, p)
+            for i in range(len(setup.names))]
+    windows = [source.windows(t_g[sel], float(dts[0]), float(dts[-1]), pad)
+               if sel.stop - sel.start >= p.min_epochs else None for sel in sels]
+    if keep and any(w is not None for w in windows):
+        # What the later passes need, in two blocks allocated here rather than per line
+        # in the worker threads: long-lived rows scattered among the threads' temporaries
+        # would keep their heap from shrinking (~60 MB more peak memory on a survey day).
+        spans = [(w[0].stop - w[0].start, w[1].stop - w[1].start) for w in windows if w]
+        inner_max = max(n for n, _ in spans)
+        bins_max = max(_band_bins(prefilter.next_fast_len(2 * n), a_int, setup.g_int)
+                       for _, n in spans)
+        aa_rows = np.empty((len(sels), inner_max))
+        bin_rows = np.empty((len(sels), bins_max), dtype=complex)
+    cutoff = prefilter.ANTIALIAS_FRACTION * 0.5 / setup.g_int
+    aa_cache: dict = {}
+
+    def response(f):
+        return prefilter.antialias_response(f, cutoff)
+
+    def task(i: int):
+        line = prepare_line(setup.names[i], setup.starts[i], setup.ends[i], t_g, setup.hgt,
+                            t_att, p, setup.g_int, a_int, sels[i])
+        # One LineData per estimator: each appends its own warnings.
+        line_raw = line if raw else None
+        line_aa = (dataclasses.replace(line, warnings=list(line.warnings)) if raw else line
+                   ) if antialias else None
+        if windows[i] is None:
+            return line_raw, _unscanned(dts), line_aa, _unscanned(dts), None, float("nan")
+        inner, padded = windows[i]
+        h = source.heave(padded)
+        crop = slice(inner.start - padded.start, inner.stop - padded.start)
+        ta = source.t[inner]
+        # The numbers of _Attitude.at(tags): same records, same interpolation formula.
+        before = sigma0(line.h, heave_at(line.tags, np.zeros(1), ta, h[crop])[0])
+        pk_raw = pk_aa = work = None
+        if raw:
+            pk_raw = _scan(line_raw, ta, h[crop], dts)
+        if antialias:
+            spec = prefilter.spectrum(h)
+            del h
+            gains = prefilter.response_gains(response, spec.size, a_int, aa_cache)
+            ha = prefilter.filtered(spec, gains, crop, out=aa_rows[i] if keep else None)
+            pk_aa = _scan(line_aa, ta, ha, dts, uncertainty=aa_sigma)
+            if keep:
+                work = _LineWork(inner, padded, spec.head(
+                    _band_bins(spec.size, a_int, setup.g_int), out=bin_rows[i]), ha)
+        return line_raw, pk_raw, line_aa, pk_aa, work, before
+
+    out = _per_line(task, len(sels), setup.names, progress, cancel)
+    raw_lines, raw_peaks, aa_lines, aa_peaks, works, before = map(list, zip(*out, strict=True))
+    return _Passes(raw_lines if raw else None, raw_peaks if raw else None,
+                   aa_lines if antialias else None, aa_peaks if antialias else None,
+                   works, before)
+
+
+def _band_bins(size: int, a_int: float, g_int: float) -> int:
+    """``rfft`` bins of *size* samples every *a_int* s up to the GNSS Nyquist frequency
+    ``0.5/g_int`` (and one more): beyond them the coherence weight is zero."""
+    return min(int(np.floor(0.5 / g_int * size * a_int * (1.0 + 1e-9))) + 2, size // 2 + 1)
+
+
+def _weighted_pass(setup: _Setup, p: LatencyParams, works: list, weighting, windows: list,
+                   progress, cancel) -> list:
+    """The weighted scan: heights and total heave filtered with the coherence weight.
+
+    The heave comes from each line's kept spectrum (:class:`_LineWork`), released as
+    the line is done.
+    """
+    from hydrosync_core.methods.latency import prefilter
+
+    dts, a_int, att = setup.dts, setup.a_int, setup.att
+    source = _Attitude(att, setup.arm)
+    gnss_cache: dict = {}
+    heave_cache: dict = {}
+    degree = int(p.detrend_degree)
+
+    def task(i: int):
+        line = setup.prepared[i]
+        if not line.usable:
+            return _unscanned(dts)
+        scan_input = _filtered_line(line, setup.t_g, setup.hgt, weighting.response,
+                                    setup.g_int, degree, gnss_cache)
+        work, works[i] = works[i], None
+        spec = work.spectrum
+        gains = prefilter.response_gains(weighting.response, spec.size, a_int, heave_cache)
+        if not spec.covers(gains[0]):  # a weight beyond the kept bins: the whole spectrum
+            spec = prefilter.spectrum(source.heave(work.padded))
+        crop = slice(work.inner.start - work.padded.start, work.inner.stop - work.padded.start)
+        ha = prefilter.filtered(spec, gains, crop)
+        return _scan(scan_input, source.t[work.inner], ha, dts, window=windows[i])
+
+    return _per_line(task, len(setup.prepared), setup.names, progress, cancel)
+
+
+def _weighted(setup: _Setup, p: LatencyParams, first: list, works: list, progress, cancel,
+              hints=None) -> tuple[list, list]:
+    """The weighted estimator's passes after its anti-aliased first pass *first*.
+
+    Returns ``(peaks, run warnings)``: the weighted peaks carrying the first pass's R
+    (curve, R_max), or the first pass's own peaks when the weighting is not possible.
+    """
+    weighting = _pooled_weighting(setup.prepared, first, works, setup.att["time"], p.min_r,
+                                  setup.g_int)
+    if weighting is None:
+        _add_uncertainty(setup, first, works)
+        return first, ["coherence weighting not possible (too few epochs): "
+                       "the anti-aliased correlation is used"]
+    for work in works:
+        if work is not None:
+            work.antialiased = None  # the pooled spectra are done: free it before the pass
+    peaks = _weighted_pass(setup, p, works, weighting, _scan_windows(first, hints, setup.dts),
+                           progress, cancel)
+    # R (the selection threshold, the curves shown) stays on the scale of the published
+    # R: the anti-aliased correlation; Δt and σ come from the weighted one.
+    for pk, pk1 in zip(peaks, first, strict=True):
+        pk.curve, pk.r_max = pk1.curve, pk1.r_max
+        pk.at_edge = pk.at_edge or pk1.at_edge
+    return peaks, []
+
+
+def _add_uncertainty(setup: _Setup, peaks: list, works: list) -> None:
+    """The σ of first-pass peaks scanned without it (same window, same Δt)."""
+    from hydrosync_core.methods.latency.correlation import peak_uncertainty
+
+    t_att = setup.att["time"]
+    for ln, pk, work in zip(setup.prepared, peaks, works, strict=True):
+        if ln.usable and np.isfinite(pk.latency_s) and not pk.at_edge:
+            pk.uncertainty_s = peak_uncertainty(ln.tags, ln.h, t_att[work.inner],
+                                                work.antialiased, pk.latency_s)
 
 
 def estimate_latency(
@@ -300,7 +511,8 @@ def estimate_latency(
 
 @dataclasses.dataclass
 class _Setup:
-    """Checked inputs and prepared lines: what every estimator starts from."""
+    """Checked inputs: what every estimator starts from; *prepared* (the lines' LineData)
+    is filled by :func:`_first_passes`, one list per estimator."""
 
     t_g: np.ndarray
     hgt: np.ndarray
@@ -313,11 +525,6 @@ class _Setup:
     starts: np.ndarray
     ends: np.ndarray
     prepared: list
-
-    def fresh(self) -> _Setup:
-        """A copy whose lines have their own warning lists (an estimator appends to them)."""
-        return dataclasses.replace(self, prepared=[
-            dataclasses.replace(ln, warnings=list(ln.warnings)) for ln in self.prepared])
 
 
 def _setup(gnss, attitude, lines, lever_arm, p: LatencyParams) -> _Setup:
@@ -334,68 +541,54 @@ def _setup(gnss, attitude, lines, lever_arm, p: LatencyParams) -> _Setup:
     ends = np.asarray(lines["end"], dtype=float).ravel()
     if not names:
         raise InputError("lines", "no survey lines")
-    prepared = [prepare_line(name, starts[i], ends[i], t_g, hgt, t_att, p, g_int, a_int)
-                for i, name in enumerate(names)]
-    return _Setup(t_g, hgt, att, arm, dts, g_int, a_int, names, starts, ends, prepared)
+    return _Setup(t_g, hgt, att, arm, dts, g_int, a_int, names, starts, ends, [])
 
 
-def _estimate(setup: _Setup, p: LatencyParams, progress, cancel, hints=None) -> LatencyResult:
-    """One estimator (not auto) from :func:`_setup`'s inputs.
-
-    *hints*: per-line ``(Δt, σ)`` of another estimator on the same lines (``auto`` gives
-    its qi2010 run's), used only to place the weighted pass's scan windows.
-    """
-    t_g, hgt, att, arm = setup.t_g, setup.hgt, setup.att, setup.arm
-    t_att = att["time"]
-    dts, g_int, a_int = setup.dts, setup.g_int, setup.a_int
-    names, starts, ends, prepared = setup.names, setup.starts, setup.ends, setup.prepared
-    lo, hi = p.range_s
-    # Seed eq. 2: total heave at the antenna, at attitude rate (per line window).
-    source = _Attitude(att, arm)
-    raw_source = source
-    weighting = None
-    if p.estimator != "qi2010":
-        from hydrosync_core.methods.latency import prefilter
-
-        cutoff = prefilter.ANTIALIAS_FRACTION * 0.5 / g_int
-        source = _Attitude(att, arm, lambda f: prefilter.antialias_response(f, cutoff), a_int)
-    # The weighted estimator keeps only R_max, Δt and the edge flag of its first pass:
-    # no σ there (unless the weighting proves impossible, then that pass is the answer).
-    weighted = p.estimator == "weighted"
-    first_sigma = not (weighted and WINDOWED_SCAN)
-    peaks = _scan_lines(prepared, source, dts,
-                        sub_progress(progress, 0, 0.45 if weighted else 0.9), cancel,
-                        uncertainty=first_sigma)
-    if weighted:
-        weighting = _pooled_weighting(prepared, peaks, source, p.min_r, g_int)
-        if weighting is None:
-            warnings_pre = ["coherence weighting not possible (too few epochs): "
-                            "the anti-aliased correlation is used"]
-            if not first_sigma:
-                _add_uncertainty(prepared, peaks, source, dts)
-        else:
-            warnings_pre = []
-            source = _Attitude(att, arm, weighting.response, a_int)
-            gnss_cache: dict = {}
-            scan_input = [_filtered_line(ln, t_g, hgt, weighting.response, g_int,
-                                         int(p.detrend_degree), gnss_cache)
-                          for ln in prepared]
-            first = peaks
-            peaks = _scan_lines(scan_input, source, dts, sub_progress(progress, 0.45, 0.9),
-                                cancel, windows=_scan_windows(first, hints, dts))
-            # R (the selection threshold, the curves shown) stays on the scale of the
-            # published R: the anti-aliased correlation; Δt and σ come from the weighted one.
-            for pk, pk1 in zip(peaks, first, strict=True):
-                pk.curve, pk.r_max = pk1.curve, pk1.r_max
-                pk.at_edge = pk.at_edge or pk1.at_edge
-    else:
-        warnings_pre = []
+def _check_usable(setup: _Setup, p: LatencyParams, prepared: list) -> None:
+    """Raise InputError when no prepared line has enough epochs with attitude."""
     if not any(line.usable for line in prepared):
         raise InputError("lines", f"no line has {p.min_epochs} or more GNSS epochs with attitude "
-                         "data: lines span " + _span_text(np.r_[starts, ends])
-                         + ", GNSS " + _span_text(t_g) + ", attitude " + _span_text(t_att)
+                         "data: lines span " + _span_text(np.r_[setup.starts, setup.ends])
+                         + ", GNSS " + _span_text(setup.t_g) + ", attitude "
+                         + _span_text(setup.att["time"])
                          + " (lines must be on the loggers' time scale)")
 
+
+def _estimate(setup: _Setup, p: LatencyParams, progress, cancel) -> LatencyResult:
+    """One estimator (not auto) from :func:`_setup`'s inputs."""
+    if p.estimator == "qi2010":
+        passes = _first_passes(setup, p, True, False, sub_progress(progress, 0, 0.9), cancel)
+        _check_usable(setup, p, passes.raw_lines)
+        setup = dataclasses.replace(setup, prepared=passes.raw_lines)
+        return _finish(setup, p, passes.raw_peaks, [], progress, cancel, passes.before)
+    weighted = p.estimator == "weighted"
+    # The weighted estimator keeps only R_max, Δt and the edge flag of its first pass:
+    # no σ there (unless the weighting proves impossible, then that pass is the answer).
+    passes = _first_passes(setup, p, False, True,
+                           sub_progress(progress, 0, 0.45 if weighted else 0.9), cancel,
+                           aa_sigma=not weighted, keep=weighted)
+    _check_usable(setup, p, passes.aa_lines)
+    setup = dataclasses.replace(setup, prepared=passes.aa_lines)
+    first, before = passes.aa_peaks, passes.before
+    if not weighted:
+        return _finish(setup, p, first, [], progress, cancel, before)
+    peaks, warnings_pre = _weighted(setup, p, first, passes.works,
+                                    sub_progress(progress, 0.45, 0.9), cancel)
+    return _finish(setup, p, peaks, warnings_pre, progress, cancel, before)
+
+
+def _finish(setup: _Setup, p: LatencyParams, peaks: list, warnings_pre: list, progress,
+            cancel, before: list | None = None, joint: bool = True) -> LatencyResult:
+    """An estimator's result from its per-line peaks: selection, combination, quality.
+
+    *before*: the lines' σ0 before (:func:`_first_passes`); None leaves σ0 before and
+    after NaN (:func:`_with_quality` adds them). *joint* False leaves the joint peak NaN
+    (:func:`_with_joint_peak`). ``auto`` computes both for the estimator it keeps only.
+    """
+    att, arm, dts = setup.att, setup.arm, setup.dts
+    t_att = att["time"]
+    names, prepared = setup.names, setup.prepared
+    lo, hi = p.range_s
     r_max = np.array([pk.r_max for pk in peaks])
     lat = np.array([pk.latency_s for pk in peaks])
     unc = np.array([pk.uncertainty_s for pk in peaks])
@@ -421,25 +614,13 @@ def _estimate(setup: _Setup, p: LatencyParams, progress, cancel, hints=None) -> 
     comb = combine(lat, r_max, unc, used, p.weighting)
     curves = np.array([pk.curve for pk in peaks])
     epochs = np.array([ln.tags.size for ln in prepared], dtype=float)
-    joint = _joint_peak(curves[used], epochs[used], dts)
+    joint = _joint_peak(curves[used], epochs[used], dts) if joint else float("nan")
 
     check_cancel(cancel)
     report(progress, 0.92, "quality")
-    final = float(np.nan_to_num(comb.latency_s))
-
-    def quality(ln) -> tuple[float, float]:
-        if not ln.usable:
-            return float("nan"), float("nan")
-        # Seed eqs. 5–6 before (Δt = 0) and after (final Δt) synchronisation, always on
-        # the raw series (as published).
-        H0 = raw_source.at(np.concatenate([ln.tags, ln.tags - final])).reshape(2, -1)
-        after = sigma0(ln.h, H0[1]) if np.isfinite(comb.latency_s) else float("nan")
-        return sigma0(ln.h, H0[0]), after
-
-    from concurrent.futures import ThreadPoolExecutor
-
-    with ThreadPoolExecutor(SCAN_THREADS) as pool:  # the interpolation releases the GIL
-        sigmas = list(pool.map(quality, prepared))
+    nan2 = (float("nan"), float("nan"))
+    sigmas = (_quality(setup, comb.latency_s, before) if before is not None
+              else [nan2] * len(prepared))
     out_lines = []
     for ln, pk, u, (before, after) in zip(prepared, peaks, used, sigmas, strict=True):
         out_lines.append(LineResult(
@@ -470,37 +651,75 @@ def _estimate(setup: _Setup, p: LatencyParams, progress, cancel, hints=None) -> 
         p.to_dict(), converged, message, tuple(warnings), diagnostics, p.estimator)
 
 
-def _add_uncertainty(prepared: list, peaks: list, source: _Attitude, dts: np.ndarray) -> None:
-    """The σ that a pass scanned without uncertainty would have had (same window, same Δt)."""
-    from hydrosync_core.methods.latency.correlation import peak_uncertainty
+def _quality(setup: _Setup, latency_s: float, before: list) -> list[tuple[float, float]]:
+    """Per line (σ0 before, σ0 after) in m: seed eqs. 5–6 at Δt = 0 (*before*, from
+    :func:`_first_passes`) and at *latency_s*.
 
-    for ln, pk in zip(prepared, peaks, strict=True):
-        if ln.usable and np.isfinite(pk.latency_s) and not pk.at_edge:
-            ta, ha = source.window(ln.tags, float(dts[0]), float(dts[-1]))
-            pk.uncertainty_s = peak_uncertainty(ln.tags, ln.h, ta, ha, pk.latency_s)
+    Always on the raw series (as published); NaN for lines that are not usable, and
+    "after" NaN when *latency_s* is not finite.
+    """
+    source = _Attitude(setup.att, setup.arm)
+    final = float(np.nan_to_num(latency_s))
+
+    def after(ln) -> float:
+        if not ln.usable or not np.isfinite(latency_s):
+            return float("nan")
+        return sigma0(ln.h, source.at(ln.tags - final))
+
+    from concurrent.futures import ThreadPoolExecutor
+
+    with ThreadPoolExecutor(SCAN_THREADS) as pool:  # the interpolation releases the GIL
+        return list(zip(before, pool.map(after, setup.prepared), strict=True))
+
+
+def _with_quality(result: LatencyResult, setup: _Setup, before: list) -> LatencyResult:
+    """*result* with its lines' σ0 before/after (a :func:`_finish` without *before*)."""
+    sigmas = _quality(setup, result.latency_s, before)
+    lines = tuple(dataclasses.replace(ln, sigma0_before_m=before, sigma0_after_m=after)
+                  for ln, (before, after) in zip(result.lines, sigmas, strict=True))
+    return dataclasses.replace(result, lines=lines)
+
+
+def _with_joint_peak(result: LatencyResult) -> LatencyResult:
+    """*result* with its joint peak (a :func:`_finish` with *joint* False)."""
+    used = np.array([ln.used for ln in result.lines], dtype=bool)
+    epochs = np.array([ln.epochs for ln in result.lines], dtype=float)
+    return dataclasses.replace(result, joint_latency_s=_joint_peak(
+        result.r_curves[used], epochs[used], result.dt_grid))
 
 
 def _auto(gnss, attitude, lines, lever_arm, p: LatencyParams, progress, cancel
           ) -> LatencyResult:
     """``estimator = auto``: qi2010 and weighted, the one with the smaller uncertainty.
 
-    One set-up; the weighted run's second pass scans each line only around its
-    anti-aliased and qi2010 peaks (:func:`_scan_windows`), with the full scan for any line
-    whose window does not settle the answer (:func:`.lines.scan_line_window`).
+    One set-up, and one pass over the lines for the qi2010 scan and the weighted
+    estimator's anti-aliased first pass (each line's total heave computed once); the
+    σ0 quality figures are computed for the estimator kept only.
     """
-    runs = {}
-    setup = _setup(gnss, attitude, lines, lever_arm, p)  # checked and prepared once
-    runs["qi2010"] = _estimate(setup.fresh(), dataclasses.replace(p, estimator="qi2010"),
-                               sub_progress(progress, 0.0, 0.4), cancel)
-    hints = [(ln.latency_s, ln.uncertainty_s) for ln in runs["qi2010"].lines]
-    runs["weighted"] = _estimate(setup.fresh(), dataclasses.replace(p, estimator="weighted"),
-                                 sub_progress(progress, 0.4, 1.0), cancel, hints=hints)
+    setup = _setup(gnss, attitude, lines, lever_arm, p)  # checked once
+    p_qi = dataclasses.replace(p, estimator="qi2010")
+    p_w = dataclasses.replace(p, estimator="weighted")
+    passes = _first_passes(setup, p, True, True, sub_progress(progress, 0.0, 0.6), cancel,
+                           aa_sigma=False, keep=True)
+    _check_usable(setup, p, passes.raw_lines)
+    s_qi = dataclasses.replace(setup, prepared=passes.raw_lines)
+    s_w = dataclasses.replace(setup, prepared=passes.aa_lines)
+    raw, first, works, before = passes.raw_peaks, passes.aa_peaks, passes.works, passes.before
+    hints = [(pk.latency_s, pk.uncertainty_s) for pk in raw]
+    peaks, warnings_pre = _weighted(s_w, p_w, first, works, sub_progress(progress, 0.6, 0.9),
+                                    cancel, hints=hints)
+    runs = {"qi2010": (_finish(s_qi, p_qi, raw, [], None, cancel, joint=False), s_qi),
+            "weighted": (_finish(s_w, p_w, peaks, warnings_pre, None, cancel, joint=False),
+                         s_w)}
 
     def key(r: LatencyResult) -> float:
         return r.uncertainty_s if r.converged and np.isfinite(r.uncertainty_s) else np.inf
 
-    best = min(runs.values(), key=key)
-    other = runs["weighted" if best.estimator == "qi2010" else "qi2010"]
+    best = min((r for r, _ in runs.values()), key=key)
+    other = runs["weighted" if best.estimator == "qi2010" else "qi2010"][0]
+    report(progress, 0.95, "quality")
+    best = _with_joint_peak(_with_quality(best, runs[best.estimator][1], before))
+    report(progress, 1.0, "done")
     note = (f"auto: {best.estimator} (σ {best.uncertainty_s * 1e3:.2f} ms; {other.estimator} "
             f"{other.uncertainty_s * 1e3:.2f} ms, Δt {other.latency_s:+.4f} s)")
     return dataclasses.replace(best, params=p.to_dict(),

@@ -31,14 +31,15 @@ def _dot(a: np.ndarray, b: np.ndarray) -> float:
     return float(np.multiply(a, b).sum())
 
 
-def _unit_centred(h: np.ndarray) -> np.ndarray:
+def unit_centred(h: np.ndarray) -> np.ndarray:
     """*h* minus its mean, scaled to unit norm (the heights' side of eq. 4)."""
     hc = h - h.mean()
     return hc / max(float(np.linalg.norm(hc)), 1e-300)
 
 
 def correlation_curve(
-    tags: np.ndarray, h: np.ndarray, t_att: np.ndarray, h_att: np.ndarray, dts: np.ndarray
+    tags: np.ndarray, h: np.ndarray, t_att: np.ndarray, h_att: np.ndarray, dts: np.ndarray,
+    unit: np.ndarray | None = None,
 ) -> np.ndarray:
     """Pearson correlation R(Δt) of *h* with total heave at ``tags − Δt`` (seed eq. 4).
 
@@ -52,6 +53,8 @@ def correlation_curve(
         Attitude times (s, increasing) and total heave there (m, up).
     dts : ndarray (k,)
         Candidate delays Δt, s.
+    unit : ndarray (n,), optional
+        ``unit_centred(h)``, when the caller has it (a line's scans share it).
 
     Returns
     -------
@@ -65,15 +68,10 @@ def correlation_curve(
     step = fastscan.uniform_step(dts) if fastscan.available() else None
     if step is None or tags.size < 2:
         return correlation_curve_direct(tags, h, t_att, h_att, dts)
-    hn = _unit_centred(h)
+    hn = unit_centred(h) if unit is None else unit
     F, S1, S2 = fastscan.correlation_sums(tags, hn, t_att, h_att, dts, step)
-    n = tags.size
-    var = S2 - S1 * S1 / n
     # Seed eq. 4 from the sums: Σ hn·(H − H̄) / sqrt(Σ (H − H̄)²).
-    with np.errstate(invalid="ignore", divide="ignore"):
-        r = (F - S1 * (hn.sum() / n)) / np.sqrt(var)
-    r[~(var > 1e-12 * np.abs(S2) + 1e-300)] = np.nan
-    return r
+    return fastscan.pearson(F, S1, S2, tags.size, hn.sum() / tags.size)
 
 
 def correlation_curve_direct(
@@ -84,7 +82,7 @@ def correlation_curve_direct(
     The reference for :func:`correlation_curve` (same arguments and result); used when the
     compiled kernel is not available or the grid is not uniform.
     """
-    hn = _unit_centred(h)
+    hn = unit_centred(h)
     out = np.empty(len(dts))
     per = max(1, CHUNK_ELEMENTS // max(1, tags.size))
     for lo in range(0, len(dts), per):
@@ -110,20 +108,21 @@ def _parabola_vertex(x: np.ndarray, y: np.ndarray, k: int) -> tuple[float, float
 def refine_peak(
     tags: np.ndarray, h: np.ndarray, t_att: np.ndarray, h_att: np.ndarray,
     dts: np.ndarray, r: np.ndarray, k: int, subdivisions: int = 40,
+    unit: np.ndarray | None = None,
 ) -> tuple[float, float]:
     """Sub-step maximum of R around grid index *k* (bounded to one step either side).
 
     R is evaluated exactly on a fine grid (*subdivisions* points per two steps, one
     vectorised call), then a parabola through the best fine point and its neighbours
     gives the vertex. Returns ``(dt_peak, r_peak)``; staying within one step of the grid
-    maximum keeps the search on the same lobe.
+    maximum keeps the search on the same lobe. *unit*: see :func:`correlation_curve`.
     """
     lo = dts[max(k - 1, 0)]
     hi = dts[min(k + 1, len(dts) - 1)]
     if hi <= lo:
         return float(dts[k]), float(r[k])
-    fine = np.linspace(lo, hi, subdivisions + 1)
-    rf = correlation_curve(tags, h, t_att, h_att, fine)
+    fine = fastscan.grid(lo, hi, subdivisions + 1)
+    rf = correlation_curve(tags, h, t_att, h_att, fine, unit)
     j = int(np.nanargmax(rf))
     if 0 < j < fine.size - 1:
         dt, rmax = _parabola_vertex(fine, rf, j)
@@ -134,6 +133,7 @@ def refine_peak(
 def peak_uncertainty(
     tags: np.ndarray, h: np.ndarray, t_att: np.ndarray, h_att: np.ndarray, dt: float,
     max_lag_s: float = 15.0, delta: float = 0.05, width: float = 0.1,
+    unit: np.ndarray | None = None,
 ) -> float:
     """Standard uncertainty (s) of a line's peak delay from the linearised model.
 
@@ -148,6 +148,7 @@ def peak_uncertainty(
     *delta* and *width* are wide on purpose: the heave-sensor error is rough at short
     time scales, and a sample-scale derivative would overstate the information (the
     uncertainty came out 1.5–2x too small on simulated data with heave errors).
+    *unit*: see :func:`correlation_curve`.
     """
     n = tags.size
     if n < 5:
@@ -167,8 +168,8 @@ def peak_uncertainty(
     g = g - (_dot(Hc, g) / hh) * Hc
     # Curvature of SSR(Δt)/2 = Σ(h−h̄)²(1 − R²)/2 at the peak: −Σ(h−h̄)²·R·R''. R'' from
     # the least-squares parabola over the symmetric grid (x and x² are orthogonal there).
-    grid = np.linspace(dt - width, dt + width, 21)
-    r = correlation_curve(tags, h, t_att, h_att, grid)
+    grid = fastscan.grid(dt - width, dt + width, 21)
+    r = correlation_curve(tags, h, t_att, h_att, grid, unit)
     x2 = (grid - dt) ** 2
     x2 -= x2.mean()
     c2 = _dot(x2, r) / _dot(x2, x2)

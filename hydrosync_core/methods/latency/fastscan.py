@@ -101,7 +101,41 @@ def _sums_py(tags, w, ta, ha, dts, step):  # pragma: no cover - compiled below
 _sums = njit(cache=True, nogil=True)(_sums_py) if njit is not None else None
 
 
-def _lattice_sums_py(x, w, H, L, K):  # pragma: no cover - compiled below
+def _row_py(acc, c0, c1, c2, c3, v0, v1, v2, v3, n):  # pragma: no cover - compiled below
+    """``acc[:n] += c0·v0 + c1·v1 + c2·v2 + c3·v3``, element by element in that order."""
+    for i in range(n):
+        acc[i] += c0 * v0[i] + c1 * v1[i] + c2 * v2[i] + c3 * v3[i]
+
+
+def _combine_py(tf, t1, t2, a, u, g, off, n):  # pragma: no cover - compiled below
+    """One residue's share of F, S1, S2 at ``n`` candidates of one phase (see below)."""
+    a0, a1, a2, a3, a4 = a[0], a[1], a[2], a[3], a[4]
+    a5, a6, a7, a8, a9 = a[5], a[6], a[7], a[8], a[9]
+    for kap in range(n):
+        li = kap + off
+        tf[kap] += u * a0[li] - a1[li] + g * a0[li - 1] + a1[li - 1]
+        t1[kap] += u * a2[li] - a3[li] + g * a2[li - 1] + a3[li - 1]
+        t2[kap] += (u * u * a4[li] - 2.0 * u * a5[li] + a6[li]
+                    + 2.0 * (g * u * a7[li] + (1.0 - 2.0 * g) * a8[li] - a9[li])
+                    + g * g * a4[li - 1] + 2.0 * g * a5[li - 1] + a6[li - 1])
+
+
+if njit is not None:
+    # Inlined: a call per row would cost more than the row on short grids.
+    _row = njit(nogil=True, inline="always")(_row_py)
+    _combine = njit(nogil=True, inline="always")(_combine_py)
+
+SPLIT_MIN_LAGS = 16
+"""Lags from which :func:`_lattice_sums_py` updates each accumulator row in its own loop.
+
+With the ten rows updated in one loop LLVM cannot show that they do not overlap the heave
+arrays and emits scalar code; one row per loop it vectorises (with a run-time overlap
+check), which halves a 2001-candidate scan. Short lag ranges (the refinement's grid) keep
+the single loop, whose overhead is lower there. Both give the same sums to the last bit:
+every element sees the same operations in the same order."""
+
+
+def _lattice_sums_py(x, w, H, L, K, split_min):  # pragma: no cover - compiled below
     """Kernel of :func:`correlation_sums` on a uniform attitude grid (see LATTICE_TOLERANCE).
 
     *x*: epoch positions ``(tag − dts[0] − ta[0]) / step`` in steps; *H*: heave at the
@@ -111,6 +145,8 @@ def _lattice_sums_py(x, w, H, L, K):  # pragma: no cover - compiled below
     ``g = ((r − ρ) mod L)/L`` depend on (r, ρ) only. So per residue r the sums are
     correlations over the lag λ = κ + c of per-epoch weights (w, w·e, 1, e, e², e = ε/L)
     with H, H² and H_j·H_{j+1} — dense, contiguous loops — combined per candidate at the end.
+    *split_min*: see SPLIT_MIN_LAGS. A residue without epochs adds +0 to each sum (its
+    accumulators are +0 and u, g ≥ 0), which leaves every sum as it is: it is skipped.
     """
     m = H.size
     kk = (K - 1) // L
@@ -137,7 +173,21 @@ def _lattice_sums_py(x, w, H, L, K):  # pragma: no cover - compiled below
         ni = int(n)
         q_of[i] = ni // L
         r_of[i] = ni - q_of[i] * L
-    order = np.argsort(r_of, kind="mergesort")
+    # Epochs by residue, in their order within a residue: a stable counting sort (the
+    # order of np.argsort(r_of, kind="mergesort"), without its O(n log n)).
+    first = np.zeros(L + 1, dtype=np.int64)
+    for i in range(n_ep):
+        first[r_of[i] + 1] += 1
+    # Residues without epochs add exact zeros to every candidate: skipped below. Regular
+    # GNSS tags on regular attitude all share one residue (9 in 10 empty at L = 10).
+    filled = np.zeros(L, dtype=np.bool_)
+    for r in range(L):
+        filled[r] = first[r + 1] > 0
+        first[r + 1] += first[r]
+    order = np.empty(n_ep, dtype=np.int64)
+    for i in range(n_ep):
+        order[first[r_of[i]]] = i
+        first[r_of[i]] += 1
     c = np.zeros((4, 10))
     b = np.zeros(4, dtype=np.int64)
     start = 0
@@ -169,6 +219,24 @@ def _lattice_sums_py(x, w, H, L, K):  # pragma: no cover - compiled below
             e0, e1, e2, e3 = c[0, 3], c[1, 3], c[2, 3], c[3, 3]
             f0, f1, f2, f3 = c[0, 4], c[1, 4], c[2, 4], c[3, 4]
             b0, b1, b2, b3 = b[0], b[1], b[2], b[3]
+            if nl >= split_min:
+                hr0, hr1 = Hr[b0:b0 + nl], Hr[b1:b1 + nl]
+                hr2, hr3 = Hr[b2:b2 + nl], Hr[b3:b3 + nl]
+                gr0, gr1 = H2r[b0:b0 + nl], H2r[b1:b1 + nl]
+                gr2, gr3 = H2r[b2:b2 + nl], H2r[b3:b3 + nl]
+                pr0, pr1 = Pr[b0:b0 + nl], Pr[b1:b1 + nl]
+                pr2, pr3 = Pr[b2:b2 + nl], Pr[b3:b3 + nl]
+                _row(a[0], w0, w1, w2, w3, hr0, hr1, hr2, hr3, nl)
+                _row(a[1], x0, x1, x2, x3, hr0, hr1, hr2, hr3, nl)
+                _row(a[2], o0, o1, o2, o3, hr0, hr1, hr2, hr3, nl)
+                _row(a[3], e0, e1, e2, e3, hr0, hr1, hr2, hr3, nl)
+                _row(a[4], o0, o1, o2, o3, gr0, gr1, gr2, gr3, nl)
+                _row(a[5], e0, e1, e2, e3, gr0, gr1, gr2, gr3, nl)
+                _row(a[6], f0, f1, f2, f3, gr0, gr1, gr2, gr3, nl)
+                _row(a[7], o0, o1, o2, o3, pr0, pr1, pr2, pr3, nl)
+                _row(a[8], e0, e1, e2, e3, pr0, pr1, pr2, pr3, nl)
+                _row(a[9], f0, f1, f2, f3, pr0, pr1, pr2, pr3, nl)
+                continue
             for li in range(nl):
                 h0 = Hr[b0 + li]
                 h1 = Hr[b1 + li]
@@ -193,6 +261,31 @@ def _lattice_sums_py(x, w, H, L, K):  # pragma: no cover - compiled below
                 a[8, li] += e0 * p0 + e1 * p1 + e2 * p2 + e3 * p3
                 a[9, li] += f0 * p0 + f1 * p1 + f2 * p2 + f3 * p3
         start = stop
+    if nl >= split_min:
+        # Candidate by candidate below; here phase by phase (k = L·κ + ρ, ρ fixed): the
+        # rows are read contiguously in κ. Each candidate still sums its residues in order.
+        F = np.empty(K)
+        S1 = np.empty(K)
+        S2 = np.empty(K)
+        tf = np.empty(kk + 1)
+        t1 = np.empty(kk + 1)
+        t2 = np.empty(kk + 1)
+        for rho in range(min(L, K)):
+            nk = (K - 1 - rho) // L + 1
+            tf[:nk] = 0.0
+            t1[:nk] = 0.0
+            t2[:nk] = 0.0
+            for r in range(L):
+                if not filled[r]:
+                    continue
+                cr = 1 if r < rho else 0
+                g = (r - rho + cr * L) / L
+                _combine(tf, t1, t2, acc[r], 1.0 - g, g, cr + 1, nk)
+            for kap in range(nk):
+                F[kap * L + rho] = tf[kap]
+                S1[kap * L + rho] = t1[kap]
+                S2[kap * L + rho] = t2[kap]
+        return F, S1, S2
     F = np.zeros(K)
     S1 = np.zeros(K)
     S2 = np.zeros(K)
@@ -203,6 +296,8 @@ def _lattice_sums_py(x, w, H, L, K):  # pragma: no cover - compiled below
         s1 = 0.0
         s2 = 0.0
         for r in range(L):
+            if not filled[r]:
+                continue
             c = 1 if r < rho else 0
             g = (r - rho + c * L) / L
             u = 1.0 - g
@@ -223,6 +318,7 @@ def _lattice_sums_py(x, w, H, L, K):  # pragma: no cover - compiled below
 _lattice_sums = (njit(cache=True, nogil=True)(_lattice_sums_py) if njit is not None
                  else None)
 
+
 def _departure_py(ta, interval):  # pragma: no cover - compiled below
     """Largest |ta[j] − ta[0] − j·interval| (s)."""
     worst = 0.0
@@ -235,10 +331,58 @@ def _departure_py(ta, interval):  # pragma: no cover - compiled below
 
 _departure = njit(cache=True, nogil=True)(_departure_py) if njit is not None else None
 
+
+def _departs_py(ta, interval, limit):  # pragma: no cover - compiled below
+    """``_departure(ta, interval) > limit``: any departure above *limit* (NaNs never are).
+
+    An OR over the samples rather than their maximum: LLVM vectorises it (a float
+    maximum it may not reorder), and every line's scans ask it again.
+    """
+    t0 = ta[0]
+    over = False
+    for j in range(ta.size):
+        over |= abs(ta[j] - t0 - j * interval) > limit
+    return over
+
 LATTICE_TOLERANCE = 1e-6
 """Largest departure of an attitude time from the uniform grid, as a fraction of the
 sampling interval, for the lattice kernel (10 ns at 100 Hz: the interpolated heave then
 differs from the exact one by less than 1e-7 m at 10 m/s)."""
+
+
+def _lattice_py(tags, ta, d0, step, K, tolerance):  # pragma: no cover - compiled below
+    """Kernel of :func:`_lattice`: (x, L), L = 0 when the grid does not fit."""
+    none = (np.empty(0), 0)
+    m = ta.size
+    if m < 4 or tags.size == 0:
+        return none
+    interval = (ta[m - 1] - ta[0]) / (m - 1)
+    ratio = interval / step
+    L = int(np.rint(ratio))  # round(): halves to even, as np.rint
+    if L < 1 or abs(ratio - L) > 1e-9 * ratio:
+        return none
+    if _departs(ta, interval, tolerance * interval):
+        return none
+    x = np.empty(tags.size)
+    unit = interval / L
+    lo = np.inf
+    hi = -np.inf
+    for i in range(tags.size):
+        x[i] = (tags[i] - ta[0] - d0) / unit
+        if x[i] < lo:
+            lo = x[i]
+        if x[i] > hi:
+            hi = x[i]
+        if x[i] != x[i]:  # NaN: every comparison below is False, the grid "fits"
+            return x, L
+    kk = (K - 1) // L
+    if int(np.floor(lo)) // L - kk - 1 < 0 or int(np.floor(hi)) // L + 1 > m - 2:
+        return none
+    return x, L
+
+
+_departs = njit(nogil=True, inline="always")(_departs_py) if njit is not None else _departs_py
+_lattice_nb = njit(cache=True, nogil=True)(_lattice_py) if njit is not None else None
 
 
 def _lattice(tags, ta, dts, step):
@@ -246,25 +390,12 @@ def _lattice(tags, ta, dts, step):
 
     Needs uniformly sampled attitude whose interval is a whole number L of steps, and
     every epoch at every candidate strictly inside the samples (one to spare each side).
+    Positions ``(tag − ta[0] − dts[0]) / (interval / L)`` in steps.
     """
-    m = ta.size
-    if m < 4 or tags.size == 0:
-        return None
-    interval = (float(ta[-1]) - float(ta[0])) / (m - 1)
-    ratio = interval / step
-    L = int(round(ratio))
-    if L < 1 or abs(ratio - L) > 1e-9 * ratio:
-        return None
-    if _departure(ta, interval) > LATTICE_TOLERANCE * interval:
-        return None
-    x = (tags - ta[0] - dts[0]) / (interval / L)
-    K = dts.size
-    kk = (K - 1) // L
-    lo = np.floor(x.min()) // L - kk - 1
-    hi = np.floor(x.max()) // L + 1
-    if lo < 0 or hi > m - 2:
-        return None
-    return x, L
+    x, L = _lattice_nb(np.ascontiguousarray(tags, dtype=float),
+                       np.ascontiguousarray(ta, dtype=float), float(dts[0]), float(step),
+                       int(dts.size), LATTICE_TOLERANCE)
+    return (x, L) if L else None
 
 
 def available() -> bool:
@@ -272,16 +403,83 @@ def available() -> bool:
     return _sums is not None
 
 
-def uniform_step(dts: np.ndarray) -> float | None:
-    """The step of *dts* if it is an increasing uniform grid of ≥ 2 points, else None."""
-    if dts.size < 2:
-        return None
-    step = (float(dts[-1]) - float(dts[0])) / (dts.size - 1)
+def _uniform_step_py(dts):  # pragma: no cover - compiled below
+    """Kernel of :func:`uniform_step`: the step, or 0.0 for None."""
+    n = dts.size
+    if n < 2:
+        return 0.0
+    step = (dts[n - 1] - dts[0]) / (n - 1)
     if not step > 0:
-        return None
-    if np.max(np.abs(np.diff(dts) - step)) > 1e-9 * max(step, 1e-300):
-        return None
-    return step
+        return 0.0
+    limit = 1e-9 * max(step, 1e-300)
+    over = False
+    for i in range(n - 1):
+        d = abs((dts[i + 1] - dts[i]) - step)
+        if d != d:
+            return step  # np.max is NaN then, and NaN > limit is False
+        if d > limit:
+            over = True
+    return 0.0 if over else step
+
+
+_uniform_step = njit(cache=True, nogil=True)(_uniform_step_py) if njit is not None else None
+
+
+def uniform_step(dts: np.ndarray) -> float | None:
+    """The step of *dts* if it is an increasing uniform grid of ≥ 2 points, else None.
+
+    Uniform: every difference within 1e-9 of the step (relative).
+    """
+    kernel = _uniform_step if _uniform_step is not None else _uniform_step_py
+    step = float(kernel(np.ascontiguousarray(dts, dtype=float)))
+    return step if step > 0 else None
+
+
+def _grid_py(start, stop, num):  # pragma: no cover - compiled below
+    """Kernel of :func:`grid`."""
+    out = np.empty(num)
+    div = num - 1
+    delta = stop - start
+    step = delta / div
+    for i in range(num):
+        # np.linspace's arithmetic, operation for operation (also for a zero step).
+        out[i] = (i / div * delta if step == 0 else i * step) + start
+    out[num - 1] = stop
+    return out
+
+
+_grid = njit(cache=True, nogil=True)(_grid_py) if njit is not None else None
+
+
+def grid(start: float, stop: float, num: int) -> np.ndarray:
+    """``np.linspace(start, stop, num)`` (num ≥ 2), the same numbers without its Python
+    overhead (the refinement and uncertainty grids of every line and pass)."""
+    if _grid is None or num < 2:
+        return np.linspace(start, stop, num)
+    return _grid(float(start), float(stop), int(num))
+
+
+def _pearson_py(F, S1, S2, n, mean_w):  # pragma: no cover - compiled below
+    """Kernel of :func:`pearson`."""
+    r = np.empty(F.size)
+    for k in range(F.size):
+        var = S2[k] - S1[k] * S1[k] / n
+        if var > 1e-12 * abs(S2[k]) + 1e-300:
+            r[k] = (F[k] - S1[k] * mean_w) / np.sqrt(var)
+        else:
+            r[k] = np.nan
+    return r
+
+
+_pearson = njit(cache=True, nogil=True)(_pearson_py) if njit is not None else None
+
+
+def pearson(F: np.ndarray, S1: np.ndarray, S2: np.ndarray, n: int, mean_w: float
+            ) -> np.ndarray:
+    """Seed eq. 4 from the sums: ``(F − S1·w̄) / sqrt(S2 − S1²/n)`` per candidate, NaN
+    where the heave varies by less than 1e-12 of S2 (constant); *w* unit-normed heights
+    of mean *mean_w*."""
+    return _pearson(F, S1, S2, int(n), float(mean_w))
 
 
 def correlation_sums(tags: np.ndarray, w: np.ndarray, t_att: np.ndarray, h_att: np.ndarray,
@@ -297,7 +495,8 @@ def correlation_sums(tags: np.ndarray, w: np.ndarray, t_att: np.ndarray, h_att: 
     lattice = _lattice(tags, t_att, dts, step)
     if lattice is not None:
         x, L = lattice
-        return _lattice_sums(x, w, np.ascontiguousarray(h_att, dtype=float), L, dts.size)
+        return _lattice_sums(x, w, np.ascontiguousarray(h_att, dtype=float), L, dts.size,
+                             SPLIT_MIN_LAGS)
     return _sums(np.ascontiguousarray(tags, dtype=float), np.ascontiguousarray(w, dtype=float),
                  np.ascontiguousarray(t_att, dtype=float),
                  np.ascontiguousarray(h_att, dtype=float),

@@ -11,9 +11,15 @@ from hydrosync_core.methods.latency.correlation import (
     correlation_curve_direct,
     peak_uncertainty,
     refine_peak,
+    unit_centred,
 )
 from hydrosync_core.methods.latency.detrend import detrend
 from hydrosync_core.methods.latency.params import LatencyParams
+
+try:  # numba is a dependency; numpy remains if it cannot load
+    from numba import njit
+except ImportError:  # pragma: no cover
+    njit = None
 
 MARGIN_S = 0.15
 """Attitude needed beyond the scan range (refinement and curvature fit around the peak)."""
@@ -96,13 +102,25 @@ def line_slice(t_g: np.ndarray, start: float, end: float, skip_s: float, t_att: 
     return slice(i0 + int(idx[0]), i0 + int(idx[-1]) + 1)
 
 
+def line_selection(start: float, end: float, t_g: np.ndarray, t_att: np.ndarray,
+                   params: LatencyParams) -> slice:
+    """The GNSS epochs (slice of *t_g*) that :func:`prepare_line` keeps for a line (s)."""
+    lo, hi = params.range_s
+    return line_slice(t_g, start, end, params.skip_s, t_att, lo - MARGIN_S, hi + MARGIN_S)
+
+
 def prepare_line(
     name: str, start: float, end: float, t_g: np.ndarray, height: np.ndarray,
     t_att: np.ndarray, params: LatencyParams, gnss_interval: float, att_interval: float,
+    sel: slice | None = None,
 ) -> LineData:
-    """Select the line's epochs (after *skip_s*, inside the attitude coverage) and detrend."""
+    """Select the line's epochs (after *skip_s*, inside the attitude coverage) and detrend.
+
+    *sel*: :func:`line_selection`, when the caller has it.
+    """
     lo, hi = params.range_s
-    sel = line_slice(t_g, start, end, params.skip_s, t_att, lo - MARGIN_S, hi + MARGIN_S)
+    if sel is None:
+        sel = line_selection(start, end, t_g, t_att, params)
     tags, hgt = t_g[sel], height[sel]
     line = LineData(name, start, end, tags, hgt)
     if tags.size < params.min_epochs:
@@ -133,13 +151,14 @@ def scan_line(
         return LinePeak(np.full(dts.size, np.nan))
     win = attitude_window(t_att, line.tags, float(dts[0]), float(dts[-1]))
     ta, ha = t_att[win], h_att[win]
-    curve = correlation_curve(line.tags, line.h, ta, ha, dts)
-    if not np.any(np.isfinite(curve)):
+    unit = unit_centred(line.h)  # shared by the scan, the refinement and σ
+    curve = correlation_curve(line.tags, line.h, ta, ha, dts, unit)
+    k, low = _argmax_min(curve)
+    if k < 0:
         line.warnings.append(f"line {line.name}: total heave is constant, no correlation")
         return LinePeak(curve)
-    k = int(np.nanargmax(curve))
     peak = LinePeak(curve, r_max=float(curve[k]), latency_s=float(dts[k]))
-    span = float(np.nanmax(curve) - np.nanmin(curve))
+    span = float(curve[k] - low)
     if span < FLAT_R_SPAN:
         line.warnings.append(
             f"line {line.name}: R is flat over the scan (varies by {span:.3f}), no clear peak"
@@ -152,10 +171,45 @@ def scan_line(
         )
         return peak
     if refine:
-        peak.latency_s, peak.r_max = refine_peak(line.tags, line.h, ta, ha, dts, curve, k)
+        peak.latency_s, peak.r_max = refine_peak(line.tags, line.h, ta, ha, dts, curve, k,
+                                                 unit=unit)
     if uncertainty:
-        peak.uncertainty_s = peak_uncertainty(line.tags, line.h, ta, ha, peak.latency_s)
+        peak.uncertainty_s = peak_uncertainty(line.tags, line.h, ta, ha, peak.latency_s,
+                                              unit=unit)
     return peak
+
+
+def _argmax_min(curve: np.ndarray) -> tuple[int, float]:
+    """(``np.nanargmax``, ``np.nanmin``) of *curve*; index −1 when nothing is finite.
+
+    One pass instead of np.any(np.isfinite), nanargmax, nanmax and nanmin (their Python
+    overhead, per line and pass, held the GIL the scan threads share)."""
+    if _argmax_min_nb is None:  # pragma: no cover
+        if not np.any(np.isfinite(curve)):
+            return -1, float("nan")
+        return int(np.nanargmax(curve)), float(np.nanmin(curve))
+    k, low = _argmax_min_nb(np.ascontiguousarray(curve, dtype=float))
+    return int(k), float(low)
+
+
+def _argmax_min_py(curve):  # pragma: no cover - compiled below
+    k = -1
+    high = low = np.nan
+    finite = False
+    for i in range(curve.size):
+        v = curve[i]
+        if v != v:
+            continue
+        finite |= np.isfinite(v)
+        if k < 0 or v > high:  # the first of equal maxima, as np.nanargmax
+            k = i
+            high = v
+        if not v >= low:  # also the first value (low NaN)
+            low = v
+    return (k if finite else -1), low
+
+
+_argmax_min_nb = njit(cache=True, nogil=True)(_argmax_min_py) if njit is not None else None
 
 
 def scan_line_window(

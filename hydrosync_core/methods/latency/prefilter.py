@@ -27,7 +27,7 @@ Times in seconds, frequencies in Hz, heights and heave in metres (up).
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -55,8 +55,135 @@ def antialias_response(f: np.ndarray, cutoff_hz: float) -> np.ndarray:
     return 1.0 / (1.0 + (np.abs(f) / cutoff_hz) ** 16)
 
 
+def next_fast_len(n: int) -> int:
+    """Smallest 5-smooth integer (2^a·3^b·5^c) ≥ *n*: ``scipy.fft.next_fast_len(n,
+    real=True)``, without importing scipy.fft (0.15 s of a command-line run)."""
+    n = max(int(n), 1)
+    best = 1 << max(n - 1, 0).bit_length()  # the power of two ≥ n
+    f5 = 1
+    while f5 < best:
+        f35 = f5
+        while f35 < best:
+            # Times the power of two that brings it to n or more.
+            f = f35 << max((n - 1) // f35, 0).bit_length() if f35 < n else f35
+            best = min(best, f)
+            f35 *= 3
+        f5 *= 5
+    return best
+
+
 RESPONSE_CACHE_SIZE = 32
 """Responses kept per cache (one per FFT length; a day's line windows share a few)."""
+
+
+@dataclass(frozen=True)
+class Spectrum:
+    """A series made ready for :func:`fft_filter`'s filtering: everything but the response.
+
+    The linear trend ``intercept + slope·k_c`` (k_c the sample index centred on the
+    series) is taken out, the rest mirrored on both sides to *size* samples (the series
+    starts at *left*) and transformed. *bins* may hold the first bins only
+    (:meth:`head`): enough for a response that is zero beyond them. A series of fewer
+    than 4 samples is kept as it is (*raw*); filtering returns it unchanged.
+    """
+
+    n: int
+    size: int
+    left: int
+    intercept: float
+    slope: float
+    bins: np.ndarray | None
+    raw: np.ndarray | None = None
+
+    def head(self, count: int, out: np.ndarray | None = None) -> Spectrum:
+        """The same spectrum with only its first *count* bins, copied (to *out*, complex,
+        at least *count* long, when given) so that the rest can be freed."""
+        if self.bins is None:
+            return self
+        count = min(count, self.bins.size)
+        if out is None:
+            return replace(self, bins=self.bins[:count].copy())
+        out[:count] = self.bins[:count]
+        return replace(self, bins=out[:count])
+
+    def covers(self, gains: np.ndarray) -> bool:
+        """True when *gains* (one per bin of the full spectrum) are zero beyond *bins*."""
+        return self.bins is None or not np.any(gains[self.bins.size:])
+
+
+def spectrum(x: np.ndarray) -> Spectrum:
+    """:class:`Spectrum` of the regularly sampled series *x* (see :func:`fft_filter`)."""
+    n = x.size
+    if n < 4:
+        return Spectrum(n, n, 0, 0.0, 0.0, None, x.copy())
+    kc = np.arange(n, dtype=float) - 0.5 * (n - 1)
+    # Least-squares line in closed form (kc is centred): polyfit's numbers without
+    # lstsq, and no BLAS (a threaded BLAS dot wakes its threads for 10^4+ elements:
+    # 10 ms per window on a busy machine).
+    intercept = float(x.mean())
+    slope = float((kc * x).sum()) / float((kc * kc).sum())
+    trend = intercept + slope * kc
+    # Mirrored on both sides to a fast FFT length (about twice n): the wrap-around seam
+    # lies half a window away from the data. numpy.fft is the pocketfft of scipy.fft (the
+    # same numbers), without scipy.fft's import.
+    size = next_fast_len(2 * n)
+    left = (size - n) // 2
+    right = size - n - left
+    if left > n or right > n:  # reflections of reflections
+        y = np.pad(x - trend, (left, right), mode="symmetric")
+    else:  # np.pad(mode="symmetric")'s numbers without its Python overhead
+        y = np.empty(size)
+        inner = np.subtract(x, trend, out=y[left:left + n])
+        y[:left] = inner[left - 1::-1] if left else inner[:0]
+        y[left + n:] = inner[:n - right - 1:-1] if n > right else inner[::-1]
+    return Spectrum(n, size, left, intercept, slope, np.fft.rfft(y))
+
+
+def response_gains(response, size: int, dt: float, cache: dict | None = None
+                   ) -> tuple[np.ndarray, float]:
+    """(*response* at the ``rfft`` bins of *size* samples every *dt* s, response at 0 Hz).
+
+    *cache* (a dict owned by the caller, for one *response* and *dt*) keeps them per
+    *size*: the same numbers, computed once instead of once per line.
+    """
+    gains = cache.get(size) if cache is not None else None
+    if gains is None:
+        gains = (response(np.fft.rfftfreq(size, dt)), float(response(np.zeros(1))[0]))
+        if cache is not None and len(cache) < RESPONSE_CACHE_SIZE:
+            cache[size] = gains
+    return gains
+
+
+def filtered(spec: Spectrum, gains: tuple[np.ndarray, float], crop: slice | None = None,
+             out: np.ndarray | None = None) -> np.ndarray:
+    """The series of *spec* filtered with *gains* (:func:`response_gains`), samples *crop*.
+
+    The same numbers as :func:`fft_filter` followed by ``[crop]``, written to *out* when
+    given (its first ``len(crop)`` elements; returned). Raises ValueError when *spec*
+    keeps too few bins for *gains* (:meth:`Spectrum.covers`).
+    """
+    crop = crop if crop is not None else slice(0, spec.n)
+    lo, hi, _ = crop.indices(spec.n)
+    if spec.bins is None:
+        if out is None:
+            return spec.raw[crop].copy()
+        out[:hi - lo] = spec.raw[crop]
+        return out[:hi - lo]
+    full = spec.size // 2 + 1
+    if spec.bins.size == full:
+        product = spec.bins * gains[0]
+    else:
+        if not spec.covers(gains[0]):
+            raise ValueError("the response is not zero beyond the kept bins")
+        # Zero beyond the kept bins, as the product with a zero gain would be.
+        product = np.zeros(full, dtype=complex)
+        np.multiply(spec.bins, gains[0][:spec.bins.size], out=product[:spec.bins.size])
+    series = np.fft.irfft(product, spec.size)[spec.left + lo:spec.left + hi]
+    kc = np.arange(lo, hi, dtype=float) - 0.5 * (spec.n - 1)
+    trend = (spec.intercept + spec.slope * kc) * gains[1]
+    if out is None:
+        return series + trend
+    return np.add(series, trend, out=out[:hi - lo])
 
 
 def fft_filter(x: np.ndarray, dt: float, response, cache: dict | None = None) -> np.ndarray:
@@ -65,33 +192,14 @@ def fft_filter(x: np.ndarray, dt: float, response, cache: dict | None = None) ->
     The series is sampled every *dt* seconds (regular sampling assumed). Its linear trend
     is taken out before and put back after (scaled by the response at 0 Hz), and the
     series is mirrored on both sides so that the FFT sees no jump next to the data.
-    *cache* (a dict owned by the caller, for one *response* and *dt*) keeps the response
-    evaluated per FFT length: the same numbers, computed once instead of once per line.
+    *cache*: see :func:`response_gains`. The steps are :func:`spectrum`,
+    :func:`response_gains` and :func:`filtered`, which callers that filter one series
+    with several responses use directly (one forward FFT for all of them).
     """
-    n = x.size
-    if n < 4:
+    if x.size < 4:
         return x.copy()
-    kc = np.arange(n, dtype=float) - 0.5 * (n - 1)
-    # Least-squares line in closed form (kc is centred): polyfit's numbers without
-    # lstsq, and no BLAS (a threaded BLAS dot wakes its threads for 10^4+ elements:
-    # 10 ms per window on a busy machine).
-    intercept = float(x.mean())
-    slope = float((kc * x).sum()) / float((kc * kc).sum())
-    trend = intercept + slope * kc
-    from scipy import fft
-
-    # Mirrored on both sides to a fast FFT length (about twice n): the wrap-around seam
-    # lies half a window away from the data.
-    size = fft.next_fast_len(2 * n, real=True)
-    left = (size - n) // 2
-    y = np.pad(x - trend, (left, size - n - left), mode="symmetric")
-    gains = cache.get(size) if cache is not None else None
-    if gains is None:
-        gains = (response(np.fft.rfftfreq(size, dt)), float(response(np.zeros(1))[0]))
-        if cache is not None and len(cache) < RESPONSE_CACHE_SIZE:
-            cache[size] = gains
-    out = fft.irfft(fft.rfft(y) * gains[0], size)[left:left + n]
-    return out + trend * gains[1]
+    spec = spectrum(x)
+    return filtered(spec, response_gains(response, spec.size, dt, cache))
 
 
 @dataclass(frozen=True)

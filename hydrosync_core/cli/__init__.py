@@ -47,33 +47,64 @@ import logging  # noqa: E402
 from hydrosync_core import __version__, interrupts  # noqa: E402
 from hydrosync_core.errors import Cancelled, InputError  # noqa: E402
 
-SUBCOMMAND_MODULES = (
-    "hydrosync_core.cli.project_cmds",
-    "hydrosync_core.cli.report_cmd",
-    "hydrosync_core.cli.demo_cmd",
-    "hydrosync_core.cli.batch_cmd",
-)
+SUBCOMMAND_MODULES = {
+    "hydrosync_core.cli.project_cmds": ("new", "import", "info", "vessel", "run"),
+    "hydrosync_core.cli.report_cmd": ("report",),
+    "hydrosync_core.cli.demo_cmd": ("demo",),
+    "hydrosync_core.cli.batch_cmd": ("batch",),
+}
+"""Module of the project commands → the commands it registers (a hint for
+:func:`build_parser`: a command missing here is still found, by the full parser)."""
 
 EXIT_OK, EXIT_ERROR, EXIT_INPUT, EXIT_UNDETERMINED, EXIT_INTERRUPTED = 0, 1, 2, 3, 130
 
 
-def _register_analyses(sub: argparse._SubParsersAction) -> None:
-    """Add the command of every analysis that declares one (``PluginSpec.cli``)."""
+def _register_analyses(sub: argparse._SubParsersAction, command: str | None = None) -> None:
+    """Add the command of every analysis that declares one (``PluginSpec.cli``); with
+    *command*, only of the analyses whose id reads as that command (``heave-stats`` is
+    ``heave_stats``)."""
     from hydrosync_core.plugins import discover
     from hydrosync_core.plugins.spec import load_object
 
     for found in discover():
         if found.spec is None or not found.spec.cli:
             continue
+        if command is not None and _plain(found.spec.id) != _plain(command):
+            continue
         try:
             load_object(found.spec.cli)(sub)
         except Exception as exc:  # a third-party command must not break the others
+            if command is not None:
+                return  # the full parser, built next, says so (once)
             logging.getLogger(__name__).error(
                 "command of plugin %s could not be added: %s: %s", found.spec.id,
                 type(exc).__name__, exc)
 
 
-def build_parser() -> argparse.ArgumentParser:
+def _plain(name: str) -> str:
+    return name.lower().replace("-", "_")
+
+
+def _command_named(argv: list[str]) -> str | None:
+    """The sub-command *argv* names, when that is plain without parsing (the global
+    options take no value): None for help, the version, or anything unusual."""
+    for token in argv:
+        if token in ("-v", "--verbose"):
+            continue
+        return None if token.startswith("-") else token
+    return None
+
+
+def build_parser(command: str | None = None) -> argparse.ArgumentParser:
+    """The ``hydrosync`` parser: every command, or, given *command*, that one alone.
+
+    Registering a command imports its module (the project commands need h5py, an
+    analysis its own modules): a command run in a new process registers only itself, so
+    ``hydrosync latency`` starts without importing what the other commands need. A
+    *command* not found among the modules that may define it (its analysis's id reads
+    differently, or it is misspelt) gets the full parser, which then runs it or names
+    the valid choices.
+    """
     parser = argparse.ArgumentParser(
         prog="hydrosync",
         description="HydroSync: sensor integration and calibration for hydrographic survey.",
@@ -82,7 +113,9 @@ def build_parser() -> argparse.ArgumentParser:
     parser.add_argument("-v", "--verbose", action="store_true", help="log progress details")
     sub = parser.add_subparsers(dest="command", metavar="COMMAND")
     sub.required = True
-    for name in SUBCOMMAND_MODULES:
+    for name, commands in SUBCOMMAND_MODULES.items():
+        if command is not None and command not in commands:
+            continue
         try:
             module = importlib.import_module(name)
         except ModuleNotFoundError as exc:
@@ -90,7 +123,10 @@ def build_parser() -> argparse.ArgumentParser:
                 continue
             raise
         module.register(sub)
-    _register_analyses(sub)
+    if command is None or not sub.choices:
+        _register_analyses(sub, command)
+    if command is not None and command not in sub.choices:
+        return build_parser()
     return parser
 
 
@@ -155,7 +191,9 @@ def main(argv: list[str] | None = None) -> int:
     command = "hydrosync"
     try:
         try:
-            parser = build_parser()
+            if argv is None:
+                argv = sys.argv[1:]
+            parser = build_parser(_command_named(argv))
             args = parser.parse_args(argv)
             command = f"hydrosync {args.command}"
             _configure_logging(args.verbose)

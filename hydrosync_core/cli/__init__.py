@@ -40,7 +40,9 @@ if _started_as_command() and threading.current_thread() is threading.main_thread
     signal.signal(signal.SIGINT, _interrupted_while_loading)
 
 import argparse  # noqa: E402 - after the Ctrl-C handler on purpose
+import atexit  # noqa: E402
 import contextlib  # noqa: E402
+import gc  # noqa: E402
 import importlib  # noqa: E402
 import logging  # noqa: E402
 
@@ -183,11 +185,36 @@ def _interrupt_message(command: str) -> str:
     return f"{command}: interrupted (Ctrl-C): cancelled, nothing was saved"
 
 
+FULL_COLLECTION_EVERY = 100
+"""Young-generation collections between two full garbage collections while a command runs
+(Python's default: 10). Loading numba, scipy and the analysis modules leaves ~10^5 objects
+that live until the process ends; every full collection walks all of them (0.05-0.1 s),
+and a survey-day ``hydrosync latency`` made two of them for nothing."""
+
+_freeze_at_exit = False
+
+
+def _collect_less() -> tuple[int, int, int]:
+    """Fewer full collections while the command runs (restored by the caller), none at
+    exit: the interpreter's final collections walk every object (0.2-0.4 s after a
+    latency run) to free memory the system takes back anyway, so everything alive then
+    is frozen first (:func:`gc.freeze`; registered once, also for in-process callers,
+    which it spares the same wait when they end)."""
+    global _freeze_at_exit
+    if not _freeze_at_exit:
+        atexit.register(gc.freeze)
+        _freeze_at_exit = True
+    thresholds = gc.get_threshold()
+    gc.set_threshold(thresholds[0], thresholds[1], max(thresholds[2], FULL_COLLECTION_EVERY))
+    return thresholds
+
+
 def main(argv: list[str] | None = None) -> int:
     in_main_thread = threading.current_thread() is threading.main_thread()
     interrupts.reset()
     undo_interrupts = interrupts.install()
     logging.captureWarnings(True)
+    thresholds = _collect_less()
     command = "hydrosync"
     try:
         try:
@@ -225,6 +252,7 @@ def main(argv: list[str] | None = None) -> int:
     except KeyboardInterrupt:  # a second Ctrl-C while reporting the first
         return EXIT_INTERRUPTED
     finally:
+        gc.set_threshold(*thresholds)
         logging.captureWarnings(False)
         undo_interrupts()
         if in_main_thread and _started_as_command():

@@ -40,8 +40,12 @@ def _rename(exc: InputError, files: dict) -> InputError:
 
 def _run_csv(args: argparse.Namespace) -> int:
     from hydrosync_core.importers.survey_csv import read_lines_csv
-    from hydrosync_core.methods.latency.api import estimate_latency
-    from hydrosync_core.methods.latency.fastcsv import read_attitude_csv, read_gnss_csv
+    from hydrosync_core.methods.latency.fastcsv import (
+        prescan_attitude,
+        prescan_gnss,
+        read_attitude_csv,
+        read_gnss_csv,
+    )
 
     missing = [o for o, v in (("--gnss", args.gnss), ("--attitude", args.attitude),
                               ("--lines", args.lines), ("--lever-arm", args.param_lever_arm_m),
@@ -55,12 +59,17 @@ def _run_csv(args: argparse.Namespace) -> int:
         out.plan(args.sync_csv, "--sync-csv")
         try:
             params = _params(args)
-            gnss = read_gnss_csv(args.gnss)
             # The heading is only needed for the synchronised data set.
-            attitude = read_attitude_csv(
-                args.attitude, args.heave_positive,
-                None if args.sync_csv is not None else ("time", "roll", "pitch", "heave"))
+            columns = None if args.sync_csv is not None else ("time", "roll", "pitch", "heave")
+            # The first pass over each file runs while the first read loads numba (numba
+            # and the estimate are not imported before: that would leave the other core
+            # idle while they load).
+            scans = (prescan_gnss(args.gnss), prescan_attitude(args.attitude, columns))
+            gnss = read_gnss_csv(args.gnss, scans[0])
+            attitude = read_attitude_csv(args.attitude, args.heave_positive, columns, scans[1])
             lines = read_lines_csv(args.lines)
+            from hydrosync_core.methods.latency.api import estimate_latency
+
             result = estimate_latency(gnss, attitude, lines, params.lever_arm_m, params)
         except InputError as exc:
             raise _rename(exc, files) from None

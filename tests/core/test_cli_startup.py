@@ -2,13 +2,15 @@
 
 A command in a new process registers only its own sub-command (the full parser for help,
 an unknown command, or an analysis whose id reads differently); ``hydrosync latency`` from
-CSV files never imports h5py nor the project, report or demo modules; the interpreter's
-final garbage collection is skipped (everything is frozen at exit).
+CSV files never imports h5py nor the project, report or demo modules and starts numpy with
+one BLAS thread; the interpreter's final garbage collection is skipped (everything is
+frozen at exit).
 """
 
 from __future__ import annotations
 
 import json
+import os
 import subprocess
 import sys
 
@@ -49,29 +51,32 @@ def test_unknown_command_gets_the_full_parser(capsys):
 
 
 PROBE = """
-import json, sys
+import json, os, sys
 from hydrosync_core.cli import main
 code = main(sys.argv[1:])
 heavy = sorted(m for m in sys.modules if m.split(".")[0] in ("h5py", "open3d", "reportlab",
                "matplotlib", "pyarrow", "dask", "PySide6")
                or m in ("hydrosync_core.project.model", "hydrosync_core.cli.project_cmds",
                         "hydrosync_core.demo", "hydrosync_core.report"))
-print(json.dumps({"code": code, "heavy": heavy}))
+print(json.dumps({"code": code, "heavy": heavy,
+                  "blas_threads": os.environ.get("OPENBLAS_NUM_THREADS")}))
 """
 
 
 def test_latency_from_csv_files_loads_no_project_modules(tmp_path):
     write_day_csv(simulate_day(CFG, seed=4), tmp_path)
     x, y, z = CFG.lever_arm_m
+    env = {k: v for k, v in os.environ.items() if k != "OPENBLAS_NUM_THREADS"}
     done = subprocess.run(
         [sys.executable, "-c", PROBE, "latency", "--gnss", str(tmp_path / "gnss.csv"),
          "--attitude", str(tmp_path / "attitude.csv"), "--lines", str(tmp_path / "lines.csv"),
          "--lever-arm", str(x), str(y), str(z), "--range", "-0.3", "0.3", "--step", "0.01",
          "--json", str(tmp_path / "result.json")],
-        capture_output=True, text=True, timeout=300)
+        capture_output=True, text=True, timeout=300, env=env)
     assert done.returncode == 0, done.stderr
     probe = json.loads(done.stdout.strip().splitlines()[-1])
     assert probe["code"] == 0 and probe["heavy"] == []
+    assert probe["blas_threads"] == "1"  # set before numpy loaded: no spinning BLAS threads
     assert json.loads((tmp_path / "result.json").read_text())["latency_s"] == pytest.approx(
         0.08, abs=0.01)
 
@@ -87,3 +92,11 @@ def test_everything_is_frozen_at_exit():
                           timeout=120)
     assert done.returncode == 0, done.stderr
     assert done.stdout.split()[-1] == "True"
+
+
+def test_blas_threads_left_alone_once_numpy_is_loaded(monkeypatch):
+    from hydrosync_core.methods.latency import cli as latency_cli
+
+    monkeypatch.delenv("OPENBLAS_NUM_THREADS", raising=False)
+    latency_cli._one_blas_thread()  # numpy is loaded in this process
+    assert "OPENBLAS_NUM_THREADS" not in os.environ

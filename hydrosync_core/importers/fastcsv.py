@@ -361,14 +361,15 @@ class Prescan:
 
 def _read_compiled(path: Path, names: list[str], header_bytes: int, wanted: Sequence[str],
                    keep: Sequence[str], limits: Mapping[str, plausible.Limits],
-                   min_rows: int, plan: _Plan | None = None) -> dict | None:
+                   min_rows: int, prescan: Prescan | None = None) -> dict | None:
     """The compiled parser (module doc): the *keep* columns in file order, or None when the
-    file needs another reader. Every row is one line: row *i* is line ``i + 2``. *plan*,
-    from a :class:`Prescan` of this file, saves the counting pass if it is still valid."""
+    file needs another reader. Every row is one line: row *i* is line ``i + 2``. A
+    *prescan* of this file saves the counting pass if it is still valid."""
     import mmap
     from concurrent.futures import ThreadPoolExecutor
 
-    kernels = _compiled()
+    kernels = _compiled()  # loading numba first: the prescan goes on meanwhile
+    plan = prescan.take() if prescan is not None else None
     if kernels is None:
         return None
     count_kernel, parse_kernel = kernels
@@ -573,22 +574,24 @@ def read_numeric_fast(
     """
     path = Path(path)
     limits = limits or {}
-    plan = prescan.take() if prescan is not None else None
-    head = _header(path)
-    if head is None:
-        return None
-    names, header_bytes = head
-    kept = _kept(names, required, optional, time_column, keep)
-    if kept is None:
-        return None
-    wanted = list(required) + [c for c in optional if c in names]
-    lines_known = True
     try:
-        columns = _read_compiled(path, names, header_bytes, wanted, kept, limits, min_rows,
-                                 plan)
-    except (OSError, ValueError):
-        columns = None
-    del plan  # its columns, if the compiled parser did not keep them, before the next try
+        head = _header(path)
+        if head is None:
+            return None
+        names, header_bytes = head
+        kept = _kept(names, required, optional, time_column, keep)
+        if kept is None:
+            return None
+        wanted = list(required) + [c for c in optional if c in names]
+        lines_known = True
+        try:
+            columns = _read_compiled(path, names, header_bytes, wanted, kept, limits,
+                                     min_rows, prescan)
+        except (OSError, ValueError):
+            columns = None
+    finally:
+        if prescan is not None:
+            prescan.take()  # columns it reserved and nobody took: freed before any other try
     if columns is None:
         lines_known = False
         columns = _read_arrow(path, names, header_bytes, wanted, kept, limits, min_rows)

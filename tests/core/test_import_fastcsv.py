@@ -450,8 +450,9 @@ def test_stale_counts_never_write_past_the_columns(tmp_path):
     short = fastcsv._Plan(plan.identity, plan.header_bytes, plan.keep, plan.mid,
                           (plan.counts[0] - 3, plan.counts[1] - 3), plan.rows_total - 6,
                           plan.out[:, :plan.rows_total - 6].copy())
+    stale = type("StalePrescan", (), {"take": lambda self: short})()
     assert fastcsv._read_compiled(path, names, header, ["time", "height"], ["time", "height"],
-                                  plausible.GNSS, 2, short) is None
+                                  plausible.GNSS, 2, stale) is None
     data = np.frombuffer(path.read_bytes(), dtype=np.uint8)
     out = np.full((2, 5), 7.0)
     parse = fastcsv._compiled()[1]

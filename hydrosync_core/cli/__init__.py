@@ -186,10 +186,10 @@ def _interrupt_message(command: str) -> str:
 
 
 FULL_COLLECTION_EVERY = 100
-"""Young-generation collections between two full garbage collections while a command runs
-(Python's default: 10). Loading numba, scipy and the analysis modules leaves ~10^5 objects
-that live until the process ends; every full collection walks all of them (0.05-0.1 s),
-and a survey-day ``hydrosync latency`` made two of them for nothing."""
+"""Collections of the middle generation between two full garbage collections while a
+command runs (Python's default: 10). Loading numba, scipy and the analysis modules leaves
+~10^5 objects that live until the process ends; every full collection walks all of them
+(0.05-0.1 s), and a survey-day ``hydrosync latency`` made two of them for nothing."""
 
 _freeze_at_exit = False
 

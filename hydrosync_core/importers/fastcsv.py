@@ -257,8 +257,8 @@ class _Plan:
 
 
 def _newlines(fh, start: int, stop: int, buf: np.ndarray, mask: np.ndarray) -> int:
-    """Newlines in bytes [start, stop) of *fh*, read into *buf* (numpy: no interpreter lock
-    held while it reads or counts)."""
+    """Newlines in bytes [start, stop) of *fh*, read into *buf* (the reads and numpy's
+    compare and count run without the interpreter lock)."""
     fh.seek(start)
     n = 0
     while start < stop:
@@ -309,7 +309,7 @@ def _plan(path: Path, required: Sequence[str], optional: Sequence[str],
     del buf, mask
     rows_total = counts[0] + counts[1] + (0 if last == b"\n" else 1)
     out = np.empty((len(kept), rows_total))
-    out.fill(0.0)  # the first touch of fresh memory costs as much as parsing into it
+    out.fill(0.0)  # page faults and zeroing of fresh memory: here, not in the parse
     return _Plan(_identity(st), header_bytes, tuple(kept), mid, counts, rows_total, out)
 
 

@@ -40,40 +40,73 @@ if _started_as_command() and threading.current_thread() is threading.main_thread
     signal.signal(signal.SIGINT, _interrupted_while_loading)
 
 import argparse  # noqa: E402 - after the Ctrl-C handler on purpose
+import atexit  # noqa: E402
 import contextlib  # noqa: E402
+import gc  # noqa: E402
 import importlib  # noqa: E402
 import logging  # noqa: E402
 
 from hydrosync_core import __version__, interrupts  # noqa: E402
 from hydrosync_core.errors import Cancelled, InputError  # noqa: E402
 
-SUBCOMMAND_MODULES = (
-    "hydrosync_core.cli.project_cmds",
-    "hydrosync_core.cli.report_cmd",
-    "hydrosync_core.cli.demo_cmd",
-    "hydrosync_core.cli.batch_cmd",
-)
+SUBCOMMAND_MODULES = {
+    "hydrosync_core.cli.project_cmds": ("new", "import", "info", "vessel", "run"),
+    "hydrosync_core.cli.report_cmd": ("report",),
+    "hydrosync_core.cli.demo_cmd": ("demo",),
+    "hydrosync_core.cli.batch_cmd": ("batch",),
+}
+"""Module of the project commands → the commands it registers (a hint for
+:func:`build_parser`: a command missing here is still found, by the full parser)."""
 
 EXIT_OK, EXIT_ERROR, EXIT_INPUT, EXIT_UNDETERMINED, EXIT_INTERRUPTED = 0, 1, 2, 3, 130
 
 
-def _register_analyses(sub: argparse._SubParsersAction) -> None:
-    """Add the command of every analysis that declares one (``PluginSpec.cli``)."""
+def _register_analyses(sub: argparse._SubParsersAction, command: str | None = None) -> None:
+    """Add the command of every analysis that declares one (``PluginSpec.cli``); with
+    *command*, only of the analyses whose id reads as that command (``heave-stats`` is
+    ``heave_stats``)."""
     from hydrosync_core.plugins import discover
     from hydrosync_core.plugins.spec import load_object
 
     for found in discover():
         if found.spec is None or not found.spec.cli:
             continue
+        if command is not None and _plain(found.spec.id) != _plain(command):
+            continue
         try:
             load_object(found.spec.cli)(sub)
         except Exception as exc:  # a third-party command must not break the others
+            if command is not None:
+                return  # the full parser, built next, says so (once)
             logging.getLogger(__name__).error(
                 "command of plugin %s could not be added: %s: %s", found.spec.id,
                 type(exc).__name__, exc)
 
 
-def build_parser() -> argparse.ArgumentParser:
+def _plain(name: str) -> str:
+    return name.lower().replace("-", "_")
+
+
+def _command_named(argv: list[str]) -> str | None:
+    """The sub-command *argv* names, when that is plain without parsing (the global
+    options take no value): None for help, the version, or anything unusual."""
+    for token in argv:
+        if token in ("-v", "--verbose"):
+            continue
+        return None if token.startswith("-") else token
+    return None
+
+
+def build_parser(command: str | None = None) -> argparse.ArgumentParser:
+    """The ``hydrosync`` parser: every command, or, given *command*, that one alone.
+
+    Registering a command imports its module (the project commands need h5py, an
+    analysis its own modules): a command run in a new process registers only itself, so
+    ``hydrosync latency`` starts without importing what the other commands need. A
+    *command* not found among the modules that may define it (its analysis's id reads
+    differently, or it is misspelt) gets the full parser, which then runs it or names
+    the valid choices.
+    """
     parser = argparse.ArgumentParser(
         prog="hydrosync",
         description="HydroSync: sensor integration and calibration for hydrographic survey.",
@@ -82,7 +115,9 @@ def build_parser() -> argparse.ArgumentParser:
     parser.add_argument("-v", "--verbose", action="store_true", help="log progress details")
     sub = parser.add_subparsers(dest="command", metavar="COMMAND")
     sub.required = True
-    for name in SUBCOMMAND_MODULES:
+    for name, commands in SUBCOMMAND_MODULES.items():
+        if command is not None and command not in commands:
+            continue
         try:
             module = importlib.import_module(name)
         except ModuleNotFoundError as exc:
@@ -90,7 +125,10 @@ def build_parser() -> argparse.ArgumentParser:
                 continue
             raise
         module.register(sub)
-    _register_analyses(sub)
+    if command is None or not sub.choices:
+        _register_analyses(sub, command)
+    if command is not None and command not in sub.choices:
+        return build_parser()
     return parser
 
 
@@ -147,15 +185,42 @@ def _interrupt_message(command: str) -> str:
     return f"{command}: interrupted (Ctrl-C): cancelled, nothing was saved"
 
 
+FULL_COLLECTION_EVERY = 100
+"""Collections of the middle generation between two full garbage collections while a
+command runs (Python's default: 10). Loading numba, scipy and the analysis modules leaves
+~10^5 objects that live until the process ends; every full collection walks all of them
+(0.05-0.1 s), and a survey-day ``hydrosync latency`` made two of them for nothing."""
+
+_freeze_at_exit = False
+
+
+def _collect_less() -> tuple[int, int, int]:
+    """Fewer full collections while the command runs (restored by the caller), none at
+    exit: the interpreter's final collections walk every object (0.2-0.4 s after a
+    latency run) to free memory the system takes back anyway, so everything alive then
+    is frozen first (:func:`gc.freeze`; registered once, also for in-process callers,
+    which it spares the same wait when they end)."""
+    global _freeze_at_exit
+    if not _freeze_at_exit:
+        atexit.register(gc.freeze)
+        _freeze_at_exit = True
+    thresholds = gc.get_threshold()
+    gc.set_threshold(thresholds[0], thresholds[1], max(thresholds[2], FULL_COLLECTION_EVERY))
+    return thresholds
+
+
 def main(argv: list[str] | None = None) -> int:
     in_main_thread = threading.current_thread() is threading.main_thread()
     interrupts.reset()
     undo_interrupts = interrupts.install()
     logging.captureWarnings(True)
+    thresholds = _collect_less()
     command = "hydrosync"
     try:
         try:
-            parser = build_parser()
+            if argv is None:
+                argv = sys.argv[1:]
+            parser = build_parser(_command_named(argv))
             args = parser.parse_args(argv)
             command = f"hydrosync {args.command}"
             _configure_logging(args.verbose)
@@ -187,6 +252,7 @@ def main(argv: list[str] | None = None) -> int:
     except KeyboardInterrupt:  # a second Ctrl-C while reporting the first
         return EXIT_INTERRUPTED
     finally:
+        gc.set_threshold(*thresholds)
         logging.captureWarnings(False)
         undo_interrupts()
         if in_main_thread and _started_as_command():

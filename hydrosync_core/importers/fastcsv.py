@@ -30,7 +30,9 @@ preallocated columns, and anything that one does not take to the generic reader.
 from __future__ import annotations
 
 import os
+import threading
 from collections.abc import Mapping, Sequence
+from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
@@ -46,6 +48,10 @@ PIECE_BYTES = 1 << 22
 
 COMPILED_CHUNK = 1 << 25
 """Bytes of the memory map parsed between releases of its pages (32 MiB)."""
+
+PRESCAN_CHUNK = 1 << 23
+"""Bytes read per call by :class:`Prescan` (each call waits for the interpreter lock,
+which the thread loading modules holds; a few dozen waits are a few dozen milliseconds)."""
 
 MAX_COLUMNS = 1000
 """As :data:`hydrosync_core.importers.csv_table.MAX_COLUMNS` (more is not a table)."""
@@ -134,11 +140,15 @@ def _parse_py(buf, start, stop, ncols, slot, out, row0, lo, hi, pow10):  # pragm
     (-2) to skip its field (printable ASCII other than ``#`` and ``"``).
     Returns (rows, status): status 0 when every checked field is a plain decimal inside
     [lo, hi] of its column and every row has *ncols* fields; otherwise 1 (the caller falls
-    back to the other readers).
+    back to the other readers), also when *out* has no room for another row (the file
+    changed since its rows were counted).
     """
     row = row0
     i = start
+    room = out.shape[1]
     while i < stop:
+        if row >= room:
+            return row - row0, 1
         for c in range(ncols):
             s = slot[c]
             if s == -2:
@@ -228,21 +238,141 @@ def _release(mm, start: int, stop: int) -> None:
         mm.madvise(mmap.MADV_DONTNEED, a, b - a)
 
 
+def _identity(st: os.stat_result) -> tuple[int, int, int, int]:
+    return st.st_dev, st.st_ino, st.st_size, st.st_mtime_ns
+
+
+@dataclass
+class _Plan:
+    """What :func:`_read_compiled` would find before parsing: the file (as stat saw it),
+    its two halves' newline counts, and the output columns, already in memory."""
+
+    identity: tuple[int, int, int, int]
+    header_bytes: int
+    keep: tuple[str, ...]
+    mid: int
+    counts: tuple[int, int]
+    rows_total: int
+    out: np.ndarray
+
+
+def _newlines(fh, start: int, stop: int, buf: np.ndarray, mask: np.ndarray) -> int:
+    """Newlines in bytes [start, stop) of *fh*, read into *buf* (the reads and numpy's
+    compare and count run without the interpreter lock)."""
+    fh.seek(start)
+    n = 0
+    while start < stop:
+        got = fh.readinto(memoryview(buf)[:min(buf.size, stop - start)])
+        if not got:
+            raise EOFError("the file is shorter than it was")
+        np.equal(buf[:got], 10, out=mask[:got])
+        n += int(np.count_nonzero(mask[:got]))
+        start += got
+    return n
+
+
+def _plan(path: Path, required: Sequence[str], optional: Sequence[str],
+          time_column: str | None, keep: Sequence[str] | None) -> _Plan | None:
+    """Count the rows of *path* and allocate (and touch) its kept columns, as
+    :func:`_read_compiled` would; None when the fast path would not take it."""
+    head = _header(path)
+    if head is None:
+        return None
+    names, header_bytes = head
+    kept = _kept(names, required, optional, time_column, keep)
+    if kept is None:
+        return None
+    with open(path, "rb", buffering=0) as fh:
+        st = os.fstat(fh.fileno())
+        size = st.st_size
+        if size <= header_bytes:
+            return None
+        buf = np.empty(min(PRESCAN_CHUNK, size - header_bytes), dtype=np.uint8)
+        mask = np.empty(buf.size, dtype=np.bool_)
+        # The midpoint as _read_compiled finds it: just after the first newline at or after
+        # the middle of the rows, or the end of the file.
+        mid = header_bytes + (size - header_bytes) // 2
+        fh.seek(mid)
+        while True:
+            got = fh.readinto(memoryview(buf)[:1 << 16])
+            k = bytes(buf[:got]).find(b"\n") if got else -1
+            if k >= 0:
+                mid += k + 1
+                break
+            if not got:
+                mid = size
+                break
+            mid += got
+        counts = (_newlines(fh, header_bytes, mid, buf, mask), _newlines(fh, mid, size, buf, mask))
+        fh.seek(size - 1)
+        last = fh.read(1)
+    del buf, mask
+    rows_total = counts[0] + counts[1] + (0 if last == b"\n" else 1)
+    out = np.empty((len(kept), rows_total))
+    out.fill(0.0)  # page faults and zeroing of fresh memory: here, not in the parse
+    return _Plan(_identity(st), header_bytes, tuple(kept), mid, counts, rows_total, out)
+
+
+class Prescan:
+    """The first pass over a large CSV file, in a background thread.
+
+    :func:`read_numeric_fast` counts the rows (one pass over the file) and allocates the
+    columns before it parses, and its compiled parser first needs numba loaded. Loading
+    numba keeps one core busy (~0.4 s) and needs the interpreter; counting (~0.1 s for a
+    survey day's attitude.csv) and touching the columns' fresh memory (0.1-0.5 s for its
+    256 MiB) need neither. A caller that will read a file and has not loaded numba yet
+    starts a prescan first and hands it to :func:`read_numeric_fast` (same columns):
+    the two then run side by side.
+
+    A prescan never changes what is read: one that failed, or of a file changed since,
+    or of other columns, is not used (the reader counts itself). It holds the columns'
+    memory from the count until the read takes it.
+
+    Parameters
+    ----------
+    path, required, optional, time_column, keep
+        As :func:`read_numeric_fast` will be called.
+    """
+
+    def __init__(self, path: str | os.PathLike, required: Sequence[str],
+                 optional: Sequence[str] = (), *, time_column: str | None = "time",
+                 keep: Sequence[str] | None = None) -> None:
+        self.path = Path(path)
+        self._args = (self.path, tuple(required), tuple(optional), time_column,
+                      None if keep is None else tuple(keep))
+        self._plan: _Plan | None = None
+        # A daemon: Ctrl-C or an error in the caller must not wait for a count.
+        self._thread = threading.Thread(target=self._run, name="hydrosync-prescan",
+                                        daemon=True)
+        self._thread.start()
+
+    def _run(self) -> None:
+        try:
+            self._plan = _plan(*self._args)
+        except Exception:  # never an error of its own: the reader then counts itself
+            self._plan = None
+
+    def take(self) -> _Plan | None:
+        """The result (waiting for it), once; later calls give None."""
+        self._thread.join()
+        plan, self._plan = self._plan, None
+        return plan
+
+
 def _read_compiled(path: Path, names: list[str], header_bytes: int, wanted: Sequence[str],
                    keep: Sequence[str], limits: Mapping[str, plausible.Limits],
-                   min_rows: int) -> dict | None:
+                   min_rows: int, prescan: Prescan | None = None) -> dict | None:
     """The compiled parser (module doc): the *keep* columns in file order, or None when the
-    file needs another reader. Every row is one line: row *i* is line ``i + 2``."""
+    file needs another reader. Every row is one line: row *i* is line ``i + 2``. A
+    *prescan* of this file saves the counting pass if it is still valid."""
     import mmap
     from concurrent.futures import ThreadPoolExecutor
 
-    kernels = _compiled()
+    kernels = _compiled()  # loading numba first: the prescan goes on meanwhile
+    plan = prescan.take() if prescan is not None else None
     if kernels is None:
         return None
     count_kernel, parse_kernel = kernels
-    size = path.stat().st_size
-    if size <= header_bytes:
-        return None
     ncols = len(names)
     slot = np.full(ncols, SKIP, dtype=np.int64)
     lo = np.full(ncols, -np.inf)
@@ -254,7 +384,13 @@ def _read_compiled(path: Path, names: list[str], header_bytes: int, wanted: Sequ
             slot[c] = CHECK
         if name in wanted and name in limits:
             lo[c], hi[c] = limits[name][0], limits[name][1]
-    with open(path, "rb") as fh, mmap.mmap(fh.fileno(), 0, access=mmap.ACCESS_READ) as mm:
+    with open(path, "rb") as fh:
+        st = os.fstat(fh.fileno())
+        size = st.st_size
+        if size <= header_bytes:
+            return None
+        mm = mmap.mmap(fh.fileno(), 0, access=mmap.ACCESS_READ)
+    with mm:
         buf = np.frombuffer(mm, dtype=np.uint8)
         try:
             # Two halves split after a newline; chunks of whole lines inside each half.
@@ -262,6 +398,10 @@ def _read_compiled(path: Path, names: list[str], header_bytes: int, wanted: Sequ
             k = mm.find(b"\n", mid)
             mid = size if k < 0 else k + 1
             halves = [(header_bytes, mid), (mid, size)]
+            if plan is not None and (plan.identity != _identity(st) or plan.mid != mid
+                                     or plan.header_bytes != header_bytes
+                                     or plan.keep != tuple(keep)):
+                plan = None
 
             def chunks(a, b):
                 while a < b:
@@ -281,12 +421,19 @@ def _read_compiled(path: Path, names: list[str], header_bytes: int, wanted: Sequ
                 return n
 
             with ThreadPoolExecutor(2) as pool:
-                counts = list(pool.map(lambda h: count(*h), halves))
-                # A last row without a newline still counts.
-                rows_total = counts[0] + counts[1] + (0 if mm[size - 1:size] == b"\n" else 1)
+                if plan is not None:
+                    counts, rows_total, out = list(plan.counts), plan.rows_total, plan.out
+                    plan = None  # the columns are ours now
+                else:
+                    counts = list(pool.map(lambda h: count(*h), halves))
+                    # A last row without a newline still counts.
+                    rows_total = counts[0] + counts[1] + (0 if mm[size - 1:size] == b"\n"
+                                                          else 1)
+                    out = None
                 if rows_total < min_rows:
                     return None
-                out = np.empty((len(keep), rows_total))
+                if out is None:
+                    out = np.empty((len(keep), rows_total))
 
                 def parse(a, b, row0, buf=buf):
                     rows = 0
@@ -394,6 +541,18 @@ def _sort_by_time(path: Path, columns: dict[str, np.ndarray], key: str,
     return columns
 
 
+def _kept(names: list[str], required: Sequence[str], optional: Sequence[str],
+          time_column: str | None, keep: Sequence[str] | None) -> list[str] | None:
+    """The columns :func:`read_numeric_fast` returns from a file with header *names* (file
+    order as asked), or None when it leaves the file to the generic reader."""
+    if any(c not in names for c in required):
+        return None  # the generic reader names the missing column
+    wanted = list(required) + [c for c in optional if c in names]
+    if time_column is not None and time_column not in wanted:
+        return None
+    return wanted if keep is None else [c for c in wanted if c in keep or c == time_column]
+
+
 def read_numeric_fast(
     path: str | os.PathLike,
     required: Sequence[str],
@@ -403,31 +562,36 @@ def read_numeric_fast(
     min_rows: int = 1,
     limits: Mapping[str, plausible.Limits] | None = None,
     keep: Sequence[str] | None = None,
+    prescan: Prescan | None = None,
 ) -> dict[str, np.ndarray] | None:
     """What :func:`~hydrosync_core.importers.csv_table.read_numeric_csv` returns for these
     arguments, or None when the file is not plainly well-formed (module doc).
 
     *keep*, if given, limits the columns returned (*time_column* always is); every wanted
-    column is still checked. Raises only the duplicate-time :class:`InputError`, worded and
-    placed as the generic reader does.
+    column is still checked. *prescan*, a :class:`Prescan` of this file started with the
+    same columns, saves the first pass. Raises only the duplicate-time
+    :class:`InputError`, worded and placed as the generic reader does.
     """
     path = Path(path)
     limits = limits or {}
-    head = _header(path)
-    if head is None:
-        return None
-    names, header_bytes = head
-    if any(c not in names for c in required):
-        return None  # the generic reader names the missing column
-    wanted = list(required) + [c for c in optional if c in names]
-    if time_column is not None and time_column not in wanted:
-        return None
-    kept = wanted if keep is None else [c for c in wanted if c in keep or c == time_column]
-    lines_known = True
     try:
-        columns = _read_compiled(path, names, header_bytes, wanted, kept, limits, min_rows)
-    except (OSError, ValueError):
-        columns = None
+        head = _header(path)
+        if head is None:
+            return None
+        names, header_bytes = head
+        kept = _kept(names, required, optional, time_column, keep)
+        if kept is None:
+            return None
+        wanted = list(required) + [c for c in optional if c in names]
+        lines_known = True
+        try:
+            columns = _read_compiled(path, names, header_bytes, wanted, kept, limits,
+                                     min_rows, prescan)
+        except (OSError, ValueError):
+            columns = None
+    finally:
+        if prescan is not None:
+            prescan.take()  # columns it reserved and nobody took: freed before any other try
     if columns is None:
         lines_known = False
         columns = _read_arrow(path, names, header_bytes, wanted, kept, limits, min_rows)

@@ -391,3 +391,81 @@ def test_generic_field_count_in_blocks_of_lines(tmp_path, monkeypatch, block):
             assert got == expected
         else:
             assert_same(got, expected)
+
+
+def _prescan(path, spec, keep=None):
+    optional = spec.get("optional", ())
+    return fastcsv.Prescan(path, spec["required"], optional,
+                           time_column=spec.get("time_column", "time"), keep=keep)
+
+
+@pytest.mark.parametrize("last", ["\n", ""])
+def test_prescan_saves_the_count_and_changes_nothing(tmp_path, monkeypatch, last):
+    monkeypatch.setattr(fastcsv, "PRESCAN_CHUNK", 61)  # many reads, cut inside rows
+    rng = np.random.default_rng(11)
+    cols = _columns(rng, 2500, ["time", "roll", "pitch", "heading", "heave"])
+    path = tmp_path / "attitude.csv"
+    path.write_text("time,roll,pitch,heading,heave\n" + "\n".join(
+        ",".join(FORMATS["plain"](c[i]) for c in cols) for i in range(2500)) + last)
+    keep = ("time", "heave")
+    scan = _prescan(path, ATT, keep)
+    kernels = fastcsv._compiled()
+    counted = []
+    monkeypatch.setattr(fastcsv, "_kernels",
+                        [lambda *a: counted.append(1) or kernels[0](*a), kernels[1]])
+    fast = fastcsv.read_numeric_fast(path, **ATT, keep=keep, prescan=scan)
+    assert counted == []  # the prescan's count was used
+    slow = generic(path, ATT)
+    assert_same(fast, {k: slow[k] for k in ("time", "heave")})
+    assert scan.take() is None  # used once
+
+
+def test_prescan_of_other_columns_or_a_changed_file_is_not_used(tmp_path, monkeypatch):
+    path = tmp_path / "gnss.csv"
+    path.write_text("time,height\n" + "".join(f"{i}.5,{i % 9}.25\n" for i in range(400)))
+    kernels = fastcsv._compiled()
+    counted = []
+    monkeypatch.setattr(fastcsv, "_kernels",
+                        [lambda *a: counted.append(1) or kernels[0](*a), kernels[1]])
+    scan = _prescan(path, GNSS, keep=("time",))  # other columns than read below
+    assert_same(fastcsv.read_numeric_fast(path, **GNSS, prescan=scan), generic(path, GNSS))
+    assert counted
+    counted.clear()
+    scan = _prescan(path, GNSS)
+    scan._thread.join()
+    with open(path, "a") as fh:  # one row more after the count
+        fh.write("400.5,1.25\n")
+    fast = fastcsv.read_numeric_fast(path, **GNSS, prescan=scan)
+    assert counted and fast["time"].size == 401
+    assert_same(fast, generic(path, GNSS))
+
+
+def test_stale_counts_never_write_past_the_columns(tmp_path):
+    """A file rewritten in place (same size and time stamp) after its rows were counted:
+    the parser stops at the end of the columns and leaves the file to the other readers."""
+    path = tmp_path / "gnss.csv"
+    path.write_text("time,height\n" + "".join(f"{i}.5,{i % 9}.25\n" for i in range(400)))
+    names, header = fastcsv._header(path)
+    plan = fastcsv._plan(path, ["time", "height"], [], "time", None)
+    short = fastcsv._Plan(plan.identity, plan.header_bytes, plan.keep, plan.mid,
+                          (plan.counts[0] - 3, plan.counts[1] - 3), plan.rows_total - 6,
+                          plan.out[:, :plan.rows_total - 6].copy())
+    stale = type("StalePrescan", (), {"take": lambda self: short})()
+    assert fastcsv._read_compiled(path, names, header, ["time", "height"], ["time", "height"],
+                                  plausible.GNSS, 2, stale) is None
+    data = np.frombuffer(path.read_bytes(), dtype=np.uint8)
+    out = np.full((2, 5), 7.0)
+    parse = fastcsv._compiled()[1]
+    rows, status = parse(data, header, data.size, 2, np.array([0, 1]), out[:, :4], 0,
+                         np.full(2, -np.inf), np.full(2, np.inf), fastcsv._POW10)
+    assert (rows, status) == (4, 1) and np.all(out[:, 4] == 7.0)  # nothing past row 4
+
+
+@pytest.mark.parametrize("text", ["", "time,height\n", "time;height\n1;2\n", None])
+def test_prescan_of_a_bad_or_missing_file_is_harmless(tmp_path, text):
+    path = tmp_path / "gnss.csv"
+    if text is not None:
+        path.write_text(text)
+    scan = _prescan(path, GNSS)
+    assert outcome(lambda p, s: fastcsv.read_numeric_fast(p, **s, prescan=scan) or
+                   generic(p, s), path, GNSS) == outcome(generic, path, GNSS)

@@ -238,6 +238,29 @@ def _release(mm, start: int, stop: int) -> None:
         mm.madvise(mmap.MADV_DONTNEED, a, b - a)
 
 
+def _empty_columns(count: int, rows: int) -> np.ndarray:
+    """An uninitialised (count, rows) float64 block for parsed columns, in 4 KiB pages.
+
+    numpy asks for transparent huge pages for large arrays. On a virtual machine whose host
+    takes back free guest memory (free page reporting: the 2-core benchmark machine), the
+    first touch of a fresh huge page cost 2-4 ms per MiB there, 0.6-0.9 s for a survey
+    day's 256 MiB of attitude columns (more than parsing them), and 4 KiB pages 0.6 ms per
+    MiB, every time; on other machines the difference is tens of milliseconds either way.
+    The columns are read in order, so huge pages gain nothing later (the latency estimate
+    took the same time on either).
+    """
+    import mmap
+
+    # Anonymous and private (the default, shared, would be shmem): never madvised huge.
+    flags = {"flags": mmap.MAP_PRIVATE | mmap.MAP_ANONYMOUS} if hasattr(mmap, "MAP_ANONYMOUS") \
+        else {}
+    try:
+        block = mmap.mmap(-1, max(count * rows * 8, 1), **flags)
+    except (OSError, ValueError):
+        return np.empty((count, rows))
+    return np.frombuffer(block, dtype=np.float64, count=count * rows).reshape(count, rows)
+
+
 def _identity(st: os.stat_result) -> tuple[int, int, int, int]:
     return st.st_dev, st.st_ino, st.st_size, st.st_mtime_ns
 
@@ -308,7 +331,7 @@ def _plan(path: Path, required: Sequence[str], optional: Sequence[str],
         last = fh.read(1)
     del buf, mask
     rows_total = counts[0] + counts[1] + (0 if last == b"\n" else 1)
-    out = np.empty((len(kept), rows_total))
+    out = _empty_columns(len(kept), rows_total)
     out.fill(0.0)  # page faults and zeroing of fresh memory: here, not in the parse
     return _Plan(_identity(st), header_bytes, tuple(kept), mid, counts, rows_total, out)
 
@@ -433,7 +456,7 @@ def _read_compiled(path: Path, names: list[str], header_bytes: int, wanted: Sequ
                 if rows_total < min_rows:
                     return None
                 if out is None:
-                    out = np.empty((len(keep), rows_total))
+                    out = _empty_columns(len(keep), rows_total)
 
                 def parse(a, b, row0, buf=buf):
                     rows = 0

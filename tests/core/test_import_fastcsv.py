@@ -469,3 +469,16 @@ def test_prescan_of_a_bad_or_missing_file_is_harmless(tmp_path, text):
     scan = _prescan(path, GNSS)
     assert outcome(lambda p, s: fastcsv.read_numeric_fast(p, **s, prescan=scan) or
                    generic(p, s), path, GNSS) == outcome(generic, path, GNSS)
+
+
+def test_columns_are_ordinary_writable_arrays(tmp_path):
+    """The parsed columns live in an anonymous map (4 KiB pages, see _empty_columns): still
+    plain writable, contiguous float64 arrays, like the generic reader's."""
+    path = tmp_path / "gnss.csv"
+    path.write_text("time,height\n" + "".join(f"{i}.5,{i % 9}.25\n" for i in range(50)))
+    for column in fastcsv.read_numeric_fast(path, **GNSS).values():
+        assert column.dtype == np.float64 and column.flags.c_contiguous
+        assert column.flags.writeable
+        column[0] = 1.0
+    block = fastcsv._empty_columns(0, 0)
+    assert block.shape == (0, 0) and block.dtype == np.float64

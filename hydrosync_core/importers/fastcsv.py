@@ -298,13 +298,10 @@ def _plan(path: Path, required: Sequence[str], optional: Sequence[str],
           time_column: str | None, keep: Sequence[str] | None) -> _Plan | None:
     """Count the rows of *path* and allocate (and touch) its kept columns, as
     :func:`_read_compiled` would; None when the fast path would not take it."""
-    head = _header(path)
-    if head is None:
+    layout = _layout(path, required, optional, time_column, keep)
+    if layout is None:
         return None
-    names, header_bytes = head
-    kept = _kept(names, required, optional, time_column, keep)
-    if kept is None:
-        return None
+    _, header_bytes, kept = layout
     with open(path, "rb", buffering=0) as fh:
         st = os.fstat(fh.fileno())
         size = st.st_size
@@ -576,6 +573,19 @@ def _kept(names: list[str], required: Sequence[str], optional: Sequence[str],
     return wanted if keep is None else [c for c in wanted if c in keep or c == time_column]
 
 
+def _layout(path: Path, required: Sequence[str], optional: Sequence[str],
+            time_column: str | None, keep: Sequence[str] | None
+            ) -> tuple[list[str], int, list[str]] | None:
+    """Header names, header length (bytes) and kept columns of *path* (:func:`_header`,
+    :func:`_kept`), or None when the fast path leaves the file to the generic reader."""
+    head = _header(path)
+    if head is None:
+        return None
+    names, header_bytes = head
+    kept = _kept(names, required, optional, time_column, keep)
+    return None if kept is None else (names, header_bytes, kept)
+
+
 def read_numeric_fast(
     path: str | os.PathLike,
     required: Sequence[str],
@@ -598,13 +608,10 @@ def read_numeric_fast(
     path = Path(path)
     limits = limits or {}
     try:
-        head = _header(path)
-        if head is None:
+        layout = _layout(path, required, optional, time_column, keep)
+        if layout is None:
             return None
-        names, header_bytes = head
-        kept = _kept(names, required, optional, time_column, keep)
-        if kept is None:
-            return None
+        names, header_bytes, kept = layout
         wanted = list(required) + [c for c in optional if c in names]
         lines_known = True
         try:

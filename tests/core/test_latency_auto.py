@@ -110,7 +110,9 @@ def test_scan_line_window_checks():
     k = int(np.argmin(np.abs(dts - 0.1)))
     ok = scan_line_window(line, ta, ha, dts, k - 50, k + 51)
     assert ok is not None and ok.scan == "window"
-    assert ok.latency_s == pytest.approx(ref.latency_s, abs=1e-12)
+    # The full scan is compiled (fastscan.scan_core), the window's refinement is not: a
+    # rounding difference in R moves the fine parabola's vertex by picoseconds.
+    assert ok.latency_s == pytest.approx(ref.latency_s, abs=1e-10)
     assert ok.r_max == pytest.approx(ref.r_max, abs=1e-12)
     assert ok.uncertainty_s == pytest.approx(ref.uncertainty_s, rel=1e-9)
     assert np.all(np.isnan(ok.curve[: k - 50])) and np.all(np.isnan(ok.curve[k + 51:]))

@@ -473,3 +473,94 @@ def test_compiled_scan_helpers_equal_numpy():
         ref = (F - S1 * mean_w) / np.sqrt(var)
     ref[~(var > 1e-12 * np.abs(S2) + 1e-300)] = np.nan
     np.testing.assert_array_equal(fastscan.pearson(F, S1, S2, n, mean_w), ref)
+
+
+def _python_scan(monkeypatch, line, ta, ha, dts, **kw):
+    """scan_line by its Python steps (the compiled line scan switched off)."""
+    from hydrosync_core.methods.latency import lines
+
+    with monkeypatch.context() as m:
+        m.setattr(fastscan, "scan_core", lambda *a, **k: None)
+        return lines.scan_line(line, ta, ha, dts, **kw)
+
+
+def test_compiled_line_scan_equals_the_python_steps(monkeypatch):
+    """fastscan.scan_core (curve, maximum, refinement, σ in one compiled call) gives the
+    Python steps' numbers, warnings and flags: regular and jittered attitude, grids on and
+    off the lattice, a peak inside and at the edge, constant heave, refine/σ off."""
+    from hydrosync_core.methods.latency.lines import LineData, scan_line
+
+    rng = np.random.default_rng(11)
+    checked = 0
+    for case in range(24):
+        rate = (50.0, 100.0, 200.0)[case % 3]
+        t_att = 500.0 + np.arange(int(90 * rate)) / rate
+        if case % 4 == 1:
+            t_att = t_att + 2e-4 / rate * rng.standard_normal(t_att.size)  # logger jitter
+        delay = rng.uniform(-0.4, 0.4)
+        period = rng.uniform(4.0, 12.0)
+        h_att = (np.sin(2 * np.pi * t_att / period) + 0.3 * np.sin(t_att * 0.9 + 1.0)
+                 + 0.05 * rng.standard_normal(t_att.size))
+        g_rate = (1.0, 5.0, 10.0, 20.0)[case % 4]
+        tags = np.arange(510.0, 580.0, 1.0 / g_rate) + 0.003 * rng.standard_normal(
+            int(70 * g_rate))
+        h = (np.interp(tags - delay, t_att, h_att) + 0.02 * rng.standard_normal(tags.size))
+        h -= h.mean()
+        step = (0.001, 0.002, 0.0075, 0.02)[case % 4]
+        lo = -1.0 if case != 7 else delay + 0.05  # case 7: the peak at the grid's edge
+        dts = np.linspace(lo, lo + 2.0, int(round(2.0 / step)) + 1)
+        for refine, unc in ((True, True), (True, False), (False, True), (False, False)):
+            fast_line = LineData("L", 0.0, 1.0, tags, h)
+            slow_line = LineData("L", 0.0, 1.0, tags, h)
+            fast = scan_line(fast_line, t_att, h_att, dts, refine=refine, uncertainty=unc)
+            slow = _python_scan(monkeypatch, slow_line, t_att, h_att, dts, refine=refine,
+                                uncertainty=unc)
+            np.testing.assert_allclose(fast.curve, slow.curve, rtol=0, atol=1e-12)
+            assert fast.at_edge == slow.at_edge == (case == 7)
+            assert fast.r_max == pytest.approx(slow.r_max, abs=1e-12)
+            assert fast.latency_s == pytest.approx(slow.latency_s, abs=1e-10)
+            if unc and not fast.at_edge:
+                assert fast.uncertainty_s == pytest.approx(slow.uncertainty_s, rel=1e-9)
+                assert np.isfinite(fast.uncertainty_s)
+            else:
+                assert np.isnan(fast.uncertainty_s) and np.isnan(slow.uncertainty_s)
+            assert fast_line.warnings == slow_line.warnings
+            checked += 1
+    assert checked == 96
+    # Constant heave: no maximum, the same warning.
+    tags = np.arange(10.0, 60.0, 0.1)
+    flat = [LineData("F", 0.0, 1.0, tags, np.sin(tags)) for _ in range(2)]
+    t_att, h_att = np.arange(0.0, 80.0, 0.01), np.full(8000, 0.25)
+    dts = np.linspace(-1.0, 1.0, 201)
+    fast = scan_line(flat[0], t_att, h_att, dts)
+    slow = _python_scan(monkeypatch, flat[1], t_att, h_att, dts)
+    assert np.isnan(fast.r_max) and np.isnan(slow.r_max)
+    assert flat[0].warnings == flat[1].warnings and "constant" in flat[0].warnings[0]
+    # Where the compiled scan does not apply it says so (the caller takes the Python path).
+    h = np.sin(tags)
+    assert fastscan.scan_core(tags, h, t_att, np.sin(t_att), np.array([-0.3, 0.0, 0.4]),
+                              True, True, 40, 0.15, 15.0, 0.05, 0.1) is None
+    assert fastscan.scan_core(tags[:1], h[:1], t_att, np.sin(t_att), dts, True, True, 40,
+                              0.15, 15.0, 0.05, 0.1) is None
+
+
+def test_closed_form_detrend_equals_polyfit():
+    from numpy.polynomial import polynomial as npoly
+
+    from hydrosync_core.methods.latency.detrend import detrend
+
+    rng = np.random.default_rng(12)
+    for degree in (0, 1, 2):
+        for n in (1, 2, 3, 50, 1200):
+            t = 4.3e5 + np.sort(rng.uniform(0, 120, n))
+            hgt = 41.0 + 0.002 * (t - t[0]) + 0.1 * rng.standard_normal(n)
+            if n <= degree:
+                continue
+            res, coef = detrend(t, hgt, degree)
+            tc = t - t.mean()
+            scale = max(float(np.abs(tc).max()), 1e-9)
+            ref = npoly.polyfit(tc / scale, hgt, degree)
+            np.testing.assert_allclose(res, hgt - npoly.polyval(tc / scale, ref), rtol=0,
+                                       atol=1e-12)
+            np.testing.assert_allclose(coef, ref / scale ** np.arange(degree + 1), rtol=1e-9,
+                                       atol=1e-12)

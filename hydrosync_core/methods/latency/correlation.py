@@ -15,6 +15,15 @@ from hydrosync_core.methods.latency import fastscan
 CHUNK_ELEMENTS = 2_000_000
 """Candidates x epochs interpolated per chunk (16 MB of float64)."""
 
+MAX_LAG_S = 15.0
+"""Newey–West lag window of :func:`peak_uncertainty` (s)."""
+DELTA_S = 0.05
+"""Half-step of its central difference of the heave (s)."""
+WIDTH_S = 0.1
+"""Half-width of its curvature fit (s)."""
+SUBDIVISIONS = 40
+"""Points per two grid steps of :func:`refine_peak`'s fine grid."""
+
 
 def heave_at(tags: np.ndarray, dts: np.ndarray, t_att: np.ndarray, h_att: np.ndarray) -> np.ndarray:
     """Total heave (m) at corrected times ``tags − dt`` for every dt: shape (len(dts), len(tags)).
@@ -107,7 +116,7 @@ def _parabola_vertex(x: np.ndarray, y: np.ndarray, k: int) -> tuple[float, float
 
 def refine_peak(
     tags: np.ndarray, h: np.ndarray, t_att: np.ndarray, h_att: np.ndarray,
-    dts: np.ndarray, r: np.ndarray, k: int, subdivisions: int = 40,
+    dts: np.ndarray, r: np.ndarray, k: int, subdivisions: int = SUBDIVISIONS,
     unit: np.ndarray | None = None,
 ) -> tuple[float, float]:
     """Sub-step maximum of R around grid index *k* (bounded to one step either side).
@@ -132,7 +141,7 @@ def refine_peak(
 
 def peak_uncertainty(
     tags: np.ndarray, h: np.ndarray, t_att: np.ndarray, h_att: np.ndarray, dt: float,
-    max_lag_s: float = 15.0, delta: float = 0.05, width: float = 0.1,
+    max_lag_s: float = MAX_LAG_S, delta: float = DELTA_S, width: float = WIDTH_S,
     unit: np.ndarray | None = None,
 ) -> float:
     """Standard uncertainty (s) of a line's peak delay from the linearised model.

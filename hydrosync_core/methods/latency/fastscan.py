@@ -501,3 +501,232 @@ def correlation_sums(tags: np.ndarray, w: np.ndarray, t_att: np.ndarray, h_att: 
                  np.ascontiguousarray(t_att, dtype=float),
                  np.ascontiguousarray(h_att, dtype=float),
                  np.ascontiguousarray(dts, dtype=float), float(step))
+
+
+# --- One line's whole scan in one compiled call -------------------------------------
+# scan_line's steps (correlation curve, its maximum, sub-step refinement, uncertainty)
+# as one kernel: per line and pass these were ~40 small numpy calls holding the
+# interpreter lock, which the two scan threads then took turns for (a survey day's
+# `auto` ran only 1.3x faster on two cores than on one). The kernels live in this
+# module because numba's cache does not notice changes in another module's kernels.
+
+def _sums_any_py(tags, w, ta, ha, dts, step):  # pragma: no cover - compiled below
+    """:func:`correlation_sums` (lattice kernel where it fits, else the general one)."""
+    x, L = _lattice_nb(tags, ta, dts[0], step, dts.size, LATTICE_TOLERANCE)
+    if L:
+        return _lattice_sums(x, w, ha, L, dts.size, SPLIT_MIN_LAGS)
+    return _sums(tags, w, ta, ha, dts, step)
+
+
+def _curve_py(tags, unit, ta, ha, dts, step):  # pragma: no cover - compiled below
+    """:func:`.correlation.correlation_curve` on a uniform grid of spacing *step*."""
+    F, S1, S2 = _sums_any(tags, unit, ta, ha, dts, step)
+    total = 0.0
+    for i in range(unit.size):
+        total += unit[i]
+    return _pearson(F, S1, S2, tags.size, total / tags.size)
+
+
+def _argmax_min_py(curve):  # pragma: no cover - compiled below
+    """(first index of the maximum ignoring NaN, minimum ignoring NaN); index −1 when
+    nothing is finite (:func:`.lines._argmax_min`)."""
+    k = -1
+    high = low = np.nan
+    finite = False
+    for i in range(curve.size):
+        v = curve[i]
+        if v != v:
+            continue
+        finite |= np.isfinite(v)
+        if k < 0 or v > high:  # the first of equal maxima, as np.nanargmax
+            k = i
+            high = v
+        if not v >= low:  # also the first value (low NaN)
+            low = v
+    return (k if finite else -1), low
+
+
+def _mean_py(x):  # pragma: no cover - compiled below
+    total = 0.0
+    for i in range(x.size):
+        total += x[i]
+    return total / x.size
+
+
+def _vertex_py(x, y, k):  # pragma: no cover - compiled below
+    """:func:`.correlation._parabola_vertex`."""
+    a, b, c = y[k - 1], y[k], y[k + 1]
+    denom = a - 2 * b + c
+    if not np.isfinite(denom) or denom >= 0:
+        return x[k], y[k]
+    shift = 0.5 * (a - c) / denom
+    return x[k] + shift * (x[1] - x[0]), b - 0.25 * (a - c) * shift
+
+
+def _sigma_py(tags, h, ta, ha, dt, unit, max_lag_s, delta, width
+              ):  # pragma: no cover - compiled below
+    """:func:`.correlation.peak_uncertainty` (s); NaN as there; −1.0 when its
+    curvature grid is not uniform (the caller then takes the Python path).
+
+    The Newey–West autocovariances are summed directly (a few hundred lags of a
+    line's epochs) rather than by FFT: the same sums to rounding.
+    """
+    n = tags.size
+    if n < 5:
+        return np.nan
+    span = (tags[n - 1] - tags[0]) / max(n - 1, 1)
+    H0 = np.interp(tags - (dt - delta), ta, ha)
+    H1 = np.interp(tags - dt, ta, ha)
+    H2 = np.interp(tags - (dt + delta), ta, ha)
+    Hc = H1 - _mean(H1)
+    hc = h - _mean(h)
+    hh = np.sum(Hc * Hc)
+    if not hh > 0:
+        return np.nan
+    b = np.sum(Hc * hc) / hh
+    resid = hc - b * Hc
+    g = b * (H2 - H0) / (2 * delta)
+    g = g - _mean(g)
+    g = g - (np.sum(Hc * g) / hh) * Hc
+    grid = _grid(dt - width, dt + width, 21)
+    step = _uniform_step(grid)
+    if not step > 0:
+        return -1.0
+    r = _curve(tags, unit, ta, ha, grid, step)
+    x2 = (grid - dt) ** 2
+    x2 = x2 - _mean(x2)
+    c2 = np.sum(x2 * r) / np.sum(x2 * x2)
+    jj = -np.sum(hc * hc) * r[10] * 2 * c2
+    if not jj > 0:
+        return np.nan
+    u = resid * g
+    lags = int(min(n // 3, max(1, np.rint(max_lag_s / max(span, 1e-9)))))
+    # Every lag's sum at once, epoch by epoch: the inner loop over lags vectorises (one
+    # running sum per lag would wait on its own additions).
+    acov = np.zeros(lags + 1)
+    for i in range(n):
+        ui = u[i]
+        top = min(lags, n - 1 - i)
+        for lag in range(top + 1):
+            acov[lag] += ui * u[i + lag]
+    meat = 0.0
+    for lag in range(lags + 1):
+        weight = 1.0 - lag / (lags + 1)
+        meat += (2.0 * weight if lag else weight) * acov[lag]
+    meat *= n / max(n - 3, 1)
+    return np.sqrt(max(meat, 0.0)) / jj
+
+
+def _window_py(tags, h, t_att, h_att, lo, hi, margin):  # pragma: no cover - compiled below
+    """(attitude times and heave of :func:`.lines.attitude_window` for Δt in [lo, hi],
+    unit-normed centred heights :func:`.correlation.unit_centred`)."""
+    i0 = max(np.searchsorted(t_att, tags[0] - hi - margin) - 1, 0)
+    i1 = min(np.searchsorted(t_att, tags[tags.size - 1] - lo + margin) + 1, t_att.size)
+    hc = h - _mean(h)
+    norm = np.sqrt(np.sum(hc * hc))
+    return t_att[i0:i1], h_att[i0:i1], hc / max(norm, 1e-300)
+
+
+def _line_sigma_py(tags, h, t_att, h_att, lo, hi, dt, margin, max_lag_s, delta, width
+                   ):  # pragma: no cover - compiled below
+    """Kernel of :func:`line_sigma`."""
+    ta, ha, unit = _window(tags, h, t_att, h_att, lo, hi, margin)
+    return _sigma(tags, h, ta, ha, dt, unit, max_lag_s, delta, width)
+
+
+def _scan_core_py(tags, h, t_att, h_att, dts, step, refine, uncertainty, subdivisions,
+                  margin, max_lag_s, delta, width):  # pragma: no cover - compiled below
+    """Kernel of :func:`scan_core`."""
+    K = dts.size
+    ta, ha, unit = _window(tags, h, t_att, h_att, dts[0], dts[K - 1], margin)
+    curve = _curve(tags, unit, ta, ha, dts, step)
+    k, low = _argmax_min(curve)
+    status = 0
+    lat = rmax = sigma = np.nan
+    if k < 0 or k == 0 or k == K - 1:
+        return curve, k, low, lat, rmax, sigma, status
+    lat, rmax = dts[k], curve[k]
+    if refine:
+        lo, hi = dts[k - 1], dts[k + 1]
+        if hi > lo:
+            fine = _grid(lo, hi, subdivisions + 1)
+            fstep = _uniform_step(fine)
+            if not fstep > 0:
+                return curve, k, low, lat, rmax, sigma, 1
+            rf = _curve(tags, unit, ta, ha, fine, fstep)
+            j, _ = _argmax_min(rf)
+            if j < 0:
+                return curve, k, low, lat, rmax, sigma, 1
+            if 0 < j < fine.size - 1:
+                lat, rv = _vertex(fine, rf, j)
+                rmax = max(rv, rf[j])
+            else:
+                lat, rmax = fine[j], rf[j]
+    if uncertainty:
+        sigma = _sigma(tags, h, ta, ha, lat, unit, max_lag_s, delta, width)
+        if sigma == -1.0:
+            status = 1
+    return curve, k, low, lat, rmax, sigma, status
+
+
+if njit is not None:
+    _sums_any = njit(nogil=True)(_sums_any_py)
+    _curve = njit(nogil=True)(_curve_py)
+    _argmax_min = njit(cache=True, nogil=True)(_argmax_min_py)
+    _mean = njit(nogil=True, inline="always")(_mean_py)
+    _vertex = njit(nogil=True)(_vertex_py)
+    _sigma = njit(nogil=True)(_sigma_py)
+    _window = njit(nogil=True)(_window_py)
+    _scan_core = njit(cache=True, nogil=True)(_scan_core_py)
+    _line_sigma = njit(cache=True, nogil=True)(_line_sigma_py)
+else:  # pragma: no cover
+    _argmax_min = _scan_core = _line_sigma = None
+
+
+def scan_core(tags: np.ndarray, h: np.ndarray, t_att: np.ndarray, h_att: np.ndarray,
+              dts: np.ndarray, refine: bool, uncertainty: bool, subdivisions: int,
+              margin_s: float, max_lag_s: float, delta_s: float, width_s: float):
+    """One line's scan (:func:`.lines.scan_line`) in one compiled call, or None.
+
+    *tags* (s) and detrended heights *h* (m) of the line's epochs; attitude times *t_att*
+    (s, increasing) and total heave *h_att* (m, up); the candidate delays *dts* (s).
+    Returns ``(curve, k, low, latency_s, r_max, uncertainty_s)``: R at every candidate,
+    the index of its maximum (−1: none finite) and its minimum, then — when the maximum
+    is inside the grid — the refined peak (*refine*; else the grid's) and its σ
+    (*uncertainty*; else NaN), all as the Python steps compute them, to rounding.
+    None when the compiled path does not apply (no numba, a grid that is not uniform,
+    fewer than two epochs); the caller then takes the Python steps.
+    """
+    if _scan_core is None or not available() or tags.size < 2:
+        return None
+    step = uniform_step(dts)
+    if step is None:
+        return None
+    out = _scan_core(np.ascontiguousarray(tags, dtype=float),
+                     np.ascontiguousarray(h, dtype=float),
+                     np.ascontiguousarray(t_att, dtype=float),
+                     np.ascontiguousarray(h_att, dtype=float),
+                     np.ascontiguousarray(dts, dtype=float), step, bool(refine),
+                     bool(uncertainty), int(subdivisions), float(margin_s),
+                     float(max_lag_s), float(delta_s), float(width_s))
+    curve, k, low, lat, r_max, sigma, status = out
+    if status:
+        return None
+    return curve, int(k), float(low), float(lat), float(r_max), float(sigma)
+
+
+def line_sigma(tags: np.ndarray, h: np.ndarray, t_att: np.ndarray, h_att: np.ndarray,
+               dts: np.ndarray, latency_s: float, margin_s: float, max_lag_s: float,
+               delta_s: float, width_s: float) -> float | None:
+    """The σ (s) :func:`scan_core` gives a line whose peak is at *latency_s*, for a peak
+    found without it (same window, same numbers); None where :func:`scan_core` would be
+    None or its curvature grid is not uniform. Arguments as :func:`scan_core`'s."""
+    if _line_sigma is None or not available() or tags.size < 2 or uniform_step(dts) is None:
+        return None
+    sigma = float(_line_sigma(np.ascontiguousarray(tags, dtype=float),
+                              np.ascontiguousarray(h, dtype=float),
+                              np.ascontiguousarray(t_att, dtype=float),
+                              np.ascontiguousarray(h_att, dtype=float), float(dts[0]),
+                              float(dts[-1]), float(latency_s), float(margin_s),
+                              float(max_lag_s), float(delta_s), float(width_s)))
+    return None if sigma == -1.0 else sigma

@@ -6,7 +6,12 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from hydrosync_core.methods.latency import fastscan
 from hydrosync_core.methods.latency.correlation import (
+    DELTA_S,
+    MAX_LAG_S,
+    SUBDIVISIONS,
+    WIDTH_S,
     correlation_curve,
     correlation_curve_direct,
     peak_uncertainty,
@@ -15,11 +20,6 @@ from hydrosync_core.methods.latency.correlation import (
 )
 from hydrosync_core.methods.latency.detrend import detrend
 from hydrosync_core.methods.latency.params import LatencyParams
-
-try:  # numba is a dependency; numpy remains if it cannot load
-    from numba import njit
-except ImportError:  # pragma: no cover
-    njit = None
 
 MARGIN_S = 0.15
 """Attitude needed beyond the scan range (refinement and curvature fit around the peak)."""
@@ -146,14 +146,24 @@ def scan_line(
     line: LineData, t_att: np.ndarray, h_att: np.ndarray, dts: np.ndarray,
     refine: bool = True, uncertainty: bool = True,
 ) -> LinePeak:
-    """Seed eqs. 3–4 over the whole Δt grid, then sub-step refinement and uncertainty."""
+    """Seed eqs. 3–4 over the whole Δt grid, then sub-step refinement and uncertainty.
+
+    One compiled call (:func:`.fastscan.scan_core`) where it applies, else the Python
+    steps (:func:`correlation_curve`, :func:`refine_peak`, :func:`peak_uncertainty`):
+    the same numbers to rounding.
+    """
     if not line.usable:
         return LinePeak(np.full(dts.size, np.nan))
-    win = attitude_window(t_att, line.tags, float(dts[0]), float(dts[-1]))
-    ta, ha = t_att[win], h_att[win]
-    unit = unit_centred(line.h)  # shared by the scan, the refinement and σ
-    curve = correlation_curve(line.tags, line.h, ta, ha, dts, unit)
-    k, low = _argmax_min(curve)
+    fast = fastscan.scan_core(line.tags, line.h, t_att, h_att, dts, refine, uncertainty,
+                              SUBDIVISIONS, MARGIN_S, MAX_LAG_S, DELTA_S, WIDTH_S)
+    if fast is not None:
+        curve, k, low = fast[:3]
+    else:
+        win = attitude_window(t_att, line.tags, float(dts[0]), float(dts[-1]))
+        ta, ha = t_att[win], h_att[win]
+        unit = unit_centred(line.h)  # shared by the scan, the refinement and σ
+        curve = correlation_curve(line.tags, line.h, ta, ha, dts, unit)
+        k, low = _argmax_min(curve)
     if k < 0:
         line.warnings.append(f"line {line.name}: total heave is constant, no correlation")
         return LinePeak(curve)
@@ -170,6 +180,11 @@ def scan_line(
             f"({dts[k]:+.3f} s); widen the range"
         )
         return peak
+    if fast is not None:
+        peak.latency_s, peak.r_max, sigma = fast[3:]
+        if uncertainty:
+            peak.uncertainty_s = sigma
+        return peak
     if refine:
         peak.latency_s, peak.r_max = refine_peak(line.tags, line.h, ta, ha, dts, curve, k,
                                                  unit=unit)
@@ -184,32 +199,12 @@ def _argmax_min(curve: np.ndarray) -> tuple[int, float]:
 
     One pass instead of np.any(np.isfinite), nanargmax, nanmax and nanmin (their Python
     overhead, per line and pass, held the GIL the scan threads share)."""
-    if _argmax_min_nb is None:  # pragma: no cover
+    if fastscan._argmax_min is None:  # pragma: no cover
         if not np.any(np.isfinite(curve)):
             return -1, float("nan")
         return int(np.nanargmax(curve)), float(np.nanmin(curve))
-    k, low = _argmax_min_nb(np.ascontiguousarray(curve, dtype=float))
+    k, low = fastscan._argmax_min(np.ascontiguousarray(curve, dtype=float))
     return int(k), float(low)
-
-
-def _argmax_min_py(curve):  # pragma: no cover - compiled below
-    k = -1
-    high = low = np.nan
-    finite = False
-    for i in range(curve.size):
-        v = curve[i]
-        if v != v:
-            continue
-        finite |= np.isfinite(v)
-        if k < 0 or v > high:  # the first of equal maxima, as np.nanargmax
-            k = i
-            high = v
-        if not v >= low:  # also the first value (low NaN)
-            low = v
-    return (k if finite else -1), low
-
-
-_argmax_min_nb = njit(cache=True, nogil=True)(_argmax_min_py) if njit is not None else None
 
 
 def scan_line_window(

@@ -124,3 +124,18 @@ def test_sync_csv_export(tmp_path):
     # Corrected time = tag - latency, heights unchanged.
     np.testing.assert_allclose(table[:, 0] + latency, gnss[: len(table), 0], atol=2e-6)
     np.testing.assert_allclose(table[:, 1], gnss[: len(table), 1], atol=1e-6)
+
+
+def test_background_import_helper():
+    """The CLI's preload thread: nothing for a loaded module; a failed import stays quiet
+    (the caller's own import reports it) and the thread ends."""
+    import sys
+
+    from hydrosync_core.methods.latency.cli import _import_in_background
+
+    assert _import_in_background("json") is None
+    thread = _import_in_background("hydrosync_no_such_module_for_this_test")
+    assert thread is not None and thread.daemon
+    thread.join(10)
+    assert not thread.is_alive()
+    assert "hydrosync_no_such_module_for_this_test" not in sys.modules

@@ -495,6 +495,8 @@ def test_compiled_line_scan_equals_the_python_steps(monkeypatch):
     for case in range(24):
         rate = (50.0, 100.0, 200.0)[case % 3]
         t_att = 500.0 + np.arange(int(90 * rate)) / rate
+        if case % 6 == 5:  # the record ends inside the scan: np.interp holds its end values
+            t_att = t_att[int(9.6 * rate):int(80.5 * rate)]
         if case % 4 == 1:
             t_att = t_att + 2e-4 / rate * rng.standard_normal(t_att.size)  # logger jitter
         delay = rng.uniform(-0.4, 0.4)

@@ -15,6 +15,11 @@ and no interpolation at all. Compiled with numba when it is available; otherwise
 fall back to the direct evaluation (:func:`.correlation.correlation_curve_direct`).
 
 Values at the ends follow :func:`numpy.interp`: constant beyond the first and last sample.
+
+:func:`scan_core` runs a line's whole scan (the curve, its maximum, the sub-step refinement
+and the uncertainty of :mod:`.correlation`) as one compiled call that releases the GIL;
+:func:`.lines.scan_line` takes it where it applies and the Python steps otherwise (the
+tests keep the two equal to rounding).
 """
 
 from __future__ import annotations

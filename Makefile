@@ -12,6 +12,7 @@ $(STAMP): pyproject.toml scripts/install-system-packages.sh
 	test -x $(BIN)/python || $(PYTHON) -m venv $(VENV)
 	$(BIN)/python -m pip install --quiet --upgrade pip
 	$(BIN)/python -m pip install --quiet -e ".[test]"
+	$(BIN)/python -m hydrosync_core.warmup
 	touch $(STAMP)
 
 install: $(STAMP)

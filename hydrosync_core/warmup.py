@@ -1,0 +1,60 @@
+"""Compile and cache the numba kernels once, when HydroSync is installed.
+
+numba compiles a kernel on its first use and keeps the machine code in ``__pycache__``.
+The latency estimate's line scan alone takes ~15 s to compile, which a user's first run
+(a panel's progress bar standing still, or the first ``hydrosync latency``) would
+otherwise wait for. ``make install`` runs this module after installing the package.
+
+Run: ``python -m hydrosync_core.warmup``.
+"""
+
+from __future__ import annotations
+
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+
+def compile_latency_kernels() -> None:
+    """The latency estimate (auto: both estimators, the fallback σ) and its CSV readers
+    on a tiny simulated day, written to CSV and read back as ``hydrosync latency`` does."""
+    import numpy as np
+
+    from hydrosync_core.importers.survey_csv import read_lines_csv
+    from hydrosync_core.methods.latency import correlation, fastscan, lines
+    from hydrosync_core.methods.latency.api import estimate_latency
+    from hydrosync_core.methods.latency.fastcsv import read_attitude_csv, read_gnss_csv
+    from hydrosync_core.methods.latency.simulate import DayConfig, simulate_day, write_day_csv
+
+    cfg = DayConfig(n_lines=2, line_s=60.0, turn_s=10.0, run_in_s=5.0, gnss_hz=10.0,
+                    attitude_hz=100.0)
+    with tempfile.TemporaryDirectory() as folder:
+        write_day_csv(simulate_day(cfg, seed=0), Path(folder))
+        gnss = read_gnss_csv(Path(folder) / "gnss.csv")
+        attitude = read_attitude_csv(Path(folder) / "attitude.csv",
+                                     columns=("time", "roll", "pitch", "heave"))
+        day_lines = read_lines_csv(Path(folder) / "lines.csv")
+    estimate_latency(gnss, attitude, day_lines, cfg.lever_arm_m,
+                     {"estimator": "auto", "step_s": 0.001})
+    tags = gnss["time"][50:400]
+    dts = np.linspace(-1.0, 1.0, 2001)
+    fastscan.line_sigma(tags, np.sin(tags), attitude["time"], np.sin(attitude["time"]), dts,
+                        0.0, lines.MARGIN_S, correlation.MAX_LAG_S, correlation.DELTA_S,
+                        correlation.WIDTH_S)
+
+
+def main() -> int:
+    start = time.perf_counter()
+    try:
+        compile_latency_kernels()
+    except Exception as exc:  # noqa: BLE001 - a warm-up must never fail an install
+        print(f"hydrosync warm-up: kernels not compiled ahead ({exc}); they will be on "
+              "first use", file=sys.stderr)
+        return 0
+    print(f"hydrosync warm-up: compiled kernels cached in {time.perf_counter() - start:.0f} s")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

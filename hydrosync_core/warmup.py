@@ -22,7 +22,7 @@ def compile_latency_kernels() -> None:
     import numpy as np
 
     from hydrosync_core.importers.survey_csv import read_lines_csv
-    from hydrosync_core.methods.latency import correlation, fastscan, lines
+    from hydrosync_core.methods.latency import lines
     from hydrosync_core.methods.latency.api import estimate_latency
     from hydrosync_core.methods.latency.fastcsv import read_attitude_csv, read_gnss_csv
     from hydrosync_core.methods.latency.simulate import DayConfig, simulate_day, write_day_csv
@@ -38,10 +38,9 @@ def compile_latency_kernels() -> None:
     estimate_latency(gnss, attitude, day_lines, cfg.lever_arm_m,
                      {"estimator": "auto", "step_s": 0.001})
     tags = gnss["time"][50:400]
-    dts = np.linspace(-1.0, 1.0, 2001)
-    fastscan.line_sigma(tags, np.sin(tags), attitude["time"], np.sin(attitude["time"]), dts,
-                        0.0, lines.MARGIN_S, correlation.MAX_LAG_S, correlation.DELTA_S,
-                        correlation.WIDTH_S)
+    line = lines.LineData("warm-up", float(tags[0]), float(tags[-1]), tags, np.sin(tags))
+    lines.line_uncertainty(line, attitude["time"], np.sin(attitude["time"]),
+                           np.linspace(-1.0, 1.0, 2001), 0.0)
 
 
 def main() -> int:

@@ -301,7 +301,7 @@ def _plan(path: Path, required: Sequence[str], optional: Sequence[str],
     layout = _layout(path, required, optional, time_column, keep)
     if layout is None:
         return None
-    _, header_bytes, kept = layout
+    _, header_bytes, _, kept = layout
     with open(path, "rb", buffering=0) as fh:
         st = os.fstat(fh.fileno())
         size = st.st_size
@@ -562,28 +562,32 @@ def _sort_by_time(path: Path, columns: dict[str, np.ndarray], key: str,
 
 
 def _kept(names: list[str], required: Sequence[str], optional: Sequence[str],
-          time_column: str | None, keep: Sequence[str] | None) -> list[str] | None:
-    """The columns :func:`read_numeric_fast` returns from a file with header *names* (file
-    order as asked), or None when it leaves the file to the generic reader."""
+          time_column: str | None, keep: Sequence[str] | None
+          ) -> tuple[list[str], list[str]] | None:
+    """(the columns :func:`read_numeric_fast` checks, those it returns) from a file with
+    header *names* (file order as asked), or None when it leaves the file to the generic
+    reader."""
     if any(c not in names for c in required):
         return None  # the generic reader names the missing column
     wanted = list(required) + [c for c in optional if c in names]
     if time_column is not None and time_column not in wanted:
         return None
-    return wanted if keep is None else [c for c in wanted if c in keep or c == time_column]
+    return wanted, (wanted if keep is None
+                    else [c for c in wanted if c in keep or c == time_column])
 
 
 def _layout(path: Path, required: Sequence[str], optional: Sequence[str],
             time_column: str | None, keep: Sequence[str] | None
-            ) -> tuple[list[str], int, list[str]] | None:
-    """Header names, header length (bytes) and kept columns of *path* (:func:`_header`,
-    :func:`_kept`), or None when the fast path leaves the file to the generic reader."""
+            ) -> tuple[list[str], int, list[str], list[str]] | None:
+    """Header names, header length (bytes), checked and kept columns of *path*
+    (:func:`_header`, :func:`_kept`), or None when the fast path leaves the file to the
+    generic reader."""
     head = _header(path)
     if head is None:
         return None
     names, header_bytes = head
-    kept = _kept(names, required, optional, time_column, keep)
-    return None if kept is None else (names, header_bytes, kept)
+    columns = _kept(names, required, optional, time_column, keep)
+    return None if columns is None else (names, header_bytes, *columns)
 
 
 def read_numeric_fast(
@@ -611,8 +615,7 @@ def read_numeric_fast(
         layout = _layout(path, required, optional, time_column, keep)
         if layout is None:
             return None
-        names, header_bytes, kept = layout
-        wanted = list(required) + [c for c in optional if c in names]
+        names, header_bytes, wanted, kept = layout
         lines_known = True
         try:
             columns = _read_compiled(path, names, header_bytes, wanted, kept, limits,

@@ -16,18 +16,17 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from hydrosync_core.errors import InputError
-from hydrosync_core.methods.latency import fastscan
 from hydrosync_core.methods.latency.combine import combine, find_outliers, select_lines
 from hydrosync_core.methods.latency.correlation import heave_at
 from hydrosync_core.methods.latency.detrend import detrend
 from hydrosync_core.methods.latency.diagnose import diagnose
 from hydrosync_core.methods.latency.heave import total_heave, total_heave_deg
 from hydrosync_core.methods.latency.lines import (
-    MARGIN_S,
     LinePeak,
     attitude_window,
     line_epochs,
     line_selection,
+    line_uncertainty,
     prepare_line,
     scan_line,
     scan_line_window,
@@ -486,18 +485,11 @@ def _weighted(setup: _Setup, p: LatencyParams, first: list, works: list, progres
 
 def _add_uncertainty(setup: _Setup, peaks: list, works: list) -> None:
     """The σ of first-pass peaks scanned without it (same window, same Δt)."""
-    from hydrosync_core.methods.latency import correlation as corr
-
     t_att = setup.att["time"]
     for ln, pk, work in zip(setup.prepared, peaks, works, strict=True):
         if ln.usable and np.isfinite(pk.latency_s) and not pk.at_edge:
-            ta = t_att[work.inner]
-            # As the scan would have computed it (the compiled σ where the scan is).
-            sigma = fastscan.line_sigma(ln.tags, ln.h, ta, work.antialiased, setup.dts,
-                                        pk.latency_s, MARGIN_S, corr.MAX_LAG_S,
-                                        corr.DELTA_S, corr.WIDTH_S)
-            pk.uncertainty_s = sigma if sigma is not None else corr.peak_uncertainty(
-                ln.tags, ln.h, ta, work.antialiased, pk.latency_s)
+            pk.uncertainty_s = line_uncertainty(ln, t_att[work.inner], work.antialiased,
+                                                setup.dts, pk.latency_s)
 
 
 def estimate_latency(

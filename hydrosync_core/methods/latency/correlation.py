@@ -104,16 +104,6 @@ def correlation_curve_direct(
     return out
 
 
-def _parabola_vertex(x: np.ndarray, y: np.ndarray, k: int) -> tuple[float, float]:
-    """Vertex of the parabola through ``(x, y)[k-1:k+2]`` (equally spaced x)."""
-    a, b, c = y[k - 1 : k + 2]
-    denom = a - 2 * b + c
-    if not np.isfinite(denom) or denom >= 0:
-        return float(x[k]), float(y[k])
-    shift = 0.5 * (a - c) / denom
-    return float(x[k] + shift * (x[1] - x[0])), float(b - 0.25 * (a - c) * shift)
-
-
 def refine_peak(
     tags: np.ndarray, h: np.ndarray, t_att: np.ndarray, h_att: np.ndarray,
     dts: np.ndarray, r: np.ndarray, k: int, subdivisions: int = SUBDIVISIONS,
@@ -134,8 +124,8 @@ def refine_peak(
     rf = correlation_curve(tags, h, t_att, h_att, fine, unit)
     j = int(np.nanargmax(rf))
     if 0 < j < fine.size - 1:
-        dt, rmax = _parabola_vertex(fine, rf, j)
-        return dt, max(rmax, float(rf[j]))
+        dt, rmax = fastscan.vertex(fine, rf, j)
+        return float(dt), max(float(rmax), float(rf[j]))
     return float(fine[j]), float(rf[j])
 
 

@@ -526,10 +526,7 @@ def _sums_any_py(tags, w, ta, ha, dts, step):  # pragma: no cover - compiled bel
 def _curve_py(tags, unit, ta, ha, dts, step):  # pragma: no cover - compiled below
     """:func:`.correlation.correlation_curve` on a uniform grid of spacing *step*."""
     F, S1, S2 = _sums_any(tags, unit, ta, ha, dts, step)
-    total = 0.0
-    for i in range(unit.size):
-        total += unit[i]
-    return _pearson(F, S1, S2, tags.size, total / tags.size)
+    return _pearson(F, S1, S2, tags.size, _mean(unit))
 
 
 def _argmax_min_py(curve):  # pragma: no cover - compiled below
@@ -558,8 +555,10 @@ def _mean_py(x):  # pragma: no cover - compiled below
     return total / x.size
 
 
-def _vertex_py(x, y, k):  # pragma: no cover - compiled below
-    """:func:`.correlation._parabola_vertex`."""
+def vertex(x, y, k):
+    """Vertex ``(x, y)`` of the parabola through ``(x, y)[k-1:k+2]`` (equally spaced x);
+    the point ``k`` itself when they do not curve down. Plain Python, also compiled for
+    :func:`scan_core`."""
     a, b, c = y[k - 1], y[k], y[k + 1]
     denom = a - 2 * b + c
     if not np.isfinite(denom) or denom >= 0:
@@ -679,7 +678,7 @@ if njit is not None:
     _curve = njit(nogil=True)(_curve_py)
     _argmax_min = njit(cache=True, nogil=True)(_argmax_min_py)
     _mean = njit(nogil=True, inline="always")(_mean_py)
-    _vertex = njit(nogil=True)(_vertex_py)
+    _vertex = njit(nogil=True)(vertex)
     _sigma = njit(nogil=True)(_sigma_py)
     _window = njit(nogil=True)(_window_py)
     _scan_core = njit(cache=True, nogil=True)(_scan_core_py)

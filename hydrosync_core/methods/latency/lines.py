@@ -194,6 +194,18 @@ def scan_line(
     return peak
 
 
+def line_uncertainty(line: LineData, t_att: np.ndarray, h_att: np.ndarray, dts: np.ndarray,
+                     latency_s: float) -> float:
+    """The σ (s) :func:`scan_line` gives *line* when its peak is at *latency_s*, for a
+    peak found without it (same attitude window, same numbers: compiled where the scan
+    is, else :func:`peak_uncertainty`)."""
+    sigma = fastscan.line_sigma(line.tags, line.h, t_att, h_att, dts, latency_s, MARGIN_S,
+                                MAX_LAG_S, DELTA_S, WIDTH_S)
+    if sigma is not None:
+        return sigma
+    return peak_uncertainty(line.tags, line.h, t_att, h_att, latency_s)
+
+
 def _argmax_min(curve: np.ndarray) -> tuple[int, float]:
     """(``np.nanargmax``, ``np.nanmin``) of *curve*; index −1 when nothing is finite.
 

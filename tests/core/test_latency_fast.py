@@ -333,7 +333,7 @@ def test_filter_steps_equal_fft_filter():
         head = spec.head(keep)
         assert n < 4 or head.bins.size == keep < spec.bins.size
         gains = prefilter.response_gains(weighting.response, spec.size, 0.01)
-        assert head.covers(gains[0])
+        assert head.covers(gains[0]) and head.covers(gains)  # the bins, and the support
         np.testing.assert_allclose(prefilter.filtered(head, gains, crop),
                                    prefilter.fft_filter(x, 0.01, weighting.response)[crop],
                                    rtol=0, atol=1e-12)
@@ -349,9 +349,12 @@ def test_filter_steps_equal_fft_filter():
     # A response beyond the kept bins is refused, not silently cut.
     gains = prefilter.response_gains(lambda f: prefilter.antialias_response(f, 4.0),
                                      spec.size, 0.01)
-    assert not head.covers(gains[0])
+    assert not head.covers(gains[0]) and not head.covers(gains)
+    assert gains.support == np.flatnonzero(gains.values)[-1] + 1
     with pytest.raises(ValueError):
         prefilter.filtered(head, gains)
+    with pytest.raises(ValueError):  # a plain (gains, gain at 0 Hz) pair is checked too
+        prefilter.filtered(head, (gains.values, gains.dc))
 
 
 def test_first_pass_windows_equal_per_line_filtering():
@@ -601,3 +604,80 @@ def test_pooled_spectra_equal_scipy_welch_per_line():
             again = prefilter._pooled_spectra(pairs, fs, nper)
         for got, want in zip(again[1:], out[1:], strict=True):
             np.testing.assert_allclose(got, want, rtol=1e-13, atol=0)
+
+
+def test_sincos_in_degrees_is_accurate_to_the_last_bits():
+    """The polynomial sine/cosine of the total heave kernels against long-double values:
+    every quadrant, the exact multiples of 45°, ±0, and angles far beyond a turn."""
+    from hydrosync_core.methods.latency import heave
+
+    rng = np.random.default_rng(11)
+    deg = np.concatenate([rng.uniform(-720.0, 720.0, 200_000), np.arange(-720.0, 720.5, 0.5),
+                          [0.0, -0.0, 45.0, -45.0, 135.0, 1e-300, 89.99999999999999]])
+    per_degree = np.longdouble("3.14159265358979323846264338327950288") / 180
+    rad = deg.astype(np.longdouble) * per_degree
+    got = np.array([heave._sincos_deg(float(d)) for d in deg[:2000]])
+    window = heave._total_heave_deg_nb1(np.zeros(deg.size), deg, np.zeros(deg.size),
+                                        0.0, 1.0, 0.0)
+    # y = 1 m: total heave = -(cos p · sin r) = -sin(roll) at pitch 0. Two units in the
+    # last place at most (libm's sin(d·π/180) in double is off by up to 1.1e-15).
+    np.testing.assert_allclose(-window, np.sin(rad).astype(float), rtol=0, atol=2.5e-16)
+    np.testing.assert_allclose(got[:, 0], np.sin(rad[:2000]).astype(float), rtol=0,
+                               atol=2.5e-16)
+    np.testing.assert_allclose(got[:, 1], np.cos(rad[:2000]).astype(float), rtol=0,
+                               atol=2.5e-16)
+    # z = -1 m (antenna above): total heave = cos p·cos r - 1 at the sample's angles.
+    pitch = rng.uniform(-90.0, 90.0, deg.size)
+    both = heave._total_heave_deg_nb1(np.zeros(deg.size), deg, pitch, 0.0, 0.0, -1.0)
+    prad = pitch.astype(np.longdouble) * per_degree
+    np.testing.assert_allclose(both, (np.cos(prad) * np.cos(rad) - 1).astype(float),
+                               rtol=0, atol=6e-16)
+    # Angles beyond LARGE_DEG (never a measurement, but finite input must not go wrong).
+    huge = np.array([3.6e14 + 30.0, -7.2e20, 1e300, 30.0])
+    turned = np.fmod(huge, 360.0)
+    np.testing.assert_array_equal(
+        heave._total_heave_deg_nb1(np.zeros(4), huge, np.zeros(4), 0.0, 1.0, 0.0),
+        heave._total_heave_deg_nb1(np.zeros(4), turned, np.zeros(4), 0.0, 1.0, 0.0))
+    t = np.arange(4.0)
+    np.testing.assert_array_equal(
+        total_heave_at(t, t, np.zeros(4), huge, np.zeros(4), (0.0, 1.0, 0.0)),
+        total_heave_at(t, t, np.zeros(4), turned, np.zeros(4), (0.0, 1.0, 0.0)))
+
+
+def test_compiled_filter_steps_give_numpys_numbers_to_the_last_bit(monkeypatch):
+    """prefilter.spectrum/filtered with the compiled element-wise steps (fastfilter)
+    against its numpy expressions: every window length parity, padding wider than the
+    series, kept bins, crops and an output buffer."""
+    from hydrosync_core.methods.latency import fastfilter, prefilter
+
+    rng = np.random.default_rng(21)
+    cases = []
+    for n in (4, 5, 7, 64, 1199, 1200, 18001, 36450, 70001):
+        x = np.cumsum(rng.normal(size=n)) + 0.3 * np.arange(n)
+        g = prefilter.response_gains(lambda f: prefilter.antialias_response(f, 3.0),
+                                     prefilter.next_fast_len(2 * n), 0.01)
+        cases.append((x, g, slice(n // 5, n - n // 7)))
+
+    def run():
+        out = []
+        for x, g, crop in cases:
+            spec = prefilter.spectrum(x)
+            out.append(spec.bins.copy())
+            out.append(prefilter.filtered(spec, g))
+            out.append(prefilter.filtered(spec, g, crop).copy())
+            buf = np.full(x.size + 3, 7.0)
+            out.append(prefilter.filtered(spec, g, crop, out=buf).copy())
+            head = spec.head(min(spec.bins.size, int(0.6 * spec.bins.size) + 1))
+            cut = (g[0] * (np.arange(g[0].size) < head.bins.size), g[1])
+            out.append(prefilter.filtered(head, cut, crop).copy())
+            out.append(np.array([spec.intercept, spec.slope]))
+        return out
+
+    assert fastfilter.available()
+    compiled = run()
+    monkeypatch.setattr(fastfilter, "available", lambda: False)
+    plain = run()
+    for a, b in zip(compiled, plain, strict=True):
+        np.testing.assert_array_equal(a, b)
+    assert prefilter._sum_of_squares(1199) == float((prefilter._centred_index(1199) ** 2).sum())
+    assert prefilter._sum_of_squares(1200) == float((prefilter._centred_index(1200) ** 2).sum())

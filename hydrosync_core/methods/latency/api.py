@@ -448,7 +448,7 @@ def _weighted_pass(setup: _Setup, p: LatencyParams, works: list, weighting, wind
         work, works[i] = works[i], None
         spec = work.spectrum
         gains = prefilter.response_gains(weighting.response, spec.size, a_int, heave_cache)
-        if not spec.covers(gains[0]):  # a weight beyond the kept bins: the whole spectrum
+        if not spec.covers(gains):  # a weight beyond the kept bins: the whole spectrum
             spec = prefilter.spectrum(source.heave(work.padded))
         crop = slice(work.inner.start - work.padded.start, work.inner.stop - work.padded.start)
         ha = prefilter.filtered(spec, gains, crop)

@@ -29,8 +29,11 @@ from __future__ import annotations
 
 from dataclasses import dataclass, replace
 from functools import lru_cache
+from typing import NamedTuple
 
 import numpy as np
+
+from hydrosync_core.methods.latency import fastfilter
 
 PAD_S = 30.0
 """Real records taken on each side of a window before filtering (edge effects stay there)."""
@@ -75,6 +78,23 @@ def next_fast_len(n: int) -> int:
     return best
 
 
+@lru_cache(maxsize=16)
+def _centred_index(n: int) -> np.ndarray:
+    """``arange(n) − (n − 1)/2`` (read-only, cached: a day's windows have a few lengths)."""
+    kc = np.arange(n, dtype=float) - 0.5 * (n - 1)
+    kc.flags.writeable = False
+    return kc
+
+
+def _sum_of_squares(n: int) -> float:
+    """``(kc·kc).sum()`` of :func:`_centred_index`: ``(n−1)·n·(n+1)/12``. Exactly, as the
+    float sum is while every partial sum (multiples of 1/4) stays below 2^51."""
+    if n < 1 << 18:
+        return (n - 1) * n * (n + 1) / 12
+    kc = _centred_index(n)
+    return float((kc * kc).sum())
+
+
 RESPONSE_CACHE_SIZE = 32
 """Responses kept per cache (one per FFT length; a day's line windows share a few)."""
 
@@ -109,9 +129,14 @@ class Spectrum:
         out[:count] = self.bins[:count]
         return replace(self, bins=out[:count])
 
-    def covers(self, gains: np.ndarray) -> bool:
-        """True when *gains* (one per bin of the full spectrum) are zero beyond *bins*."""
-        return self.bins is None or not np.any(gains[self.bins.size:])
+    def covers(self, gains: Gains | np.ndarray) -> bool:
+        """True when *gains* (:class:`Gains`, or one gain per bin of the full spectrum)
+        are zero beyond *bins*."""
+        if self.bins is None:
+            return True
+        if isinstance(gains, Gains):
+            return gains.support <= self.bins.size
+        return not np.any(gains[self.bins.size:])
 
 
 def spectrum(x: np.ndarray) -> Spectrum:
@@ -119,13 +144,12 @@ def spectrum(x: np.ndarray) -> Spectrum:
     n = x.size
     if n < 4:
         return Spectrum(n, n, 0, 0.0, 0.0, None, x.copy())
-    kc = np.arange(n, dtype=float) - 0.5 * (n - 1)
+    kc = _centred_index(n)
     # Least-squares line in closed form (kc is centred): polyfit's numbers without
     # lstsq, and no BLAS (a threaded BLAS dot wakes its threads for 10^4+ elements:
     # 10 ms per window on a busy machine).
     intercept = float(np.add.reduce(x)) / n  # x.mean()'s numbers without its Python layer
-    slope = float((kc * x).sum()) / float((kc * kc).sum())
-    trend = intercept + slope * kc
+    slope = float(np.add.reduce(kc * x)) / _sum_of_squares(n)
     # Mirrored on both sides to a fast FFT length (about twice n): the wrap-around seam
     # lies half a window away from the data. numpy.fft is the pocketfft of scipy.fft (the
     # same numbers), without scipy.fft's import.
@@ -133,38 +157,60 @@ def spectrum(x: np.ndarray) -> Spectrum:
     left = (size - n) // 2
     right = size - n - left
     if left > n or right > n:  # reflections of reflections
-        y = np.pad(x - trend, (left, right), mode="symmetric")
+        y = np.pad(x - (intercept + slope * kc), (left, right), mode="symmetric")
+    elif fastfilter.available():
+        y = np.empty(size)
+        fastfilter.mirror_detrended(np.ascontiguousarray(x, dtype=float), intercept, slope,
+                                    left, y)
     else:  # np.pad(mode="symmetric")'s numbers without its Python overhead
         y = np.empty(size)
-        inner = np.subtract(x, trend, out=y[left:left + n])
+        inner = np.subtract(x, intercept + slope * kc, out=y[left:left + n])
         y[:left] = inner[left - 1::-1] if left else inner[:0]
         y[left + n:] = inner[:n - right - 1:-1] if n > right else inner[::-1]
     return Spectrum(n, size, left, intercept, slope, np.fft.rfft(y))
 
 
-def response_gains(response, size: int, dt: float, cache: dict | None = None
-                   ) -> tuple[np.ndarray, float]:
-    """(*response* at the ``rfft`` bins of *size* samples every *dt* s, response at 0 Hz).
+class Gains(NamedTuple):
+    """A zero-phase response at the ``rfft`` bins of one FFT length (:func:`response_gains`)."""
+
+    values: np.ndarray
+    """Gain per bin."""
+    dc: float
+    """Gain at 0 Hz (scales the trend put back)."""
+    support: int
+    """Bins up to the last non-zero gain: ``values[support:]`` are all zero."""
+
+
+def _gains(values: np.ndarray, dc: float) -> Gains:
+    nonzero = np.flatnonzero(values)
+    return Gains(values, dc, int(nonzero[-1]) + 1 if nonzero.size else 0)
+
+
+def response_gains(response, size: int, dt: float, cache: dict | None = None) -> Gains:
+    """:class:`Gains` of *response* at the ``rfft`` bins of *size* samples every *dt* s.
 
     *cache* (a dict owned by the caller, for one *response* and *dt*) keeps them per
     *size*: the same numbers, computed once instead of once per line.
     """
     gains = cache.get(size) if cache is not None else None
     if gains is None:
-        gains = (response(np.fft.rfftfreq(size, dt)), float(response(np.zeros(1))[0]))
+        gains = _gains(response(np.fft.rfftfreq(size, dt)), float(response(np.zeros(1))[0]))
         if cache is not None and len(cache) < RESPONSE_CACHE_SIZE:
             cache[size] = gains
     return gains
 
 
-def filtered(spec: Spectrum, gains: tuple[np.ndarray, float], crop: slice | None = None,
-             out: np.ndarray | None = None) -> np.ndarray:
-    """The series of *spec* filtered with *gains* (:func:`response_gains`), samples *crop*.
+def filtered(spec: Spectrum, gains: Gains | tuple[np.ndarray, float],
+             crop: slice | None = None, out: np.ndarray | None = None) -> np.ndarray:
+    """The series of *spec* filtered with *gains* (:func:`response_gains`, or a pair of
+    the gain per bin and the gain at 0 Hz), samples *crop*.
 
     The same numbers as :func:`fft_filter` followed by ``[crop]``, written to *out* when
     given (its first ``len(crop)`` elements; returned). Raises ValueError when *spec*
     keeps too few bins for *gains* (:meth:`Spectrum.covers`).
     """
+    if not isinstance(gains, Gains):
+        gains = _gains(np.asarray(gains[0], dtype=float), float(gains[1]))
     crop = crop if crop is not None else slice(0, spec.n)
     lo, hi, _ = crop.indices(spec.n)
     if spec.bins is None:
@@ -172,14 +218,22 @@ def filtered(spec: Spectrum, gains: tuple[np.ndarray, float], crop: slice | None
             return spec.raw[crop].copy()
         out[:hi - lo] = spec.raw[crop]
         return out[:hi - lo]
-    if spec.bins.size < spec.size // 2 + 1 and not spec.covers(gains[0]):
+    if spec.bins.size < spec.size // 2 + 1 and not spec.covers(gains):
         raise ValueError("the response is not zero beyond the kept bins")
     # Beyond the kept bins the product is zero: irfft pads its input with zeros to
     # size // 2 + 1 bins, the same numbers as a full product with zero gains there.
-    product = spec.bins * gains[0][:spec.bins.size]
+    if fastfilter.available():
+        product = np.empty(spec.bins.size, dtype=complex)
+        fastfilter.scaled(spec.bins, gains.values, product)
+        full = np.fft.irfft(product, spec.size)
+        out = np.empty(hi - lo) if out is None else out[:hi - lo]
+        fastfilter.plus_trend(full, spec.left + lo, lo, spec.n, spec.intercept, spec.slope,
+                              gains.dc, out)
+        return out
+    product = spec.bins * gains.values[:spec.bins.size]
     series = np.fft.irfft(product, spec.size)[spec.left + lo:spec.left + hi]
     kc = np.arange(lo, hi, dtype=float) - 0.5 * (spec.n - 1)
-    trend = (spec.intercept + spec.slope * kc) * gains[1]
+    trend = (spec.intercept + spec.slope * kc) * gains.dc
     if out is None:
         return series + trend
     return np.add(series, trend, out=out[:hi - lo])

@@ -6,13 +6,17 @@
 * ``hydrosync latency`` from the CSV files to the JSON result, in a fresh process (wall
   and CPU time and the process's peak resident memory), with ``--estimator qi2010`` (the
   paper's) and with the default ``auto`` (qi2010 and the weighted one), each ``--repeat``
-  times after a first run that may compile and cache the numba kernels: the fastest run
-  (a shared machine's other work only ever adds time) and the median;
+  times (between the parts of the straightforward scan, below) after a first run that may
+  compile and cache the numba kernels: the fastest run (a shared machine's other work
+  only ever adds time) and the median;
 * :func:`estimate_latency` alone on the arrays in memory, qi2010 and auto (the fastest of
   ``--repeat`` runs, 3 by default, and the median);
 * a straightforward per-candidate scan written here: per line and trial delay, one
   ``numpy.interp`` of the total heave at ``tags − Δt`` and one Pearson correlation, the
-  grid maximum refined by a parabola — what one writes from eqs. 3–4 of Qi et al. (2010);
+  grid maximum refined by a parabola — what one writes from eqs. 3–4 of Qi et al. (2010).
+  It runs in ``--repeat`` parts (a share of the lines each), and after each part comes
+  one CLI run of each estimator: the ratio compares times taken in the same minutes of a
+  shared machine whose speed wanders (the same scan took 60–77 s within one hour);
 * the pre-v2 estimator (every candidate interpolated: ``correlation_curve_direct``) for the
   "identical to today's" check: final and per-line Δt must agree to 0.1 ms;
 * auto with the weighted pass windowed (``api.WINDOWED_SCAN = True``, opt-in) against the
@@ -75,13 +79,20 @@ def reference_diff(doc: dict, ref: dict | None) -> str:
     return f"final {final * 1e3:.2e} ms, lines {lines * 1e3:.2e} ms (goal <= 0.01 ms){same}"
 
 
-def straightforward_scan(gnss, att, lines, arm, dts) -> tuple[float, list[float]]:
-    """Per line, per candidate: interpolate, correlate; parabola at the grid maximum."""
-    t_g, hgt, t_att = gnss["time"], gnss["height"], att["time"]
-    h_att = total_heave_deg(att["heave"], att["roll"], att["pitch"], arm)
+def straightforward_scan(gnss, t_att, h_att, lines, dts, which=None
+                         ) -> tuple[list[float], list[float]]:
+    """Per line, per candidate: interpolate, correlate; parabola at the grid maximum.
+
+    *h_att*: the total heave (m) at the attitude times *t_att* (s). Returns the peaks (s)
+    and weights (R_max) of the lines *which* (indices; all by default) that pass
+    R_max > 0.85; :func:`combined` gives the day's value.
+    """
+    t_g, hgt = gnss["time"], gnss["height"]
     lo, hi = float(dts[0]) - 0.15, float(dts[-1]) + 0.15
     peaks, weights = [], []
-    for start, end in zip(lines["start"], lines["end"], strict=True):
+    starts, ends = np.asarray(lines["start"]), np.asarray(lines["end"])
+    for i in range(starts.size) if which is None else which:
+        start, end = starts[i], ends[i]
         sel = (t_g >= start) & (t_g <= end) & (t_g - hi >= t_att[0]) & (t_g - lo <= t_att[-1])
         tags, h = t_g[sel], hgt[sel]
         if tags.size < 30:
@@ -97,7 +108,12 @@ def straightforward_scan(gnss, att, lines, arm, dts) -> tuple[float, list[float]
         if r[k] > 0.85:
             peaks.append(float(peak))
             weights.append(float(r[k]))
-    return float(np.average(peaks, weights=weights)), peaks
+    return peaks, weights
+
+
+def combined(peaks: list[float], weights: list[float]) -> float:
+    """The straightforward scan's day value: R-weighted mean of the line peaks (s)."""
+    return float(np.average(peaks, weights=weights))
 
 
 def run_cli(d: Path, step: float, estimator: str = "qi2010"
@@ -122,11 +138,9 @@ def run_cli(d: Path, step: float, estimator: str = "qi2010"
     return wall, int(rss) / 1024, float(cpu), json.loads(out.read_text())
 
 
-def cli_runs(d: Path, step: float, estimator: str, repeat: int
-             ) -> tuple[float, float, float, dict, float]:
-    """:func:`run_cli` *repeat* times: the fastest run's wall and CPU time (s), the largest
+def summary(runs: list) -> tuple[float, float, float, dict, float]:
+    """Of :func:`run_cli` results: the fastest run's wall and CPU time (s), the largest
     peak RSS (MiB), the fastest run's JSON and the median wall time (s)."""
-    runs = [run_cli(d, step, estimator) for _ in range(max(repeat, 1))]
     wall, _, cpu, doc = min(runs, key=lambda r: r[0])
     return (wall, max(r[1] for r in runs), cpu, doc,
             float(np.median([r[0] for r in runs])))
@@ -172,15 +186,34 @@ def main() -> None:
     t_sim = time.perf_counter() - t0
     size = sum(os.path.getsize(d / f"{n}.csv") for n in ("gnss", "attitude", "lines"))
 
-    cli_first, rss_first, _, _ = run_cli(d, args.step)
-    cli_wall, cli_rss, cli_cpu, doc, cli_med = cli_runs(d, args.step, "qi2010", args.repeat)
-    auto_wall, auto_rss, auto_cpu, auto_doc, auto_med = cli_runs(d, args.step, "auto",
-                                                                 args.repeat)
-
     gnss = read_gnss_csv(d / "gnss.csv")
     att = read_attitude_csv(d / "attitude.csv")
     lines = read_lines_csv(d / "lines.csv")
     arm = cfg.lever_arm_m
+    dts = np.linspace(-1.0, 1.0, int(round(2.0 / args.step)) + 1)
+
+    cli_first, rss_first, _, _ = run_cli(d, args.step)
+    # The straightforward scan in --repeat parts, each followed by one CLI run of each
+    # estimator: the ratio compares times taken in the same minutes of a shared machine
+    # whose speed wanders (the same scan took 60-77 s within an hour).
+    parts = np.array_split(np.arange(len(lines["name"])), max(args.repeat, 1))
+    qi_runs, auto_runs, peaks, weights = [], [], [], []
+    t0, c0 = time.perf_counter(), time.process_time()
+    h_att = total_heave_deg(att["heave"], att["roll"], att["pitch"], arm)
+    t_plain, c_plain = time.perf_counter() - t0, time.process_time() - c0
+    for part in parts:
+        t0, c0 = time.perf_counter(), time.process_time()
+        got = straightforward_scan(gnss, att["time"], h_att, lines, dts, part)
+        t_plain += time.perf_counter() - t0
+        c_plain += time.process_time() - c0
+        peaks += got[0]
+        weights += got[1]
+        qi_runs.append(run_cli(d, args.step, "qi2010"))
+        auto_runs.append(run_cli(d, args.step, "auto"))
+    plain = combined(peaks, weights)
+    cli_wall, cli_rss, cli_cpu, doc, cli_med = summary(qi_runs)
+    auto_wall, auto_rss, auto_cpu, auto_doc, auto_med = summary(auto_runs)
+
     params = {"range_s": (-1.0, 1.0), "step_s": args.step, "estimator": "qi2010"}
     res, t_est, c_est, m_est = timed(args.repeat, lambda: api.estimate_latency(
         gnss, att, lines, arm, params))
@@ -198,11 +231,7 @@ def main() -> None:
                          if np.isfinite(a.latency_s))
     auto_final_diff = max(abs(auto_doc["latency_s"] - auto_full.latency_s),
                           abs(auto_doc["uncertainty_s"] - auto_full.uncertainty_s))
-
-    dts = res.dt_grid
-    t0, c0 = time.perf_counter(), time.process_time()
-    plain, _ = straightforward_scan(gnss, att, lines, arm, dts)
-    t_plain, c_plain = time.perf_counter() - t0, time.process_time() - c0
+    assert np.array_equal(res.dt_grid, dts), "the benchmark's grid is not the estimate's"
 
     available = fastscan.available
     fastscan.available = lambda: False  # the pre-v2 evaluation: every candidate interpolated
@@ -224,7 +253,8 @@ def main() -> None:
         ("GNSS epochs (10 Hz)", f"{gnss['time'].size:,}"),
         ("candidates per line", f"{dts.size} (step {args.step * 1e3:g} ms)"),
         ("simulation + CSV writing", f"{t_sim:.1f} s"),
-        ("straightforward scan (reference)", f"{t_plain:.1f} s (CPU {c_plain:.1f} s)"),
+        ("straightforward scan (reference)", f"{t_plain:.1f} s (CPU {c_plain:.1f} s; in "
+                                             f"{len(parts)} parts between the CLI runs)"),
         ("pre-v2 estimator (all candidates)", f"{t_old:.1f} s"),
         ("CSV -> JSON, first run", f"{cli_first:.1f} s, peak RSS {rss_first:.0f} MiB "
                                    "(may compile the kernels)"),

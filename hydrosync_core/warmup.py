@@ -1,9 +1,10 @@
 """Compile and cache the numba kernels once, when HydroSync is installed.
 
 numba compiles a kernel on its first use and keeps the machine code in ``__pycache__``.
-The latency estimate's line scan alone takes ~15 s to compile, which a user's first run
-(a panel's progress bar standing still, or the first ``hydrosync latency``) would
-otherwise wait for. ``make install`` runs this module after installing the package.
+The latency estimate's line scan alone takes ~15 s to compile and the GNSS/INS
+smoother's filter ~35 s, which a user's first run (a panel's progress bar standing
+still, or the first ``hydrosync latency``) would otherwise wait for. ``make install``
+runs this module after installing the package.
 
 Run: ``python -m hydrosync_core.warmup``.
 """
@@ -43,15 +44,34 @@ def compile_latency_kernels() -> None:
                            np.linspace(-1.0, 1.0, 2001), 0.0)
 
 
+def compile_gins_kernels() -> None:
+    """The GNSS/INS forward filter and smoother on a short simulated drive."""
+    from hydrosync_core.methods.gins_smoother.filter import run_gins
+    from hydrosync_core.methods.gins_smoother.simulate import simulate
+
+    sim = simulate(30.0, "vehicle", "tactical", imu_rate_hz=100.0, seed=0)
+    run_gins(sim["imu"], sim["gnss"], sim["config"])
+
+
+STEPS = (("latency", compile_latency_kernels), ("GNSS/INS smoother", compile_gins_kernels))
+"""What the warm-up compiles: (name, function), each on its own (one failing leaves the
+others compiled)."""
+
+
 def main() -> int:
     start = time.perf_counter()
-    try:
-        compile_latency_kernels()
-    except Exception as exc:  # noqa: BLE001 - a warm-up must never fail an install
-        print(f"hydrosync warm-up: kernels not compiled ahead ({exc}); they will be on "
-              "first use", file=sys.stderr)
-        return 0
-    print(f"hydrosync warm-up: compiled kernels cached in {time.perf_counter() - start:.0f} s")
+    done = []
+    for name, step in STEPS:
+        try:
+            step()
+        except Exception as exc:  # noqa: BLE001 - a warm-up must never fail an install
+            print(f"hydrosync warm-up: {name} kernels not compiled ahead ({exc}); they will "
+                  "be on first use", file=sys.stderr)
+        else:
+            done.append(name)
+    if done:
+        print(f"hydrosync warm-up: compiled kernels cached in "
+              f"{time.perf_counter() - start:.0f} s ({', '.join(done)})")
     return 0
 
 

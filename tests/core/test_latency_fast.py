@@ -681,3 +681,36 @@ def test_compiled_filter_steps_give_numpys_numbers_to_the_last_bit(monkeypatch):
         np.testing.assert_array_equal(a, b)
     assert prefilter._sum_of_squares(1199) == float((prefilter._centred_index(1199) ** 2).sum())
     assert prefilter._sum_of_squares(1200) == float((prefilter._centred_index(1200) ** 2).sum())
+
+
+def test_compiled_detrend_gives_numpys_numbers_to_the_last_bit():
+    """The compiled linear detrend (its sums replay numpy's pairwise summation) against
+    the numpy expressions, for every size class of that summation."""
+    from hydrosync_core.methods.latency import detrend as dt
+
+    rng = np.random.default_rng(31)
+    sizes = list(range(2, 140)) + [255, 256, 257, 1199, 1200, 3600, 8193, 36451]
+    for n in sizes:
+        values = rng.normal(size=n) * 10.0 ** rng.uniform(-3, 5, n)
+        assert dt._sum(values) == np.add.reduce(values)
+        t = 1.7e9 + np.cumsum(rng.uniform(0.05, 0.15, n))
+        h = 40.0 + rng.normal(size=n) + 0.01 * (t - t[0])
+        for degree in (0, 1):
+            got = dt.detrend(t, h, degree)
+            ref = dt._detrend_linear(t - t.mean(), h, degree)
+            np.testing.assert_array_equal(got[0], ref[0])
+            np.testing.assert_array_equal(got[1], ref[1])
+    # Constant times: no slope; other dtypes take the numpy expressions.
+    flat = dt.detrend(np.full(5, 3.0), np.arange(5.0), 1)
+    assert flat[1][1] == 0.0 and np.allclose(flat[0], np.arange(5.0) - 2.0)
+    ints = dt.detrend(np.arange(50), np.arange(50.0) * 2 + 1, 1)
+    np.testing.assert_allclose(ints[0], 0.0, atol=1e-12)
+
+
+def test_largest_step_is_the_largest_difference():
+    rng = np.random.default_rng(41)
+    for n in (2, 3, 1000):
+        t = np.cumsum(rng.uniform(0.001, 0.2, n))
+        t[n // 2:] += 3.0  # a gap
+        for series in (t, t[::2] if n > 3 else t, t.astype(np.float32)):  # strided, float32
+            assert fastscan.largest_step(series) == np.diff(series).max()

@@ -408,6 +408,27 @@ def available() -> bool:
     return _sums is not None
 
 
+def _largest_step_py(t):  # pragma: no cover - compiled below
+    """Kernel of :func:`largest_step`."""
+    best = -np.inf
+    for i in range(t.size - 1):
+        d = t[i + 1] - t[i]
+        if d > best:
+            best = d
+    return best
+
+
+_largest_step = njit(cache=True, nogil=True)(_largest_step_py) if njit is not None else None
+
+
+def largest_step(t: np.ndarray) -> float:
+    """``np.diff(t).max()`` of finite *t* (≥ 2 values), without the difference array
+    (compiled: no interpreter lock held)."""
+    if _largest_step is None or t.dtype != np.float64:
+        return float(np.diff(t).max())
+    return float(_largest_step(np.ascontiguousarray(t)))
+
+
 def _uniform_step_py(dts):  # pragma: no cover - compiled below
     """Kernel of :func:`uniform_step`: the step, or 0.0 for None."""
     n = dts.size

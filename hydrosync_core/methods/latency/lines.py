@@ -129,14 +129,13 @@ def prepare_line(
             f"line {name}: only {tags.size} GNSS epochs with attitude (need {params.min_epochs})"
         )
         return line
-    gaps = np.diff(tags)
-    if gaps.max() > params.gap_factor * gnss_interval:
-        line.warnings.append(f"line {name}: gap of {gaps.max():.1f} s in the GNSS data")
+    gap = fastscan.largest_step(tags)
+    if gap > params.gap_factor * gnss_interval:
+        line.warnings.append(f"line {name}: gap of {gap:.1f} s in the GNSS data")
     window = t_att[attitude_window(t_att, tags, lo, hi)]
-    if window.size > 1 and np.diff(window).max() > params.gap_factor * att_interval:
-        line.warnings.append(
-            f"line {name}: gap of {np.diff(window).max():.2f} s in the attitude data"
-        )
+    gap = fastscan.largest_step(window) if window.size > 1 else 0.0
+    if gap > params.gap_factor * att_interval:
+        line.warnings.append(f"line {name}: gap of {gap:.2f} s in the attitude data")
     # Seed eq. 1: remove tide / trend from the heights of the line.
     line.h, _ = detrend(tags, hgt, int(params.detrend_degree))
     return line

@@ -26,6 +26,7 @@ def compile_latency_kernels() -> None:
     from hydrosync_core.methods.latency import lines
     from hydrosync_core.methods.latency.api import estimate_latency
     from hydrosync_core.methods.latency.fastcsv import read_attitude_csv, read_gnss_csv
+    from hydrosync_core.methods.latency.heave import total_heave_deg
     from hydrosync_core.methods.latency.simulate import DayConfig, simulate_day, write_day_csv
 
     cfg = DayConfig(n_lines=2, line_s=60.0, turn_s=10.0, run_in_s=5.0, gnss_hz=10.0,
@@ -42,6 +43,10 @@ def compile_latency_kernels() -> None:
     line = lines.LineData("warm-up", float(tags[0]), float(tags[-1]), tags, np.sin(tags))
     lines.line_uncertainty(line, attitude["time"], np.sin(attitude["time"]),
                            np.linspace(-1.0, 1.0, 2001), 0.0)
+    # The whole-record total heave (the panel's plots, the synchronised data set) takes
+    # the parallel kernel above 100 000 records.
+    many = np.zeros(100_001)
+    total_heave_deg(many, many, many, cfg.lever_arm_m)
 
 
 def compile_gins_kernels() -> None:

@@ -70,7 +70,10 @@ class _Editor(QWidget):
         if info.optional:
             self.unset_label = QLabel(info.meta.none_label or "not set")
             self.unset_label.setStyleSheet("color: palette(mid);")
-            layout.addWidget(self.unset_label)
+            # Wrapped, so that a long note ("vessel sheet (gnss − motion)") does not set the
+            # form's minimum width: the panel's plots and tables need that room.
+            self.unset_label.setWordWrap(True)
+            layout.addWidget(self.unset_label, 1)
         self.setToolTip(_tooltip(info))
         self.set_value(info.default)
 
@@ -166,6 +169,15 @@ class _Editor(QWidget):
             self._on_enable(value is not None)
 
 
+def _form(parent: QWidget | None = None) -> QFormLayout:
+    """A form layout whose long rows put the field under its label when the column is
+    narrow (the panel gives the room to its results, not to the widest label + field)."""
+    form = QFormLayout(parent)
+    form.setFieldGrowthPolicy(QFormLayout.FieldGrowthPolicy.AllNonFixedFieldsGrow)
+    form.setRowWrapPolicy(QFormLayout.RowWrapPolicy.WrapLongRows)
+    return form
+
+
 class ParamForm(QWidget):
     """Editors for every field of a :class:`~hydrosync_core.params.Params` schema."""
 
@@ -177,14 +189,13 @@ class ParamForm(QWidget):
         self.editors: dict[str, _Editor] = {}
         outer = QVBoxLayout(self)
         outer.setContentsMargins(0, 0, 0, 0)
-        main = QFormLayout()
-        main.setFieldGrowthPolicy(QFormLayout.FieldGrowthPolicy.AllNonFixedFieldsGrow)
+        main = _form()
         outer.addLayout(main)
         groups: dict[str, QFormLayout] = {}
         advanced = QWidget()
         advanced_layout = QVBoxLayout(advanced)
         advanced_layout.setContentsMargins(0, 0, 0, 0)
-        advanced_form = QFormLayout()
+        advanced_form = _form()
         advanced_layout.addLayout(advanced_form)
         for info in schema.schema():
             editor = _Editor(info)
@@ -197,7 +208,7 @@ class ParamForm(QWidget):
             elif info.meta.group:
                 if info.meta.group not in groups:
                     box = QGroupBox(info.meta.group)
-                    groups[info.meta.group] = QFormLayout(box)
+                    groups[info.meta.group] = _form(box)
                     outer.addWidget(box)
                 groups[info.meta.group].addRow(label, editor)
             else:

@@ -128,3 +128,24 @@ def test_no_run_with_a_silent_zero_lever_arm(panel):
     assert "Lever arm needed" in text and "'gnss'" in text and "'motion'" in text
     assert "Vessel offsets" in text
     assert not project.exists("results/latency")
+
+
+def test_results_keep_the_room_on_a_laptop_screen(qtbot):
+    """In the panel of a 1366-pixel-wide main window (~940 px), the parameters take at
+    most ~40 % of the width: the R curves, the line table and the series plot are what a
+    user reads. The lever-arm row (tick box, three boxes, the vessel-sheet note) used to
+    fix the form's minimum width at ~690 px and left the results a third of it."""
+    from PySide6.QtWidgets import QSplitter
+
+    widget = LatencyPanel()
+    qtbot.addWidget(widget)
+    widget.form.show_unset("lever_arm_m", (-1.5, 2.0, -6.0))
+    widget.resize(940, 700)
+    widget.show()
+    qtbot.waitExposed(widget)
+    split = next(s for s in widget.findChildren(QSplitter)
+                 if s.orientation() == Qt.Orientation.Horizontal)
+    left, right = split.sizes()
+    assert left <= 0.42 * (left + right), (left, right)
+    assert widget.form.minimumSizeHint().width() < 420
+    widget.close()

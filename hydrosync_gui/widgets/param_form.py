@@ -55,8 +55,12 @@ class _Editor(QWidget):
     def __init__(self, info: FieldInfo) -> None:
         super().__init__()
         self.info = info
-        layout = QHBoxLayout(self)
+        layout = QHBoxLayout()
         layout.setContentsMargins(0, 0, 0, 0)
+        outer = QVBoxLayout(self)
+        outer.setContentsMargins(0, 0, 0, 0)
+        outer.setSpacing(2)
+        outer.addLayout(layout)
         self.enable: QCheckBox | None = None
         if info.optional:
             self.enable = QCheckBox()
@@ -71,9 +75,13 @@ class _Editor(QWidget):
             self.unset_label = QLabel(info.meta.none_label or "not set")
             self.unset_label.setStyleSheet("color: palette(mid);")
             # Wrapped, so that a long note ("vessel sheet (gnss − motion)") does not set the
-            # form's minimum width: the panel's plots and tables need that room.
+            # form's minimum width: the panel's plots and tables need that room. Under the
+            # boxes of a tuple (beside three of them it wrapped into a narrow column).
             self.unset_label.setWordWrap(True)
-            layout.addWidget(self.unset_label, 1)
+            if info.kind == "tuple":
+                outer.addWidget(self.unset_label)
+            else:
+                layout.addWidget(self.unset_label, 1)
         self.setToolTip(_tooltip(info))
         self.set_value(info.default)
 

@@ -164,8 +164,12 @@ class LatencyPanel(PluginPanel):
         row = self._selected()
         if row < 0 or self._table is None:
             return
-        self._draw_curves()
-        gnss, att = self.project.get_table("raw/gnss"), self.project.get_table("raw/attitude")
+        if len(self.r_plot.curves) == len(self._table["name"]):
+            self.r_plot.select(row)
+        else:
+            self._draw_curves()
+        gnss = self.project.get_table("raw/gnss", cached=True)
+        att = self.project.get_table("raw/attitude", cached=True)
         a = self.project.attrs(RESULT)
         params = stored_params(self.project)
         final = a["latency_s"] if np.isfinite(a["latency_s"]) else 0.0

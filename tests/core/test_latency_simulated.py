@@ -184,3 +184,37 @@ def test_a_line_with_a_timing_glitch_is_rejected_as_outlier():
     plain = estimate_latency(gnss, day["attitude"], day["lines"], cfg.lever_arm_m,
                              {"outlier_k": 0})
     assert plain.lines[bad].used and plain.latency_s > 0.32
+
+
+def test_line_series_takes_the_records_around_the_line_with_the_whole_days_numbers(quiet_day):
+    """line_series works on the records around the line; the numbers are those of the
+    whole record (a gap in the attitude next to a line, both signs of Δt, a line at the
+    record's end), and a missing column is still named."""
+    from hydrosync_core.methods.latency.correlation import heave_at
+    from hydrosync_core.methods.latency.detrend import detrend
+    from hydrosync_core.methods.latency.heave import total_heave_deg
+    from hydrosync_core.methods.latency.lines import line_epochs
+
+    cfg, day = quiet_day
+    att = dict(day["attitude"])
+    t = att["time"]
+    start0, end0 = float(day["lines"]["start"][1]), float(day["lines"]["end"][1])
+    gap = (t > start0 - 3.0) & (t < start0 - 0.3)  # a 2.7 s hole just before line 2
+    att = {k: np.asarray(v)[~gap] for k, v in att.items()}
+    whole = total_heave_deg(att["heave"], att["roll"], att["pitch"], cfg.lever_arm_m)
+    for i in (0, 1, len(day["lines"]["start"]) - 1):
+        start, end = float(day["lines"]["start"][i]), float(day["lines"]["end"][i])
+        for dt in (cfg.latency_s, -0.8, 0.0):
+            got = line_series(day["gnss"], att, cfg.lever_arm_m, start, end, dt)
+            sel = line_epochs(day["gnss"]["time"], start, end, 0.0, att["time"], min(dt, 0.0),
+                              max(dt, 0.0))
+            tags = day["gnss"]["time"][sel]
+            h, _ = detrend(tags, day["gnss"]["height"][sel], 1)
+            ref = heave_at(tags, np.array([0.0, dt]), att["time"], whole)
+            np.testing.assert_array_equal(got["time"], tags)
+            np.testing.assert_array_equal(got["height"], h)
+            np.testing.assert_array_equal(got["heave_before"], ref[0])
+            np.testing.assert_array_equal(got["heave_after"], ref[1])
+    with pytest.raises(InputError, match="roll"):
+        line_series(day["gnss"], {k: v for k, v in att.items() if k != "roll"},
+                    cfg.lever_arm_m, start0, end0, 0.1)

@@ -166,3 +166,47 @@ def test_table_columns_must_match():
     project = Project.new()
     with pytest.raises(ValueError, match="different lengths"):
         project.put_table("raw/gnss", {"time": [1.0, 2.0], "height": [1.0]})
+
+
+def test_cached_tables_are_read_once_frozen_and_follow_the_content(tmp_path, monkeypatch):
+    """get_table(cached=True) reads a file-backed table once (also across a save), gives
+    read-only arrays, reads again when the table is replaced, and never changes what the
+    plain get_table gives."""
+    from hydrosync_core.project import model
+
+    path = _sample_project().save(tmp_path / "p.h5")
+    reads = []
+    original_getitem = h5py.Dataset.__getitem__
+
+    def spy(self, key):
+        reads.append(self.name)
+        return original_getitem(self, key)
+
+    monkeypatch.setattr(h5py.Dataset, "__getitem__", spy)
+    with Project.open(path) as project:
+        first = project.get_table("raw/gnss", cached=True)
+        assert len(reads) == 3
+        again = project.get_table("raw/gnss", cached=True)
+        assert len(reads) == 3 and again["height"] is first["height"]
+        with pytest.raises(ValueError):
+            again["height"][0] = 1.0  # read-only: the cache cannot be changed through it
+        plain = project.get_table("raw/gnss")
+        assert len(reads) == 6 and plain["height"].flags.writeable
+        np.testing.assert_array_equal(plain["height"], first["height"])
+        project.save()  # nodes rebuilt from the new file, same content: still cached
+        reads.clear()
+        project.get_table("raw/gnss", cached=True)
+        assert reads == []
+        project.put_table("raw/gnss", {"time": np.arange(5.0), "height": np.ones(5)})
+        fresh = project.get_table("raw/gnss", cached=True)  # in memory: not cached
+        assert fresh["height"].size == 5 and fresh["height"].flags.writeable
+        project.save()
+        reads.clear()
+        saved = project.get_table("raw/gnss", cached=True)
+        assert len(reads) == 2 and saved["height"].size == 5  # new content, read once
+    monkeypatch.setattr(model, "TABLE_CACHE_BYTES", 10)  # a budget below the table: no cache
+    with Project.open(path) as project:
+        reads.clear()
+        project.get_table("raw/gnss", cached=True)
+        project.get_table("raw/gnss", cached=True)
+        assert len(reads) == 4

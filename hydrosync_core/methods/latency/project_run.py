@@ -76,9 +76,10 @@ def stored_params(project: Project) -> LatencyParams | None:
 
 
 def read_inputs(project: Project) -> tuple[dict, dict, dict]:
-    """The raw GNSS, attitude and lines tables of *project*."""
-    return (project.get_table("raw/gnss"), project.get_table("raw/attitude"),
-            project.get_table("raw/lines"))
+    """The raw GNSS, attitude and lines tables of *project* (read-only, kept decoded by
+    the project: a run after a changed lever arm does not read the file again)."""
+    return tuple(project.get_table(f"raw/{name}", cached=True)
+                 for name in ("gnss", "attitude", "lines"))
 
 
 def run(project: Project, params: LatencyParams | Mapping | None = None, progress=None,

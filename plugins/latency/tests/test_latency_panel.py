@@ -149,3 +149,24 @@ def test_results_keep_the_room_on_a_laptop_screen(qtbot):
     assert left <= 0.42 * (left + right), (left, right)
     assert widget.form.minimumSizeHint().width() < 420
     widget.close()
+
+
+def test_selecting_a_line_restyles_two_curves_and_redraws_nothing_else(panel, qtbot):
+    """A click in the line table thickens that line's R curve and thins the previous one;
+    the curves are not drawn again (a survey day's 500 took ~1.6 s per click), and the
+    series plot shows the selected line."""
+    project = Project.new("demo")
+    fill_demo(project, seed=0)
+    panel.set_project(project)
+    panel.form.set_params({"step_s": 0.01})
+    with qtbot.waitSignal(panel.sig_busy, timeout=30_000, check_params_cb=lambda b: not b):
+        panel.run_button.click()
+    qtbot.waitUntil(lambda: panel.table.rowCount() == 13, timeout=10_000)
+    items = list(panel.r_plot.curves)
+    first = panel._selected()
+    other = (first + 5) % 13
+    panel.table.selectRow(other)
+    assert panel.r_plot.curves == items  # the same items: nothing re-plotted
+    assert items[other].opts["pen"].widthF() == 3
+    assert items[first].opts["pen"].widthF() == 1
+    assert panel.table.item(other, 0).text() in panel.series_plot.plotItem.titleLabel.text

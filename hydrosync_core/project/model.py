@@ -410,6 +410,19 @@ class Project:
             table[name] = self._read(f"{path}/{name}", child)
         return validate.check_table(self._where(), path, table)
 
+    def has_cached_table(self, path: str) -> bool:
+        """True when ``get_table(path, cached=True)`` would not read the file: the table
+        is in the cache, or held in memory."""
+        node = self._find(path)
+        if not isinstance(node, GroupNode):
+            return False
+        if all(isinstance(c, DatasetNode) and c.data is not None
+               for c in node.children.values()):
+            return True
+        key = self._table_key(path, node)
+        with self._cache_lock:
+            return key is not None and key in self._table_cache
+
     def _table_key(self, path: str, node: GroupNode) -> tuple | None:
         """Cache key of a table read from the file: its path, columns and their content
         hashes (the ``sha256`` attribute :meth:`put` writes), or None when a column is

@@ -9,9 +9,10 @@ A thin view over :mod:`hydrosync_core.methods.latency`: the run happens in a wor
 from __future__ import annotations
 
 import json
+import threading
 
 import numpy as np
-from PySide6.QtCore import Qt
+from PySide6.QtCore import Qt, Signal
 from PySide6.QtWidgets import (
     QGroupBox,
     QLabel,
@@ -33,6 +34,9 @@ from plugins.latency.views import CorrelationPlot, LineTable, SeriesPlot
 
 class LatencyPanel(PluginPanel):
     """Latency between GNSS heights and attitude (Qi et al. 2010)."""
+
+    sig_series_ready = Signal(object, int, object, str)
+    """(project, row, series or None, error): a line's series computed off the GUI thread."""
 
     def __init__(self, spec=None, parent: QWidget | None = None) -> None:
         if spec is None:
@@ -73,6 +77,8 @@ class LatencyPanel(PluginPanel):
         QVBoxLayout(self).addWidget(split)
         self._table: dict | None = None
         self._bound_project = None
+        self._loading = False
+        self.sig_series_ready.connect(self._on_series_ready)
 
     # ------------------------------------------------------------- parameters
     def params(self) -> LatencyParams | None:
@@ -168,15 +174,47 @@ class LatencyPanel(PluginPanel):
             self.r_plot.select(row)
         else:
             self._draw_curves()
-        gnss = self.project.get_table("raw/gnss", cached=True)
-        att = self.project.get_table("raw/attitude", cached=True)
+        self._show_series(row)
+
+    def _series_request(self, row: int) -> tuple:
+        """What :func:`_line_series` needs for *row*, read here on the GUI thread."""
         a = self.project.attrs(RESULT)
-        params = stored_params(self.project)
         final = a["latency_s"] if np.isfinite(a["latency_s"]) else 0.0
-        series = line_series(gnss, att, json.loads(a["lever_arm_m"]), self._table["start"][row],
-                             self._table["end"][row], final, params)
-        self.series_plot.show_series(
-            series, f"line {self._table['name'][row]}: before and after Δt = {final:.3f} s")
+        return (json.loads(a["lever_arm_m"]), float(self._table["start"][row]),
+                float(self._table["end"][row]), final, stored_params(self.project),
+                f"line {self._table['name'][row]}: before and after Δt = {final:.3f} s")
+
+    def _show_series(self, row: int) -> None:
+        """The series plot of *row*: at once when the raw tables are in memory, else read
+        on a thread (a survey day's attitude takes seconds to read) and drawn when ready."""
+        project, request = self.project, self._series_request(row)
+        if project.has_cached_table("raw/gnss") and project.has_cached_table("raw/attitude"):
+            self.series_plot.show_series(_line_series(project, request), request[-1])
+            return
+        self.series_plot.show_series(None, "reading the raw GNSS and attitude data…")
+        if self._loading:
+            return  # the thread running draws the selected line when it is done
+        self._loading = True
+
+        def load() -> None:
+            try:
+                self.sig_series_ready.emit(project, row, _line_series(project, request), "")
+            except Exception as exc:  # shown in the plot's title, never a traceback
+                self.sig_series_ready.emit(project, row, None, str(exc))
+
+        threading.Thread(target=load, name="latency-series", daemon=True).start()
+
+    def _on_series_ready(self, project, row: int, series, error: str) -> None:
+        self._loading = False
+        if project is not self.project or self._table is None:
+            return
+        current = self._selected()
+        if error:
+            self.series_plot.show_series(None, f"raw data not readable: {error}")
+        elif current == row:
+            self.series_plot.show_series(series, self._series_request(row)[-1])
+        elif current >= 0:
+            self._show_series(current)  # another line was chosen meanwhile: now in memory
 
     def _on_used_changed(self) -> None:
         if self._table is None:
@@ -218,3 +256,11 @@ class LatencyPanel(PluginPanel):
         self.refresh()
         self.sig_project_modified.emit()
         self.sig_status.emit(result.message)
+
+
+def _line_series(project, request: tuple) -> dict:
+    """One line's series (:func:`line_series`) from the project's raw tables (cached)."""
+    arm, start, end, final, params, _ = request
+    return line_series(project.get_table("raw/gnss", cached=True),
+                       project.get_table("raw/attitude", cached=True), arm, start, end,
+                       final, params)

@@ -170,3 +170,26 @@ def test_selecting_a_line_restyles_two_curves_and_redraws_nothing_else(panel, qt
     assert items[other].opts["pen"].widthF() == 3
     assert items[first].opts["pen"].widthF() == 1
     assert panel.table.item(other, 0).text() in panel.series_plot.plotItem.titleLabel.text
+
+
+def test_a_file_backed_project_draws_the_line_series_from_a_thread(panel, qtbot, tmp_path):
+    """Opened from a file, the raw tables are not in memory: the panel shows its results
+    at once and reads them on a thread for the series plot (a survey day's attitude takes
+    seconds), then draws the selected line; later clicks take them from memory."""
+    from hydrosync_core.methods.latency.project_run import run
+
+    project = Project.new("demo")
+    fill_demo(project, seed=0)
+    run(project, {"step_s": 0.01})
+    path = project.save(tmp_path / "demo.h5")
+    project.close()
+    with Project.open(path) as opened:
+        panel.set_project(opened)
+        title = panel.series_plot.plotItem.titleLabel
+        assert panel.table.rowCount() == 13
+        assert title.text.startswith("reading the raw")  # not read on the GUI thread
+        qtbot.waitUntil(lambda: title.text.startswith("line "), timeout=20_000)
+        assert opened.has_cached_table("raw/attitude")
+        assert panel.table.item(panel._selected(), 0).text() in title.text
+        panel.table.selectRow((panel._selected() + 3) % 13)  # from memory: drawn at once
+        assert panel.table.item(panel._selected(), 0).text() in title.text

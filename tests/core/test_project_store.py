@@ -57,8 +57,9 @@ def test_large_datasets_are_chunked_and_compressed(tmp_path):
         assert ds.compression == "gzip"
 
 
-def test_open_reads_metadata_only(tmp_path, monkeypatch):
-    path = _sample_project().save(tmp_path / "p.h5")
+@pytest.fixture
+def h5_reads(monkeypatch) -> list:
+    """The names of the HDF5 datasets read from here on, in order."""
     reads = []
     original_getitem = h5py.Dataset.__getitem__
 
@@ -67,6 +68,12 @@ def test_open_reads_metadata_only(tmp_path, monkeypatch):
         return original_getitem(self, key)
 
     monkeypatch.setattr(h5py.Dataset, "__getitem__", spy)
+    return reads
+
+
+def test_open_reads_metadata_only(tmp_path, h5_reads):
+    path = _sample_project().save(tmp_path / "p.h5")
+    reads = h5_reads
     with Project.open(path) as project:
         infos = {i.path: i for i in project.walk()}
         assert infos["raw/pool/lidar"].shape == (20000, 3)
@@ -168,21 +175,15 @@ def test_table_columns_must_match():
         project.put_table("raw/gnss", {"time": [1.0, 2.0], "height": [1.0]})
 
 
-def test_cached_tables_are_read_once_frozen_and_follow_the_content(tmp_path, monkeypatch):
+def test_cached_tables_are_read_once_frozen_and_follow_the_content(tmp_path, monkeypatch,
+                                                                    h5_reads):
     """get_table(cached=True) reads a file-backed table once (also across a save), gives
     read-only arrays, reads again when the table is replaced, and never changes what the
     plain get_table gives."""
     from hydrosync_core.project import model
 
     path = _sample_project().save(tmp_path / "p.h5")
-    reads = []
-    original_getitem = h5py.Dataset.__getitem__
-
-    def spy(self, key):
-        reads.append(self.name)
-        return original_getitem(self, key)
-
-    monkeypatch.setattr(h5py.Dataset, "__getitem__", spy)
+    reads = h5_reads
     with Project.open(path) as project:
         first = project.get_table("raw/gnss", cached=True)
         assert len(reads) == 3

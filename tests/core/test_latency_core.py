@@ -104,3 +104,20 @@ def test_bad_params_raise_input_error(values, field):
     with pytest.raises(InputError) as info:
         LatencyParams.from_dict(values)
     assert info.value.field == field
+
+
+def test_report_figures_draw_at_most_figure_points_per_curve():
+    """The PDF's R curves are drawn from evenly spread candidates, first and last kept;
+    a short curve is drawn whole."""
+    from hydrosync_core.methods.latency.report_section import FIGURE_POINTS, _drawn
+
+    for count in (1, 2, 399, 400, 401, 2001, 20001):
+        index = _drawn(count)
+        assert index[0] == 0 and index[-1] == count - 1
+        assert index.size <= FIGURE_POINTS + 1
+        assert np.all(np.diff(index) > 0)
+        if count <= FIGURE_POINTS:
+            np.testing.assert_array_equal(index, np.arange(count))
+        else:
+            assert np.ptp(np.diff(index)[:-1]) == 0  # evenly spread but for the last step
+    assert _drawn(0).size == 0

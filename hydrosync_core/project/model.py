@@ -389,14 +389,12 @@ class Project:
                     return dict(hit[0])
         table = self._read_table(path, node)
         if key is not None:
-            self._keep(key, table, node)
+            self._keep(key, table)
         return table
 
     def _read_table(self, path: str, node: GroupNode) -> dict[str, np.ndarray]:
-        order = node.attrs.get("columns")
+        order = _column_names(node)
         if order is None:
-            order = list(node.children)
-        elif isinstance(order, str) or not all(isinstance(n, str) for n in order):
             raise ProjectDataError(self._where(), f"{path}@columns",
                                    "is not a list of column names")
         table = {}
@@ -427,8 +425,9 @@ class Project:
         """Cache key of a table read from the file: its path, columns and their content
         hashes (the ``sha256`` attribute :meth:`put` writes), or None when a column is
         in memory (cheap to read again) or has no hash."""
-        order = node.attrs.get("columns")
-        names = tuple(order) if isinstance(order, list) else tuple(node.children)
+        names = _column_names(node)
+        if names is None:
+            return None
         hashes = []
         for name in names:
             child = node.children.get(name)
@@ -438,9 +437,9 @@ class Project:
             if not isinstance(digest, str):
                 return None
             hashes.append(digest)
-        return (path, names, tuple(hashes))
+        return (path, tuple(names), tuple(hashes))
 
-    def _keep(self, key: tuple, table: dict, node: GroupNode) -> None:
+    def _keep(self, key: tuple, table: dict) -> None:
         """Freeze *table*'s arrays and keep them under *key*, least recently used first out."""
         size = sum(np.asarray(v).nbytes for v in table.values())
         if size > TABLE_CACHE_BYTES:
@@ -545,6 +544,17 @@ class Project:
         parent, name = self._parent_and_name(new)
         parent.children[name] = node
         self.dirty = True
+
+
+def _column_names(node: GroupNode) -> list[str] | None:
+    """A table group's columns in stored order (its ``columns`` attribute, else its
+    children), or None when that attribute is not a list of names."""
+    order = node.attrs.get("columns")
+    if order is None:
+        return list(node.children)
+    if isinstance(order, str) or not all(isinstance(n, str) for n in order):
+        return None
+    return list(order)
 
 
 def content_sha256(array: np.ndarray) -> str:

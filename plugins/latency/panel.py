@@ -35,8 +35,9 @@ from plugins.latency.views import CorrelationPlot, LineTable, SeriesPlot
 class LatencyPanel(PluginPanel):
     """Latency between GNSS heights and attitude (Qi et al. 2010)."""
 
-    sig_series_ready = Signal(object, int, object, str)
-    """(project, row, series or None, error): a line's series computed off the GUI thread."""
+    sig_series_ready = Signal(object, int, object, str, str)
+    """(project, row, series or None, title, error): a line's series computed off the GUI
+    thread."""
 
     def __init__(self, spec=None, parent: QWidget | None = None) -> None:
         if spec is None:
@@ -197,14 +198,16 @@ class LatencyPanel(PluginPanel):
         self._loading = True
 
         def load() -> None:
+            title = request[-1]
             try:
-                self.sig_series_ready.emit(project, row, _line_series(project, request), "")
+                self.sig_series_ready.emit(project, row, _line_series(project, request), title,
+                                           "")
             except Exception as exc:  # shown in the plot's title, never a traceback
-                self.sig_series_ready.emit(project, row, None, str(exc))
+                self.sig_series_ready.emit(project, row, None, title, str(exc))
 
         threading.Thread(target=load, name="latency-series", daemon=True).start()
 
-    def _on_series_ready(self, project, row: int, series, error: str) -> None:
+    def _on_series_ready(self, project, row: int, series, title: str, error: str) -> None:
         self._loading = False
         if project is not self.project or self._table is None:
             return
@@ -212,7 +215,7 @@ class LatencyPanel(PluginPanel):
         if error:
             self.series_plot.show_series(None, f"raw data not readable: {error}")
         elif current == row:
-            self.series_plot.show_series(series, self._series_request(row)[-1])
+            self.series_plot.show_series(series, title)
         elif current >= 0:
             self._show_series(current)  # another line was chosen meanwhile: now in memory
 

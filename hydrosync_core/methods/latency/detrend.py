@@ -32,13 +32,13 @@ def detrend(time: np.ndarray, height: np.ndarray, degree: int = 1) -> tuple[np.n
     """
     if degree < 0:
         raise ValueError("detrend degree must be >= 0")
-    # Centre (and scale) time so the Vandermonde matrix is well conditioned.
     if (degree <= 1 and time.size > degree and _linear_fit is not None
             and time.dtype == np.float64 and np.asarray(height).dtype == np.float64):
         residual = np.empty(time.size)
         coef = _linear_fit(np.ascontiguousarray(time), np.ascontiguousarray(height), degree,
                            residual)
         return residual, np.array(coef[:degree + 1])
+    # Centre (and scale) time so the Vandermonde matrix is well conditioned.
     tc = time - time.mean()
     if degree <= 1 and time.size > degree:
         return _detrend_linear(tc, np.asarray(height, dtype=float), degree)

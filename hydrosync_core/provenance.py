@@ -6,7 +6,10 @@ the time (:func:`record`). :func:`stale_reasons` compares that record with the p
 it is now: a result whose inputs changed is **out of date**, and the panel, the project
 browser, ``hydrosync info``, ``hydrosync report`` and the PDF say so.
 
-The record is the JSON attribute ``provenance`` of the result group::
+:func:`record` is the one place a result's bookkeeping is written: the JSON attribute
+``provenance`` of the result group, plus the plain attributes ``software_version``,
+``run_utc`` and ``params_schema_version`` that the report cover, the campaign's
+up-to-date check and older readers use::
 
     {"inputs": {"raw/gnss": "<sha256>", ...},
      "vessel": {"gnss": {...sensor entry...} | null, ...},
@@ -89,7 +92,9 @@ def record(project, result_path: str, inputs: Iterable[str], params=None,
         "plugin_version": plugin_version,
         "run_utc": datetime.now(UTC).isoformat(timespec="seconds"),
     }
-    project.set_attrs(result_path, **{ATTR: json.dumps(rec)})
+    plain = {k: rec[k] for k in ("software_version", "run_utc", "params_schema_version")
+             if rec[k] is not None}
+    project.set_attrs(result_path, **plain, **{ATTR: json.dumps(rec)})
     return rec
 
 

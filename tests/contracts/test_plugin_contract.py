@@ -22,6 +22,7 @@ from hydrosync_core.errors import Cancelled
 from hydrosync_core.plugins import discover, load_object
 from hydrosync_core.plugins.registry import Discovered
 from hydrosync_core.project import Project
+from hydrosync_core.provenance import read_record, stale_reasons
 
 BUILT_IN_PREFIXES = ("plugins.", "hydrosync_core.", "hydrosync_gui.", "hydrosync_heave_stats")
 FOUND = discover() + [example_discovered()]
@@ -159,7 +160,47 @@ def test_panel_shows_stored_results(qtbot, found, demo_files):
         attrs = project.attrs(f"results/{spec.id}")
         assert {"software_version", "run_utc", "params_schema_version"} <= set(attrs)
         assert attrs["params_schema_version"] == spec.load_params().SCHEMA_VERSION
-        _open_panel(qtbot, spec, project)
+        # ... all written by the one provenance.record(), which also lists the inputs read
+        rec = read_record(project, f"results/{spec.id}")
+        assert rec is not None, "run() must call hydrosync_core.provenance.record()"
+        assert (rec["software_version"], rec["run_utc"], rec["params_schema_version"]) == (
+            attrs["software_version"], attrs["run_utc"], attrs["params_schema_version"])
+        assert rec["params"] == stored
+        assert set(spec.requires) <= set(rec["inputs"]), "record() must name every input read"
+        panel = _open_panel(qtbot, spec, project)
+        assert not panel.stale_banner.isVisibleTo(panel)
+        # Change one input: the panel's "out of date" banner appears.
+        changed = spec.requires[0]
+        _touch_content(project, changed)
+        assert stale_reasons(project, f"results/{spec.id}")
+        panel.update_stale_banner()
+        assert panel.stale_banner.isVisibleTo(panel)
+        assert "Out of date" in panel.stale_banner.text()
+
+
+def _touch_content(project, path: str) -> None:
+    """Change the content of the project node *path* (a table, dataset or JSON group)."""
+    import numpy as np
+
+    if schema_json_attr() in project.attrs(path):
+        doc = project.get_json(path)
+        project.put_json(path, {**doc, "edited": True} if isinstance(doc, dict) else doc)
+        return
+    node = path
+    while project.children(node):
+        node = f"{node}/{sorted(project.children(node))[0]}"
+    value = np.array(project.get(node), copy=True)
+    if value.dtype.kind in "fi" and value.size:
+        value.flat[0] += 1
+    else:
+        value = value[:-1]
+    project.put(node, value, attrs=dict(project.attrs(node)))
+
+
+def schema_json_attr() -> str:
+    from hydrosync_core.project import schema
+
+    return schema.JSON_ATTR
 
 
 @pytest.mark.parametrize("when", ["before start", "after first progress"])

@@ -2,7 +2,8 @@
 
 Inputs: ``raw/attitude`` (``time`` s, ``heave`` m positive up) and ``raw/lines``
 (``name``, ``start``, ``end`` s). Stored under ``/results/heave_stats``: the parameters
-(JSON) with ``params_schema_version``, ``software_version``, ``run_utc``, and the table
+(JSON), the provenance record (``hydrosync_core.provenance.record``: input hashes,
+``params_schema_version``, ``software_version``, ``run_utc``), and the table
 ``lines`` with ``name``, ``samples``, ``rms_m``, ``significant_m`` (4 × standard
 deviation, m) and ``peak_period_s`` (NaN when no peak lies in the period band).
 """
@@ -10,16 +11,17 @@ deviation, m) and ``peak_period_s`` (NaN when no peak lies in the period band).
 from __future__ import annotations
 
 from collections.abc import Mapping
-from datetime import UTC, datetime
 
 import numpy as np
 
-from hydrosync_core import __version__
 from hydrosync_core.errors import InputError
 from hydrosync_core.progress import check_cancel, report
+from hydrosync_core.provenance import record
 from hydrosync_heave_stats.params import HeaveStatsParams
 
 RESULT = "results/heave_stats"
+INPUTS = ("raw/attitude", "raw/lines")
+VERSION = "1.0.0"  # the spec's version, stored with each result
 
 
 def line_stats(time: np.ndarray, heave: np.ndarray, params: HeaveStatsParams) -> dict:
@@ -60,12 +62,12 @@ def run(project, params: HeaveStatsParams | Mapping | None = None, progress=None
         raise InputError("raw/lines", "no line has heave samples (check the time scales)")
     project.delete(RESULT)
     project.put_json(RESULT, p.to_dict())
-    project.set_attrs(RESULT, params_schema_version=p.SCHEMA_VERSION,
-                      software_version=__version__,
-                      run_utc=datetime.now(UTC).isoformat(timespec="seconds"))
     table = {"name": np.array(names, dtype=str)}
     for key in ("samples", "rms_m", "significant_m", "peak_period_s"):
         table[key] = np.array([r[key] for r in rows])
     project.put_table(f"{RESULT}/lines", table)
+    # Last, so that a result is never recorded as up to date before it is complete; this
+    # is what gives the panel and the report their "out of date" banner.
+    record(project, RESULT, INPUTS, p, plugin_version=VERSION)
     report(progress, 1.0, "heave statistics stored")
     return table

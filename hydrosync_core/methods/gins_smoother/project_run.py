@@ -25,12 +25,10 @@ from __future__ import annotations
 
 import json
 from collections.abc import Mapping
-from datetime import UTC, datetime
 from pathlib import Path
 
 import numpy as np
 
-from hydrosync_core import __version__
 from hydrosync_core.errors import InputError
 from hydrosync_core.jsonsafe import jsonable
 from hydrosync_core.methods.gins_smoother import VERSION
@@ -259,10 +257,7 @@ def run(project, params: GinsParams | Mapping | None = None, progress=None, canc
     report(progress, 0.93, "storing")
     project.delete(RESULT)
     project.put_json(RESULT, p.to_dict())
-    project.set_attrs(RESULT, params_schema_version=p.SCHEMA_VERSION,
-                      software_version=__version__,
-                      run_utc=datetime.now(UTC).isoformat(timespec="seconds"),
-                      counts=json.dumps(res.counts), alignment=json.dumps(res.alignment),
+    project.set_attrs(RESULT, counts=json.dumps(res.counts), alignment=json.dumps(res.alignment),
                       gnss_model=json.dumps(jsonable(res.gnss_model)),
                       evaluation=json.dumps(ev), outages=json.dumps(windows))
     project.put_table(f"{RESULT}/forward", trajectory_columns(res.forward), units="deg, m")

@@ -30,11 +30,9 @@ from __future__ import annotations
 
 import json
 from collections.abc import Mapping
-from datetime import UTC, datetime
 
 import numpy as np
 
-from hydrosync_core import __version__
 from hydrosync_core.errors import InputError
 from hydrosync_core.importers.rtklib_pos import ned_covariance
 from hydrosync_core.methods.gnss_attitude import VERSION
@@ -118,10 +116,7 @@ def run(project, params: GnssAttitudeParams | Mapping | None = None, progress=No
     check_cancel(cancel)
     project.delete(RESULT)
     project.put_json(RESULT, p.to_dict())
-    project.set_attrs(RESULT, params_schema_version=p.SCHEMA_VERSION,
-                      software_version=__version__,
-                      run_utc=datetime.now(UTC).isoformat(timespec="seconds"),
-                      method=p.method, counts=json.dumps(sol.counts),
+    project.set_attrs(RESULT, method=p.method, counts=json.dumps(sol.counts),
                       statistics=json.dumps(stats), antennas=json.dumps(sol.names),
                       array_llh=json.dumps(list(sol.array_llh)),
                       predicted_deg=json.dumps(predicted))

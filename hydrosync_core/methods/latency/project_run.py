@@ -33,11 +33,9 @@ from __future__ import annotations
 import dataclasses
 import json
 from collections.abc import Mapping
-from datetime import UTC, datetime
 
 import numpy as np
 
-from hydrosync_core import __version__
 from hydrosync_core.importers.import_report import stored_warnings
 from hydrosync_core.methods.latency import VERSION
 from hydrosync_core.methods.latency.api import estimate_latency, synchronise
@@ -131,10 +129,7 @@ def store(project: Project, result: LatencyResult, sync: dict | None,
         project.put_table(f"{RESULT}/synchronised", sync,
                           time="corrected GNSS time (tag - latency)")
     project.set_attrs(
-        RESULT, software_version=__version__,
-        params_schema_version=LatencyParams.SCHEMA_VERSION,
-        run_utc=datetime.now(UTC).isoformat(timespec="seconds"),
-        latency_s=float(result.latency_s), uncertainty_s=float(result.uncertainty_s),
+        RESULT, latency_s=float(result.latency_s), uncertainty_s=float(result.uncertainty_s),
         ci95_low=float(result.ci95_low), ci95_high=float(result.ci95_high),
         joint_latency_s=float(result.joint_latency_s), n_used=int(result.n_used),
         weighting=result.weighting, estimator=result.estimator,

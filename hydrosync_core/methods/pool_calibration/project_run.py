@@ -36,11 +36,9 @@ from __future__ import annotations
 
 import json
 from collections.abc import Mapping
-from datetime import UTC, datetime
 
 import numpy as np
 
-from hydrosync_core import __version__
 from hydrosync_core.methods.pool_calibration import VERSION, georef
 from hydrosync_core.methods.pool_calibration.api import as_params, segment
 from hydrosync_core.methods.pool_calibration.params import PoolParams
@@ -125,8 +123,7 @@ def store(project, seg, result, p: PoolParams) -> None:
                       ("roll_deg", "pitch_deg", "yaw_deg", "lever_x_m", "lever_y_m",
                        "lever_z_m")})
     project.set_attrs(
-        RESULT, software_version=__version__, params_schema_version=PoolParams.SCHEMA_VERSION,
-        run_utc=datetime.now(UTC).isoformat(timespec="seconds"), method=result.method,
+        RESULT, method=result.method,
         iterations=int(result.iterations), converged=bool(result.converged),
         **{f"{k}_deg": float(v) for k, v in result.boresight_deg.items()},
         **{f"lever_{k}_m": float(v) for k, v in result.lever_arm_m.items()},

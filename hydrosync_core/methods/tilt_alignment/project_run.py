@@ -29,11 +29,9 @@ from __future__ import annotations
 import json
 import math
 from collections.abc import Mapping
-from datetime import UTC, datetime
 
 import numpy as np
 
-from hydrosync_core import __version__
 from hydrosync_core.errors import InputError
 from hydrosync_core.methods.tilt_alignment import VERSION, align
 from hydrosync_core.methods.tilt_alignment.geometry import interpolate_vectors, pole_vectors
@@ -103,10 +101,7 @@ def run(project, params: TiltParams | Mapping | None = None, progress=None, canc
                else np.full(grid.size, np.nan)}
     project.delete(RESULT)
     project.put_json(RESULT, p.to_dict())
-    project.set_attrs(RESULT, params_schema_version=p.SCHEMA_VERSION,
-                      software_version=__version__,
-                      run_utc=datetime.now(UTC).isoformat(timespec="seconds"),
-                      method=p.method, result=json.dumps(_clean(doc)),
+    project.set_attrs(RESULT, method=p.method, result=json.dumps(_clean(doc)),
                       frame=json.dumps(frame))
     project.put_table(f"{RESULT}/epochs", epochs, units="s, m, deg")
     project.put_table(f"{RESULT}/j_curve", j_curve)

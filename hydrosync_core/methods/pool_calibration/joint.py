@@ -347,7 +347,10 @@ def adjust(ctx: GeorefContext, obs: dict[str, tuple[np.ndarray, PlaneFit]], r_m0
         # + laser reference planes and INS accuracy.
         parts = {
             "data": sigma0_sq * n_inv * np.outer(root, root),
-            "build": sigma0_sq * (n_aug_inv[:kf, :kf] - n_inv),
+            # Without build columns there is no build term: the difference of two inverses
+            # of one matrix would only give round-off of order √(ε·cond N)·σ.
+            "build": (sigma0_sq * (n_aug_inv[:kf, :kf] - n_inv) if bcols.shape[1]
+                      else np.zeros((kf, kf))),
             "reference": _reference_cov(ctx, obs, r_m, lever, a_aug, weights, g_theta, refs),
             "ins": ins_covariance(ctx, obs, r_m, lever, a_aug, weights, n_aug_inv,
                                   np.asarray(ins_sigma_rad), ins_tau_s)[:kf, :kf],

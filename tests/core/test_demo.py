@@ -1,16 +1,11 @@
-"""``hydrosync demo``: end to end (slow, < 2 min) and failure isolation between plugins."""
+"""``hydrosync demo``: end to end and failure isolation between plugins."""
 
 from __future__ import annotations
 
 import json
-import os
 import re
-import subprocess
-import sys
-import time
 from pathlib import Path
 
-import pytest
 from pypdf import PdfReader
 
 from hydrosync_core.cli import main
@@ -37,22 +32,19 @@ def pdf_text(path: Path) -> str:
     return re.sub(r"\s+", " ", " ".join(p.extract_text() for p in PdfReader(str(path)).pages))
 
 
-@pytest.mark.slow
-def test_demo_end_to_end(tmp_path):
-    """The real command as ``make demo`` runs it: every plugin simulated, run, reported."""
-    out = tmp_path / "demo-output"
-    env = dict(os.environ, HYDROSYNC_DEBUG="1")
-    t0 = time.perf_counter()
-    command = Path(sys.executable).parent / "hydrosync"  # the installed console script
-    proc = subprocess.run([str(command), "demo", "--out", str(out)],
-                          capture_output=True, text=True, timeout=240, env=env)
-    elapsed = time.perf_counter() - t0
-    assert proc.returncode == 0, proc.stdout + proc.stderr
-    assert elapsed < 120, f"demo took {elapsed:.0f} s"
+def test_demo_end_to_end(hydrosync_demo):
+    """The real command as ``make demo`` runs it: every plugin simulated, run, reported.
+
+    The run is the session's shared one (``hydrosync_demo``); how long it takes is measured
+    in ``benchmarks/bench_demo.py``, not asserted here.
+    """
+    out = hydrosync_demo
+    stdout = (out / "stdout.txt").read_text()
+    stderr = (out / "stderr.txt").read_text()
+    assert (out / "returncode.txt").read_text() == "0", stdout + stderr
     project_path, report_path = out / DEMO_PROJECT, out / DEMO_REPORT
     assert project_path.is_file() and report_path.is_file()
     assert not list(out.glob("*.tmp"))
-    stdout = proc.stdout
     specs = plugin_specs()
     # One line per stage (a non-tty log shows progress), then where the files are.
     for spec in specs:

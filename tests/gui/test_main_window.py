@@ -357,14 +357,13 @@ def test_open_missing_or_bad_file_reports_and_prunes_recent(qtbot, make_window, 
     assert window.recent.files() == [str(bad.resolve())]  # unreadable but existing: kept
 
 
-def test_every_panel_fits_a_1366x768_screen(qtbot, make_window, tmp_path):
+def test_every_panel_fits_a_1366x768_screen(qtbot, make_window, hydrosync_demo):
     """With any tab shown the window's minimum size leaves room on a laptop screen (the
     log, status bar and Cancel stay visible): panels scroll instead of growing."""
-    from hydrosync_core.demo import build_demo
+    from hydrosync_core.demo import DEMO_PROJECT
     from hydrosync_core.plugins import discover
 
-    outcome = build_demo(tmp_path, seed=3)
-    project = Project.open(outcome.project_path)
+    project = Project.open(hydrosync_demo / DEMO_PROJECT, readonly=True)
     window = make_window(project, discover=discover)
     for index in range(window.tabs.count()):
         window.tabs.setCurrentIndex(index)

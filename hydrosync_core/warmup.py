@@ -1,10 +1,11 @@
-"""Compile and cache the numba kernels once, when HydroSync is installed.
+"""Compile and cache every analysis's numba kernels once, when HydroSync is installed.
 
 numba compiles a kernel on its first use and keeps the machine code in ``__pycache__``.
 The latency estimate's line scan alone takes ~15 s to compile and the GNSS/INS
 smoother's filter ~35 s, which a user's first run (a panel's progress bar standing
 still, or the first ``hydrosync latency``) would otherwise wait for. ``make install``
-runs this module after installing the package.
+runs this module after installing the package. Each analysis declares its own warm-up
+(``PluginSpec.warmup``): this module knows none of them by name.
 
 Run: ``python -m hydrosync_core.warmup``.
 """
@@ -12,61 +13,28 @@ Run: ``python -m hydrosync_core.warmup``.
 from __future__ import annotations
 
 import sys
-import tempfile
 import time
-from pathlib import Path
+from collections.abc import Callable
 
 
-def compile_latency_kernels() -> None:
-    """The latency estimate (auto: both estimators, the fallback σ) and its CSV readers
-    on a tiny simulated day, written to CSV and read back as ``hydrosync latency`` does."""
-    import numpy as np
+def steps() -> list[tuple[str, Callable[[], None]]]:
+    """(analysis name, warm-up function) of every plugin that declares one, each on its
+    own (one failing leaves the others compiled)."""
+    from hydrosync_core.plugins import load_object, plugin_specs
 
-    from hydrosync_core.importers.survey_csv import read_lines_csv
-    from hydrosync_core.methods.latency import lines
-    from hydrosync_core.methods.latency.api import estimate_latency
-    from hydrosync_core.methods.latency.fastcsv import read_attitude_csv, read_gnss_csv
-    from hydrosync_core.methods.latency.heave import total_heave_deg
-    from hydrosync_core.methods.latency.simulate import DayConfig, simulate_day, write_day_csv
-
-    cfg = DayConfig(n_lines=2, line_s=60.0, turn_s=10.0, run_in_s=5.0, gnss_hz=10.0,
-                    attitude_hz=100.0)
-    with tempfile.TemporaryDirectory() as folder:
-        write_day_csv(simulate_day(cfg, seed=0), Path(folder))
-        gnss = read_gnss_csv(Path(folder) / "gnss.csv")
-        attitude = read_attitude_csv(Path(folder) / "attitude.csv",
-                                     columns=("time", "roll", "pitch", "heave"))
-        day_lines = read_lines_csv(Path(folder) / "lines.csv")
-    estimate_latency(gnss, attitude, day_lines, cfg.lever_arm_m,
-                     {"estimator": "auto", "step_s": 0.001})
-    tags = gnss["time"][50:400]
-    line = lines.LineData("warm-up", float(tags[0]), float(tags[-1]), tags, np.sin(tags))
-    lines.line_uncertainty(line, attitude["time"], np.sin(attitude["time"]),
-                           np.linspace(-1.0, 1.0, 2001), 0.0)
-    # The whole-record total heave (the panel's plots, the synchronised data set) takes
-    # the parallel kernel above 100 000 records.
-    many = np.zeros(100_001)
-    total_heave_deg(many, many, many, cfg.lever_arm_m)
-
-
-def compile_gins_kernels() -> None:
-    """The GNSS/INS forward filter and smoother on a short simulated drive."""
-    from hydrosync_core.methods.gins_smoother.filter import run_gins
-    from hydrosync_core.methods.gins_smoother.simulate import simulate
-
-    sim = simulate(30.0, "vehicle", "tactical", imu_rate_hz=100.0, seed=0)
-    run_gins(sim["imu"], sim["gnss"], sim["config"])
-
-
-STEPS = (("latency", compile_latency_kernels), ("GNSS/INS smoother", compile_gins_kernels))
-"""What the warm-up compiles: (name, function), each on its own (one failing leaves the
-others compiled)."""
+    out = []
+    for spec in plugin_specs():
+        if spec.warmup:
+            def step(dotted=spec.warmup):
+                load_object(dotted)()
+            out.append((spec.name, step))
+    return out
 
 
 def main() -> int:
     start = time.perf_counter()
     done = []
-    for name, step in STEPS:
+    for name, step in steps():
         try:
             step()
         except Exception as exc:  # noqa: BLE001 - a warm-up must never fail an install

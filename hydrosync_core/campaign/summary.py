@@ -25,14 +25,6 @@ from pathlib import Path
 from hydrosync_core.atomic import write_text_atomic
 from hydrosync_core.campaign.steps import DONE, FAILED, NOT_APPLICABLE, UP_TO_DATE
 
-#: (analysis id, plot title, unit, [(label, value key, low key, high key, sigma key)])
-TRENDS = (
-    ("latency", "Latency Δt (GNSS tags late) per survey day, 95 % interval", "s",
-     [("Δt", "latency_s", "ci95_low", "ci95_high", None)]),
-    ("pool_calibration", "Multibeam boresight per calibration, ±1.96 σ", "°",
-     [(a, f"{a}_deg", None, None, f"sigma_{a}_deg") for a in ("roll", "pitch", "yaw")]),
-)
-
 FIXED = ["campaign", "project", "date", "path", "step", "status", "seconds", "run_utc",
          "worker", "warnings", "message", "key_figures"]
 
@@ -66,29 +58,31 @@ def _num(value) -> str:
 
 def trend_series(result) -> list[tuple[str, str, list]]:
     """``(title, unit, [(label, [(x label, value, low, high)])])`` of the trends with data."""
+    from hydrosync_core.plugins import plugin_specs
+
     out = []
-    for analysis, title, unit, series in TRENDS:
+    for analysis, trend in ((s.id, t) for s in plugin_specs() for t in s.trends):
         steps = [o for o in result.outcomes if o["step"] == analysis and o.get("numbers")]
         if not steps:
             continue
         steps.sort(key=lambda o: (_day(o) or "9999", o["project"]))
         lines = []
-        for label, key, low, high, sigma in series:
+        for item in trend.series:
             points = []
             for o in steps:
                 n = o["numbers"]
-                value = n.get(key)
+                value = n.get(item.value)
                 if value is None or not math.isfinite(value):
                     continue
-                if sigma is not None and n.get(sigma) is not None:
-                    lo, hi = value - 1.96 * n[sigma], value + 1.96 * n[sigma]
+                if item.sigma and n.get(item.sigma) is not None:
+                    lo, hi = value - 1.96 * n[item.sigma], value + 1.96 * n[item.sigma]
                 else:
-                    lo, hi = n.get(low, math.nan), n.get(high, math.nan)
+                    lo, hi = n.get(item.low, math.nan), n.get(item.high, math.nan)
                 points.append((_day(o) or o["project"], value, lo, hi, o["project"]))
             if points:
-                lines.append((label, points))
+                lines.append((item.label, points))
         if lines:
-            out.append((title, unit, lines))
+            out.append((trend.title, trend.unit, lines))
     return out
 
 

@@ -67,6 +67,38 @@ class DataKind:
 
 
 @dataclass(frozen=True)
+class TrendSeries:
+    """One plotted quantity of a campaign trend: keys of the step's numbers.
+
+    Attributes
+    ----------
+    label : str
+        Legend text (``"Δt"``, ``"roll"``).
+    value : str
+        Key of the value in the step's numbers (the result group's attributes).
+    low, high : str
+        Keys of the interval's ends; empty when *sigma* gives the interval.
+    sigma : str
+        Key of the 1σ; the interval drawn is ±1.96 σ. Empty when *low*/*high* give it.
+    """
+
+    label: str
+    value: str
+    low: str = ""
+    high: str = ""
+    sigma: str = ""
+
+
+@dataclass(frozen=True)
+class Trend:
+    """A campaign summary plot of one analysis: its quantities per survey day."""
+
+    title: str
+    unit: str
+    series: tuple[TrendSeries, ...]
+
+
+@dataclass(frozen=True)
 class PluginSpec:
     """What a plugin declares.
 
@@ -112,6 +144,12 @@ class PluginSpec:
         Dotted path of ``apply_to_vessel(project) -> str`` writing the analysis's
         calibrated values into the vessel sheet (``hydrosync vessel P --apply <id>``);
         empty when the analysis calibrates nothing.
+    warmup : str
+        Dotted path of a no-argument function that compiles and caches the analysis's
+        numba kernels (``python -m hydrosync_core.warmup``, run by ``make install``, so that
+        no user's first run waits for a compiler). Empty when there is nothing to compile.
+    trends : tuple of Trend
+        The quantities a campaign summary plots per survey day (``hydrosync batch``).
     api_version : int
         The :data:`API_VERSION` the plugin was written for.
     version : str
@@ -133,6 +171,8 @@ class PluginSpec:
     order: int = 100
     report_appendix: str = ""
     apply: str = ""
+    warmup: str = ""
+    trends: tuple[Trend, ...] = ()
     api_version: int = API_VERSION
     version: str = "1.0.0"
 

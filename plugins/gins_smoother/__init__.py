@@ -36,5 +36,6 @@ SPEC = PluginSpec(
     demo=f"{CORE}.demo:fill_demo",
     report_section=f"{CORE}.report_section:section",
     order=40,
+    warmup=f"{CORE}.warmup:compile_kernels",
     version=VERSION,
 )

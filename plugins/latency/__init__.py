@@ -5,7 +5,7 @@ parameter schema and the panel are named by dotted path and imported when used.
 """
 
 from hydrosync_core.methods.latency import VERSION
-from hydrosync_core.plugins.spec import DataKind, PluginSpec
+from hydrosync_core.plugins.spec import DataKind, PluginSpec, Trend, TrendSeries
 
 CORE = "hydrosync_core.methods.latency"
 READERS = "hydrosync_core.importers"
@@ -40,5 +40,8 @@ SPEC = PluginSpec(
     demo=f"{CORE}.demo:fill_demo",
     report_section=f"{CORE}.report_section:section",
     order=10,
+    warmup=f"{CORE}.warmup:compile_kernels",
+    trends=(Trend("Latency Δt (GNSS tags late) per survey day, 95 % interval", "s",
+                  (TrendSeries("Δt", "latency_s", low="ci95_low", high="ci95_high"),)),),
     version=VERSION,
 )

@@ -6,7 +6,7 @@ and imported when used.
 """
 
 from hydrosync_core.methods.pool_calibration import VERSION
-from hydrosync_core.plugins.spec import DataKind, PluginSpec
+from hydrosync_core.plugins.spec import DataKind, PluginSpec, Trend, TrendSeries
 
 CORE = "hydrosync_core.methods.pool_calibration"
 READERS = "hydrosync_core.importers"
@@ -41,5 +41,8 @@ SPEC = PluginSpec(
     order=20,
     report_appendix=f"{CORE}.report_section:appendix",
     apply=f"{CORE}.apply:apply_to_vessel",
+    trends=(Trend("Multibeam boresight per calibration, ±1.96 σ", "°",
+                  tuple(TrendSeries(a, f"{a}_deg", sigma=f"sigma_{a}_deg")
+                        for a in ("roll", "pitch", "yaw"))),),
     version=VERSION,
 )

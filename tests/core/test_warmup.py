@@ -9,17 +9,19 @@ def test_warmup_runs_every_compiled_module(capsys):
     assert warmup.main() == 0
     out = capsys.readouterr().out
     assert "compiled kernels cached" in out
-    assert "latency" in out and "GNSS/INS smoother" in out
+    # Every analysis that declares a warm-up (spec.warmup), found through the registry.
+    assert "Latency" in out and "GNSS/INS Smoother" in out
 
 
 def test_warmup_never_fails_an_install(monkeypatch, capsys):
     def broken():
         raise RuntimeError("no compiler here")
 
-    monkeypatch.setattr(warmup, "STEPS", (("latency", broken), ("GNSS/INS smoother", broken)))
+    monkeypatch.setattr(warmup, "steps", lambda: [("Latency", broken),
+                                                  ("GNSS/INS Smoother", broken)])
     assert warmup.main() == 0
     err = capsys.readouterr().err
-    assert err.count("on first use") == 2 and "latency" in err and "smoother" in err
+    assert err.count("on first use") == 2 and "Latency" in err and "Smoother" in err
 
 
 def test_one_failing_step_leaves_the_others(monkeypatch, capsys):
@@ -28,9 +30,9 @@ def test_one_failing_step_leaves_the_others(monkeypatch, capsys):
     def broken():
         raise RuntimeError("no compiler here")
 
-    monkeypatch.setattr(warmup, "STEPS", (("latency", broken),
-                                          ("GNSS/INS smoother", lambda: ran.append(1))))
+    monkeypatch.setattr(warmup, "steps", lambda: [("Latency", broken),
+                                                  ("GNSS/INS Smoother", lambda: ran.append(1))])
     assert warmup.main() == 0
     captured = capsys.readouterr()
-    assert ran == [1] and "(GNSS/INS smoother)" in captured.out
-    assert "latency kernels not compiled ahead" in captured.err
+    assert ran == [1] and "(GNSS/INS Smoother)" in captured.out
+    assert "Latency kernels not compiled ahead" in captured.err

@@ -73,9 +73,3 @@ def ecef_to_ned_matrix(lat_deg, lon_deg) -> np.ndarray:
             [-sl + zero, cl + zero, zero],
             [-cb * cl, -cb * sl, -sb + zero]]
     return np.stack([np.stack(r, axis=-1) for r in rows], axis=-2)
-
-
-def ecef_to_enu_matrix(lat_deg, lon_deg) -> np.ndarray:
-    """Rotation taking ECEF vector components to ENU at (lat, lon) (deg); shape (..., 3, 3)."""
-    ned = ecef_to_ned_matrix(lat_deg, lon_deg)
-    return ned[..., [1, 0, 2], :] * np.array([1.0, 1.0, -1.0])[:, None]

@@ -329,11 +329,6 @@ def stored(schema: type[Params], project, path: str):
     return schema.from_dict(project.get_json(path, {}) or {}, version=version, strict=False)
 
 
-def store_attrs(params: Params) -> dict:
-    """Attributes to store beside ``params.to_dict()`` (the schema version)."""
-    return {"params_schema_version": type(params).SCHEMA_VERSION}
-
-
 # --------------------------------------------------------------------------- CLI
 def add_cli_arguments(parser: argparse.ArgumentParser, schema: type[Params],
                       skip: tuple[str, ...] = ()) -> None:

@@ -55,13 +55,3 @@ def table_span(project, path: str, column: str = "time") -> Span | None:
         return span_of(project.get(f"{path}/{column}"))
     except Exception:  # a damaged or non-table node has no span to show
         return None
-
-
-def lines_span(project, path: str = "raw/lines") -> Span | None:
-    """The span covered by the survey lines (earliest start to latest end)."""
-    try:
-        table = project.get_table(path)
-        return span_of(np.concatenate([np.asarray(table["start"], float),
-                                       np.asarray(table["end"], float)]))
-    except Exception:
-        return None

@@ -170,4 +170,4 @@ def quat_to_matrix(q) -> np.ndarray:
 
 def wrap_pi(angle):
     """Angle(s) (rad) wrapped to (−π, π]."""
-    return np.angle(np.exp(1j * np.asarray(angle, float)))
+    return np.pi - np.mod(np.pi - np.asarray(angle, float), 2.0 * np.pi)

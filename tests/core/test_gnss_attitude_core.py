@@ -15,6 +15,7 @@ from hydrosync_core.methods.gnss_attitude.simulate import (
     random_attitudes,
     simulate_array,
 )
+from hydrosync_core.rotations import euler_zyx_matrix, wrap_pi
 
 #: Liu et al.'s layout (antenna 2 on the forward axis, 3 in the deck plane), in FRD.
 SEED_LAYOUT = np.array([[0, 0, 0], [2.0, 0, 0], [0.8, 1.4, 0], [-1.0, 1.2, 0.0]])
@@ -29,15 +30,15 @@ def _truth(n=3000, seed=0):
     edges = np.array([[0, 0, 0], [90, 0, 180], [180, 45, -90], [270, -45, 90],
                       [359.9, 10, -179.9], [45, -85, 135], [135, 85, -135], [225, 0, -45]])
     hpr = np.vstack([hpr, edges])
-    R = solve.attitude_matrix(*np.radians(hpr[:, [2, 1, 0]]).T)
+    R = euler_zyx_matrix(*np.radians(hpr[:, [2, 1, 0]]).T)
     return hpr, R
 
 
 def _err_deg(R, hpr):
     roll, pitch, heading = solve.matrix_angles(R)
-    d = np.degrees(np.column_stack([solve.wrap_pi(heading - np.radians(hpr[:, 0])),
+    d = np.degrees(np.column_stack([wrap_pi(heading - np.radians(hpr[:, 0])),
                                     pitch - np.radians(hpr[:, 1]),
-                                    solve.wrap_pi(roll - np.radians(hpr[:, 2]))]))
+                                    wrap_pi(roll - np.radians(hpr[:, 2]))]))
     return d
 
 
@@ -61,7 +62,7 @@ def test_all_quadrants_recovered_exactly_noise_free(layout):
     assert np.abs(_err_deg(w, hpr)).max() < 1e-9
     start = solve.direct_three(nav[:, 0], nav[:, 1], body[0], body[1])
     res = solve.lsq(nav, body, None, start, 1e-12)
-    R_lsq = solve.attitude_matrix(*res.angles.T)
+    R_lsq = euler_zyx_matrix(*res.angles.T)
     assert np.abs(_err_deg(R_lsq, hpr)).max() < 1e-9
     assert res.converged.all()
     # the reported ranges: heading 0-360, pitch ±90, roll ±180
@@ -74,7 +75,7 @@ def test_direct_method_quadrants_of_liu_tables_1_and_2():
     body = SEED_LAYOUT[1:3] - SEED_LAYOUT[0]
     for heading in (30, 120, 210, 300):
         for roll in (-150, -30, 30, 150):
-            R = solve.attitude_matrix(np.radians(roll), np.radians(5.0), np.radians(heading))
+            R = euler_zyx_matrix(np.radians(roll), np.radians(5.0), np.radians(heading))
             nav = (R @ body.T).T
             r, p, h = solve.matrix_angles(solve.direct_three(nav[:1], nav[1:2], *body))
             assert np.degrees(h[0]) == pytest.approx(heading, abs=1e-9)
@@ -88,7 +89,7 @@ def test_closed_form_and_iterative_lsq_agree():
     nav = np.einsum("nij,mj->nmi", R, body)
     w = solve.wahba(nav, body)
     res = solve.lsq(nav, body, None, w, 1e-13)
-    np.testing.assert_allclose(solve.attitude_matrix(*res.angles.T), w, atol=1e-12)
+    np.testing.assert_allclose(euler_zyx_matrix(*res.angles.T), w, atol=1e-12)
     # under noise too, when the weights are isotropic per baseline (same objective)
     rng = np.random.default_rng(3)
     noisy = nav + 0.01 * rng.standard_normal(nav.shape)
@@ -97,7 +98,7 @@ def test_closed_form_and_iterative_lsq_agree():
     w = solve.wahba(noisy, body, weights)
     res = solve.lsq(noisy, body, W, solve.direct_three(noisy[:, 0], noisy[:, 1], *body[:2]),
                     1e-13)
-    np.testing.assert_allclose(solve.attitude_matrix(*res.angles.T), w, atol=1e-10)
+    np.testing.assert_allclose(euler_zyx_matrix(*res.angles.T), w, atol=1e-10)
     # and scipy's align_vectors gives the same rotation
     for i in range(5):
         rot, _ = Rotation.align_vectors(noisy[i], body, weights=weights)

@@ -31,6 +31,7 @@ from hydrosync_core.geodesy import ecef_to_geodetic, ecef_to_ned_matrix
 from hydrosync_core.methods.gnss_attitude import solve
 from hydrosync_core.methods.gnss_attitude.params import GnssAttitudeParams
 from hydrosync_core.progress import check_cancel, report
+from hydrosync_core.rotations import wrap_pi
 
 QUALITY_LIMIT = {"fixed": 1, "float": 2, "any": 7}
 CHUNK = 50_000
@@ -215,7 +216,7 @@ def _direct_with_std(ned: np.ndarray, cov: np.ndarray, body: np.ndarray, tri):
         d[c] = h
         ap, _ = angles(x + d)
         am, _ = angles(x - d)
-        J[:, :, c] = solve.wrap_pi(ap - am) / (2 * h)
+        J[:, :, c] = wrap_pi(ap - am) / (2 * h)
     C = np.zeros((x.shape[0], 6, 6))
     C[:, :3, :3] = cov[:, i] + cov[:, j]
     C[:, 3:, 3:] = cov[:, i] + cov[:, k]
@@ -261,6 +262,43 @@ def solve_array(tracks: Mapping[str, Track], antennas: Mapping[str, list[float]]
         Fewer than three antennas with data, a track without antenna coordinates, no
         epoch with three accepted antennas.
     """
+    names = _array_names(tracks, antennas, params)
+    body = np.array([antennas[n] for n in names], float)
+    report(progress, 0.0, "matching epochs")
+    check_cancel(cancel)
+    gps_s, index, dups = match_epochs({n: tracks[n] for n in names}, params.epoch_rounding_s)
+    ecef, q, cov, fallback = _gather(tracks, names, index, params)
+    present = q > 0
+    ok = present & (q <= QUALITY_LIMIT[params.min_quality])
+    ned, lat, lon, hgt = _local_level(ecef, ok)
+    report(progress, 0.05, "screening baseline lengths")
+    check_cancel(cancel)
+    used, resid = screen_lengths(ned, ok, body, params.length_tolerance_m)
+    n_used = used.sum(axis=1)
+    solved = n_used >= 3
+    if not solved.any():
+        raise InputError(None, f"no epoch has three antennas with accepted quality "
+                         f"({params.min_quality}) and consistent baseline lengths "
+                         f"(of {gps_s.size} epochs, {int(ok.sum(1).max(initial=0))} antennas "
+                         "at most accepted)", field="min_quality")
+    methods = _solve_epochs(ned, cov, body, names, used, solved, params, progress, cancel)
+    report(progress, 0.97, "counting")
+    counts = _counts(gps_s, names, present, ok, used, solved, fallback, methods, dups, params)
+    week_based = all(tracks[n].week_based for n in names)
+    week = np.floor(gps_s / 604800.0) if week_based else np.zeros_like(gps_s)
+    K = len(names)
+    pairs = [f"{names[i]}-{names[j]}" for i, j in combinations(range(K), 2)]
+    llh = (float(np.nanmean(lat)), float(np.nanmean(lon)), float(np.nanmean(hgt)))
+    report(progress, 1.0, "attitude solved")
+    return ArraySolution(gps_s - week * 604800.0, gps_s, names, used & solved[:, None],
+                         np.where(solved, n_used, 0), methods, pairs, resid, counts, llh)
+
+
+def _array_names(tracks: Mapping[str, Track], antennas: Mapping[str, list[float]],
+                 params: GnssAttitudeParams) -> list[str]:
+    """The antennas with both positions and body coordinates, in the coordinates' order;
+    InputError for an unknown track, fewer than three antennas or a direct-method antenna
+    without positions."""
     unknown = [n for n in tracks if n not in antennas]
     if unknown:
         raise InputError(unknown[0], f"no antenna '{unknown[0]}' in the antenna coordinates "
@@ -275,16 +313,19 @@ def solve_array(tracks: Mapping[str, Track], antennas: Mapping[str, list[float]]
         if missing:
             raise InputError(None, f"direct-method antenna '{missing[0]}' has no positions",
                              field="direct_antennas")
-    body = np.array([antennas[n] for n in names], float)
-    K = len(names)
-    report(progress, 0.0, "matching epochs")
-    check_cancel(cancel)
-    gps_s, index, dups = match_epochs({n: tracks[n] for n in names}, params.epoch_rounding_s)
-    E = gps_s.size
+    return names
+
+
+def _gather(tracks: Mapping[str, Track], names: list[str], index: dict,
+            params: GnssAttitudeParams):
+    """Per epoch and antenna: ECEF position (m, NaN where absent), quality (0 absent),
+    the NED position covariance (m², file or a-priori) and where the file's covariance
+    was not positive definite and the a-priori one replaced it."""
+    E, K = next(iter(index.values())).size, len(names)
     ecef = np.full((E, K, 3), np.nan)
     q = np.zeros((E, K), np.int16)
     cov = np.broadcast_to(_apriori_cov(params), (E, K, 3, 3)).copy()
-    fallback = np.zeros((E, K), bool)  # file covariance not positive definite -> a priori
+    fallback = np.zeros((E, K), bool)
     for k, n in enumerate(names):
         t, pos = tracks[n], index[n]
         have = pos >= 0
@@ -297,24 +338,26 @@ def solve_array(tracks: Mapping[str, Track], antennas: Mapping[str, list[float]]
             sel = np.flatnonzero(have)[good]
             cov[sel, k] = c[good]
             fallback[np.flatnonzero(have)[~good], k] = True
-    present = q > 0
-    ok = present & (q <= QUALITY_LIMIT[params.min_quality])
+    return ecef, q, cov, fallback
+
+
+def _local_level(ecef: np.ndarray, ok: np.ndarray):
+    """NED positions (E, K, 3) about each epoch's centre of the accepted antennas, and the
+    centre's latitude, longitude (deg) and height (m) (NaN where none is accepted)."""
     any_ok = ok.any(axis=1)
     centre = np.where(ok[..., None], ecef, 0.0).sum(axis=1) / np.maximum(ok.sum(1), 1)[:, None]
     centre[~any_ok] = np.nan
     lat, lon, hgt = ecef_to_geodetic(centre)
     C = ecef_to_ned_matrix(np.nan_to_num(lat), np.nan_to_num(lon))
     ned = np.einsum("eij,ekj->eki", C, np.nan_to_num(ecef - centre[:, None, :]))
-    report(progress, 0.05, "screening baseline lengths")
-    check_cancel(cancel)
-    used, resid = screen_lengths(ned, ok, body, params.length_tolerance_m)
-    n_used = used.sum(axis=1)
-    solved = n_used >= 3
-    if not solved.any():
-        raise InputError(None, f"no epoch has three antennas with accepted quality "
-                         f"({params.min_quality}) and consistent baseline lengths "
-                         f"(of {E} epochs, {int(ok.sum(1).max(initial=0))} antennas at most "
-                         "accepted)", field="min_quality")
+    return ned, lat, lon, hgt
+
+
+def _solve_epochs(ned, cov, body, names, used, solved, params, progress, cancel) -> dict:
+    """The three estimators on every solved epoch, in chunks of epochs that share one set
+    of used antennas (one design per set): ``{"lsq", "wahba", "direct"}`` solutions."""
+    E, K = used.shape
+    chosen = params.direct_triplet
     methods = {m: MethodSolution(np.full((E, 3), np.nan), np.full((E, 3), np.nan))
                for m in ("lsq", "wahba", "direct")}
     methods["lsq"].extra = {"iterations": np.zeros(E, np.int16),
@@ -356,13 +399,18 @@ def solve_array(tracks: Mapping[str, Track], antennas: Mapping[str, list[float]]
                 ang, std = _to_deg(ad, cd)
                 methods["direct"].angles_deg[r], methods["direct"].std_deg[r] = ang, std
             done += r.size
-    report(progress, 0.97, "counting")
-    t_solved = gps_s[solved]
-    dt = np.diff(t_solved)
+    return methods
+
+
+def _counts(gps_s, names, present, ok, used, solved, fallback, methods, dups, params) -> dict:
+    """The bookkeeping of :class:`ArraySolution` ``counts`` (see :func:`solve_array`)."""
+    n_used = used.sum(axis=1)
+    dt = np.diff(gps_s[solved])
     median_dt = float(np.median(dt)) if dt.size else float("nan")
     gaps = dt > params.gap_factor * median_dt if dt.size else np.zeros(0, bool)
-    counts = {
-        "epochs": int(E), "solved": int(solved.sum()), "too_few_antennas": int((~solved).sum()),
+    return {
+        "epochs": int(gps_s.size), "solved": int(solved.sum()),
+        "too_few_antennas": int((~solved).sum()),
         "with_dropped_antenna": int((solved & (n_used < ok.sum(1))).sum()),
         "lsq_not_converged": int((solved & ~methods["lsq"].extra["converged"]).sum()),
         "direct_solved": int(np.isfinite(methods["direct"].angles_deg[:, 0]).sum()),
@@ -376,20 +424,13 @@ def solve_array(tracks: Mapping[str, Track], antennas: Mapping[str, list[float]]
                          "used": int((used[:, k] & solved).sum()),
                          "duplicates": dups[n]} for k, n in enumerate(names)},
     }
-    week_based = all(tracks[n].week_based for n in names)
-    week = np.floor(gps_s / 604800.0) if week_based else np.zeros_like(gps_s)
-    pairs = [f"{names[i]}-{names[j]}" for i, j in combinations(range(K), 2)]
-    llh = (float(np.nanmean(lat)), float(np.nanmean(lon)), float(np.nanmean(hgt)))
-    report(progress, 1.0, "attitude solved")
-    return ArraySolution(gps_s - week * 604800.0, gps_s, names, used & solved[:, None],
-                         np.where(solved, n_used, 0), methods, pairs, resid, counts, llh)
 
 
 def circular_std_deg(a_deg: np.ndarray) -> tuple[float, float]:
     """Circular mean (deg, 0–360) and standard deviation (deg) of headings."""
     a = np.radians(a_deg)
     mean = np.arctan2(np.mean(np.sin(a)), np.mean(np.cos(a)))
-    d = solve.wrap_pi(a - mean)
+    d = wrap_pi(a - mean)
     return float(np.degrees(mean) % 360.0), float(np.degrees(np.std(d, ddof=1)))
 
 

@@ -16,6 +16,7 @@ import numpy as np
 
 from hydrosync_core.methods.gnss_attitude import solve
 from hydrosync_core.methods.gnss_attitude.pipeline import _direct_with_std, _triplet
+from hydrosync_core.rotations import euler_zyx_matrix, wrap_pi
 
 
 def _cov(sigma_h: float, sigma_v: float) -> np.ndarray:
@@ -44,7 +45,7 @@ def predict(body, sigma_h: float, sigma_v: float, attitude_deg=(0.0, 0.0, 0.0),
     """
     body = np.asarray(body, float)
     h, p, r = np.radians(attitude_deg)
-    R = solve.attitude_matrix(r, p, h)[None]
+    R = euler_zyx_matrix(r, p, h)[None]
     K = body.shape[0]
     cov = np.broadcast_to(_cov(sigma_h, sigma_v), (1, K, 3, 3))
     if method == "lsq":
@@ -65,7 +66,7 @@ def monte_carlo(body, sigma_h: float, sigma_v: float, n: int = 2000, seed: int =
     body = np.asarray(body, float)
     rng = np.random.default_rng(seed)
     h, p, r = np.radians(attitude_deg)
-    R = solve.attitude_matrix(r, p, h)
+    R = euler_zyx_matrix(r, p, h)
     K = body.shape[0]
     ned = np.einsum("ij,kj->ki", R, body)[None] + rng.standard_normal((n, K, 3)) * np.array(
         [sigma_h, sigma_h, sigma_v])
@@ -80,7 +81,7 @@ def monte_carlo(body, sigma_h: float, sigma_v: float, n: int = 2000, seed: int =
     truth = np.array([r, p, h])
 
     def spread(a):
-        d = solve.wrap_pi(a - truth)
+        d = wrap_pi(a - truth)
         return np.degrees(np.sqrt(np.mean(d**2, axis=0)))[[2, 1, 0]]
 
     return {"lsq": spread(res.angles), "direct": spread(ad)}

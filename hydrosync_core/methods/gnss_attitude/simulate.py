@@ -22,7 +22,7 @@ import numpy as np
 
 from hydrosync_core.atomic import write_text_atomic
 from hydrosync_core.geodesy import ecef_to_geodetic, ecef_to_ned_matrix, geodetic_to_ecef
-from hydrosync_core.methods.gnss_attitude import solve
+from hydrosync_core.rotations import euler_zyx_matrix
 
 #: Four antennas on a survey launch (m, FRD): bow, stern, port and starboard of the mast.
 LAUNCH = {"A1": [0.0, 0.0, 0.0], "A2": [3.0, 0.2, 0.05], "A3": [0.6, 1.8, 0.0],
@@ -132,7 +132,7 @@ def simulate_array(antennas: dict[str, list[float]] | None = None,
     heading = np.mod(37.0 + 360.0 * c.turns * t / max(c.duration_s, 1e-9), 360.0)
     roll = c.roll_amp_deg * np.sin(2 * np.pi * t / c.roll_period_s + 0.3)
     pitch = c.pitch_amp_deg * np.sin(2 * np.pi * t / c.pitch_period_s + 1.1)
-    R = solve.attitude_matrix(np.radians(roll), np.radians(pitch), np.radians(heading))
+    R = euler_zyx_matrix(np.radians(roll), np.radians(pitch), np.radians(heading))
     # reference point track in NED at the start point
     dt = 1.0 / c.rate_hz
     hd = np.radians(heading)

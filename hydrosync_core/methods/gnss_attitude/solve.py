@@ -26,66 +26,29 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from hydrosync_core.rotations import (
+    d_rot_x,
+    d_rot_y,
+    d_rot_z,
+    euler_zyx_angles,
+    euler_zyx_matrix,
+    rot_x,
+    rot_y,
+    rot_z,
+    wrap_pi,
+)
+
 TWO_PI = 2.0 * np.pi
 
 
-# --------------------------------------------------------------------------- rotations
-def _rx(a: np.ndarray) -> np.ndarray:
-    c, s, o, z = np.cos(a), np.sin(a), np.ones_like(a), np.zeros_like(a)
-    return np.stack([np.stack([o, z, z], -1), np.stack([z, c, -s], -1),
-                     np.stack([z, s, c], -1)], -2)
-
-
-def _ry(a: np.ndarray) -> np.ndarray:
-    c, s, o, z = np.cos(a), np.sin(a), np.ones_like(a), np.zeros_like(a)
-    return np.stack([np.stack([c, z, s], -1), np.stack([z, o, z], -1),
-                     np.stack([-s, z, c], -1)], -2)
-
-
-def _rz(a: np.ndarray) -> np.ndarray:
-    c, s, o, z = np.cos(a), np.sin(a), np.ones_like(a), np.zeros_like(a)
-    return np.stack([np.stack([c, -s, z], -1), np.stack([s, c, z], -1),
-                     np.stack([z, z, o], -1)], -2)
-
-
-def _drx(a):
-    c, s, z = np.cos(a), np.sin(a), np.zeros_like(a)
-    return np.stack([np.stack([z, z, z], -1), np.stack([z, -s, -c], -1),
-                     np.stack([z, c, -s], -1)], -2)
-
-
-def _dry(a):
-    c, s, z = np.cos(a), np.sin(a), np.zeros_like(a)
-    return np.stack([np.stack([-s, z, c], -1), np.stack([z, z, z], -1),
-                     np.stack([-c, z, -s], -1)], -2)
-
-
-def _drz(a):
-    c, s, z = np.cos(a), np.sin(a), np.zeros_like(a)
-    return np.stack([np.stack([-s, -c, z], -1), np.stack([c, -s, z], -1),
-                     np.stack([z, z, z], -1)], -2)
-
-
-def attitude_matrix(roll, pitch, heading) -> np.ndarray:
-    """Body (FRD) → NED rotations ``Rz(heading)·Ry(pitch)·Rx(roll)``; radians, (..., 3, 3)."""
-    roll, pitch, heading = np.broadcast_arrays(*(np.asarray(a, float)
-                                                 for a in (roll, pitch, heading)))
-    return _rz(heading) @ _ry(pitch) @ _rx(roll)
-
-
 def matrix_angles(R: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """(roll, pitch, heading) radians of body→NED matrices; heading in [0, 2π)."""
+    """(roll, pitch, heading) radians of body→NED matrices (..., 3, 3); heading in
+    [0, 2π), as this module reports it."""
     R = np.asarray(R, float)
-    pitch = np.arcsin(np.clip(-R[..., 2, 0], -1.0, 1.0))
-    roll = np.arctan2(R[..., 2, 1], R[..., 2, 2])
-    heading = np.mod(np.arctan2(R[..., 1, 0], R[..., 0, 0]), TWO_PI)
+    roll, pitch, yaw = (np.asarray(a) for a in euler_zyx_angles(R))
+    heading = np.mod(yaw, TWO_PI)
     heading = np.where(heading >= TWO_PI, 0.0, heading)  # -1e-17 mod 2π rounds to 2π
     return roll, pitch, heading
-
-
-def wrap_pi(a):
-    """Angles (rad) wrapped to (−π, π]."""
-    return np.pi - np.mod(np.pi - np.asarray(a, float), TWO_PI)
 
 
 # --------------------------------------------------------------------------- direct
@@ -133,10 +96,10 @@ def direct_three(nav12: np.ndarray, nav13: np.ndarray, body12, body13) -> np.nda
     n12, n13 = np.atleast_2d(nav12), np.atleast_2d(nav13)
     heading = np.arctan2(n12[:, 1], n12[:, 0])
     pitch = np.arctan2(-n12[:, 2], np.hypot(n12[:, 0], n12[:, 1]))
-    back = np.swapaxes(_rz(heading) @ _ry(pitch), -1, -2)
+    back = np.swapaxes(rot_z(heading) @ rot_y(pitch), -1, -2)
     v = np.einsum("nij,nj->ni", back, n13)
     roll = np.arctan2(v[:, 2], v[:, 1])
-    R_A = _rz(heading) @ _ry(pitch) @ _rx(roll)
+    R_A = euler_zyx_matrix(roll, pitch, heading)
     return R_A @ M.T
 
 
@@ -200,8 +163,8 @@ class LsqResult:
 def design(angles: np.ndarray, body: np.ndarray) -> np.ndarray:
     """Jacobian ∂(R·s_b,i)/∂(roll, pitch, heading) stacked over baselines: (N, 3m, 3)."""
     r, p, h = angles[:, 0], angles[:, 1], angles[:, 2]
-    Rx, Ry, Rz = _rx(r), _ry(p), _rz(h)
-    parts = (Rz @ Ry @ _drx(r), Rz @ _dry(p) @ Rx, _drz(h) @ Ry @ Rx)
+    Rx, Ry, Rz = rot_x(r), rot_y(p), rot_z(h)
+    parts = (Rz @ Ry @ d_rot_x(r), Rz @ d_rot_y(p) @ Rx, d_rot_z(h) @ Ry @ Rx)
     body = np.broadcast_to(body, (angles.shape[0],) + np.shape(body)[-2:])
     cols = [np.einsum("nij,nmj->nmi", d, body).reshape(angles.shape[0], -1) for d in parts]
     return np.stack(cols, axis=-1)
@@ -267,7 +230,7 @@ def lsq(nav: np.ndarray, body: np.ndarray, weight: np.ndarray | None, initial: n
         idx = np.flatnonzero(active)
         a = angles[idx]
         A = design(a, body)
-        model = np.einsum("nij,mj->nmi", attitude_matrix(a[:, 0], a[:, 1], a[:, 2]),
+        model = np.einsum("nij,mj->nmi", euler_zyx_matrix(a[:, 0], a[:, 1], a[:, 2]),
                           body).reshape(idx.size, -1)
         AtP = np.swapaxes(A, -1, -2) @ W[idx]
         N = AtP @ A
@@ -278,7 +241,7 @@ def lsq(nav: np.ndarray, body: np.ndarray, weight: np.ndarray | None, initial: n
         active[idx] = np.abs(delta).max(axis=1) >= threshold_rad
     converged = ~active
     A = design(angles, body)
-    R = attitude_matrix(angles[:, 0], angles[:, 1], angles[:, 2])
+    R = euler_zyx_matrix(angles[:, 0], angles[:, 1], angles[:, 2])
     v = obs - np.einsum("nij,mj->nmi", R, body).reshape(n, -1)
     AtP = np.swapaxes(A, -1, -2) @ W
     cov = np.linalg.inv(AtP @ A)

@@ -4,7 +4,12 @@ Example
 -------
 >>> table = ColumnsTable()
 >>> table.set_columns(project.get_table("results/latency/lines"),
-...                   units={"latency": "s"}, formats={"latency": "{:.4f}"})
+...                   units={"latency_s": "s"}, formats={"latency_s": "{:.4f}"},
+...                   labels={"latency_s": "Δt"}, tips={"latency_s": "line latency"})
+
+Headers are human labels (``labels``; the raw key only where none is given) with their
+unit, and carry a tooltip (``tips``). A missing value (NaN) shows blank, or the column's
+``missing`` text (``"—"``) where a blank would read as a fault.
 
 Cells are formatted only when Qt paints them, so a table of a million rows costs the
 arrays it holds and nothing more.
@@ -38,6 +43,8 @@ class ColumnsTableModel(QAbstractTableModel):
         self._columns: list[np.ndarray] = []
         self._headers: list[str] = []
         self._formats: list[str | None] = []
+        self._tips: list[str] = []
+        self._missing: list[str] = []
         self._rows = 0
 
     def set_columns(
@@ -45,22 +52,30 @@ class ColumnsTableModel(QAbstractTableModel):
         columns: Mapping[str, np.ndarray],
         units: Mapping[str, str] | None = None,
         formats: Mapping[str, str] | None = None,
+        labels: Mapping[str, str] | None = None,
+        tips: Mapping[str, str] | None = None,
+        missing: Mapping[str, str] | None = None,
     ) -> None:
-        """Show *columns* (equal-length 1-D arrays); *units*/*formats* keyed by name.
+        """Show *columns* (equal-length 1-D arrays); the mappings are keyed by name.
 
-        *formats* are ``str.format`` patterns such as ``"{:.3f}"``.
+        *formats* are ``str.format`` patterns such as ``"{:.3f}"``; *labels* the header
+        texts (the name where absent); *tips* header tooltips; *missing* the text of a
+        NaN cell (blank where absent).
         """
         arrays = {k: np.asarray(v) for k, v in columns.items()}
         lengths = {a.shape[0] if a.ndim else 1 for a in arrays.values()}
         if len(lengths) > 1:
             raise ValueError(f"columns of different lengths {sorted(lengths)}")
-        units = units or {}
-        formats = formats or {}
+        units, formats, labels = units or {}, formats or {}, labels or {}
+        tips, missing = tips or {}, missing or {}
         self.beginResetModel()
         self._names = list(arrays)
         self._columns = [a.reshape(-1) for a in arrays.values()]
-        self._headers = [f"{n} [{units[n]}]" if units.get(n) else n for n in self._names]
+        self._headers = [f"{labels.get(n, n)} [{units[n]}]" if units.get(n)
+                         else labels.get(n, n) for n in self._names]
         self._formats = [formats.get(n) for n in self._names]
+        self._tips = [tips.get(n, "") for n in self._names]
+        self._missing = [missing.get(n, "") for n in self._names]
         self._rows = lengths.pop() if lengths else 0
         self.endResetModel()
 
@@ -73,10 +88,10 @@ class ColumnsTableModel(QAbstractTableModel):
     def text(self, row: int, column: int) -> str:
         """The displayed text of one cell."""
         value = self._columns[column][row]
+        if isinstance(value, float | np.floating) and np.isnan(value):
+            return self._missing[column]  # a missing value: blank unless stated
         pattern = self._formats[column]
-        if pattern and not (isinstance(value, float | np.floating) and np.isnan(value)):
-            return pattern.format(value)
-        return _default_format(value)  # NaN (a missing value) is shown blank
+        return pattern.format(value) if pattern else _default_format(value)
 
     def data(self, index: _Index, role: int = Qt.ItemDataRole.DisplayRole):
         if not index.isValid():
@@ -90,11 +105,18 @@ class ColumnsTableModel(QAbstractTableModel):
         return None
 
     def headerData(self, section: int, orientation, role=Qt.ItemDataRole.DisplayRole):  # noqa: N802
+        horizontal = orientation == Qt.Orientation.Horizontal
+        if role == Qt.ItemDataRole.ToolTipRole and horizontal and section < len(self._tips):
+            return self._tips[section] or None
         if role != Qt.ItemDataRole.DisplayRole:
             return None
-        if orientation == Qt.Orientation.Horizontal:
+        if horizontal:
             return self._headers[section] if section < len(self._headers) else None
         return str(section + 1)
+
+    def header(self, column: int) -> str:
+        """The displayed header of *column* (label and unit)."""
+        return self._headers[column]
 
 
 class ColumnsTable(QTableView):
@@ -116,9 +138,12 @@ class ColumnsTable(QTableView):
         columns: Mapping[str, np.ndarray],
         units: Mapping[str, str] | None = None,
         formats: Mapping[str, str] | None = None,
+        labels: Mapping[str, str] | None = None,
+        tips: Mapping[str, str] | None = None,
+        missing: Mapping[str, str] | None = None,
     ) -> None:
         """Show *columns*; see :meth:`ColumnsTableModel.set_columns`."""
-        self.table_model.set_columns(columns, units, formats)
+        self.table_model.set_columns(columns, units, formats, labels, tips, missing)
         if self.table_model.rowCount() <= 1000:  # sizing reads every cell: only when cheap
             self.resizeColumnsToContents()
 

@@ -21,6 +21,7 @@ import pyqtgraph as pg
 from hydrosync_core.methods.gnss_attitude.params import GnssAttitudeParams
 from hydrosync_core.methods.gnss_attitude.pipeline import interval_statistics
 from hydrosync_core.methods.gnss_attitude.project_run import RESULT, restat
+from hydrosync_core.methods.gnss_attitude.report_section import LABELS, MOVING_REASON
 from hydrosync_core.params import stored
 from hydrosync_gui.analysis_panel import AnalysisPanel, plot_widget
 from hydrosync_gui.widgets import ColumnsTable
@@ -67,20 +68,34 @@ class GnssAttitudePanel(AnalysisPanel):
         self._tables = {}
         self._time = np.zeros(0)
 
-    def _show_stats(self, stats: dict) -> None:
-        table: dict[str, list] = {"method": []}
+    def _show_stats(self, stats: dict, static: bool) -> None:
+        """The statistics table as the PDF shows it: human labels, degrees to 4 decimals,
+        and "—" for the measured scatter without a static interval (on a moving platform it
+        is the motion, not the precision)."""
+        table: dict[str, list] = {"method": [], "epochs": []}
+        labels = {"method": "Method", "epochs": "Epochs"}
+        tips = {}
         for a in ANGLES:
             table[f"sd_{a}"], table[f"pred_{a}"] = [], []
-        table["epochs"] = []
+            labels[f"sd_{a}"] = f"σ {a}"
+            labels[f"pred_{a}"] = f"predicted σ {a}"
+            tips[f"sd_{a}"] = (f"standard deviation of the {a} over the static interval"
+                               if static else f"no static interval: {MOVING_REASON}")
+            tips[f"pred_{a}"] = f"1σ of the {a} predicted from the position covariance"
         for m, s in stats.items():
-            table["method"].append(m)
+            table["method"].append(LABELS.get(m, m))
             table["epochs"].append(s["epochs"])
             for a in ANGLES:
-                table[f"sd_{a}"].append(np.nan if s[a]["std"] is None else s[a]["std"])
+                sd = s[a]["std"]
+                table[f"sd_{a}"].append(np.nan if sd is None or not static else sd)
                 table[f"pred_{a}"].append(np.nan if s[a]["predicted"] is None
                                           else s[a]["predicted"])
+        angle_columns = [k for k in table if k[:3] in ("sd_", "pre")]
         self.stats.set_columns({k: np.asarray(v) for k, v in table.items()},
-                               units={k: "°" for k in table if k[:3] in ("sd_", "pre")})
+                               units={k: "°" for k in angle_columns},
+                               formats={k: "{:.4f}" for k in angle_columns},
+                               labels=labels, tips=tips,
+                               missing={k: "\u2014" for k in angle_columns})
         self.current_stats = stats
 
     # ------------------------------------------------------------ static interval
@@ -115,7 +130,7 @@ class GnssAttitudePanel(AnalysisPanel):
         finally:
             self._syncing = False
         start, end = self.static_interval()
-        self._show_stats(interval_statistics(self._time, self._tables, start, end))
+        self._show_stats(interval_statistics(self._time, self._tables, start, end), True)
 
     def _on_region_finished(self, region) -> None:
         if self._syncing:
@@ -157,7 +172,7 @@ class GnssAttitudePanel(AnalysisPanel):
                " over the <b>whole record</b>: on a moving platform the scatter is its motion, "
                "not the precision — drag the shaded region onto a period when the platform "
                "stood still."))
-        self._show_stats(stats)
+        self._show_stats(stats, p.static_start_s is not None or p.static_end_s is not None)
         lsq = project.get_table(f"{RESULT}/lsq")
         direct = project.get_table(f"{RESULT}/direct")
         t0 = float(np.nanmin(lsq["time"])) if lsq["time"].size else 0.0

@@ -124,3 +124,33 @@ def test_readonly_project_updates_the_table_only(qtbot, solved_project):
     panel.set_static_interval(t0 + 100.0, t0 + 160.0)
     assert panel.current_stats["lsq"]["epochs"] == pytest.approx(61, abs=2)
     assert project.attrs(project_run.RESULT)["statistics"] == before
+
+
+def test_statistics_table_reads_like_the_pdf(qtbot, solved_project):
+    """Human labels with units, never raw keys; without a static interval the measured
+    scatter is "—" with its reason, as in the PDF; with one, the numbers appear."""
+    from plugins.gnss_attitude.panel import GnssAttitudePanel
+
+    panel = GnssAttitudePanel()
+    qtbot.addWidget(panel)
+    panel.set_project(solved_project)
+    model = panel.stats.table_model
+    headers = [model.header(c) for c in range(model.columnCount())]
+    assert headers[:4] == ["Method", "Epochs", "σ heading [°]", "predicted σ heading [°]"]
+    assert not any("sd_" in h or "pred_" in h for h in headers)
+    methods = [model.text(r, 0) for r in range(model.rowCount())]
+    assert "least squares" in methods
+    sd = headers.index("σ heading [°]")
+    assert {model.text(r, sd) for r in range(model.rowCount())} == {"\u2014"}
+    assert "moving platform" in model.headerData(sd, Qt.Orientation.Horizontal,
+                                                 Qt.ItemDataRole.ToolTipRole)
+    pred = model.text(methods.index("least squares"), headers.index("predicted σ heading [°]"))
+    assert pred.replace(".", "", 1).isdigit() and len(pred.split(".")[1]) == 4
+    start, end = project_run_times(solved_project)
+    panel.set_static_interval(start, start + 0.3 * (end - start))
+    assert model.text(methods.index("least squares"), sd) != "\u2014"
+
+
+def project_run_times(project):
+    t = project.get_table(f"{project_run.RESULT}/lsq")["time"]
+    return float(np.nanmin(t)), float(np.nanmax(t))

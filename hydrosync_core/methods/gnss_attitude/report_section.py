@@ -21,6 +21,10 @@ from hydrosync_core.report.context import fmt
 HEADING = "Attitude from a GNSS antenna array"
 LABELS = {"lsq": "least squares", "direct": "direct (3 antennas)", "wahba": "Wahba (closed form)"}
 MAX_POINTS = 1500
+#: Why the measured scatter is not given without a static interval (panel and PDF).
+MOVING_REASON = ("the measured scatter of a moving platform is its motion, so only the "
+                 "prediction is given; set a static interval (static_start_s/static_end_s) "
+                 "on a period when it stood still")
 
 
 def _thin(n: int) -> np.ndarray:
@@ -82,9 +86,7 @@ def section(project, ctx) -> list:
             row += [fmt(s[a]["std"], 4) if static else "\u2014", fmt(s[a]["predicted"], 4)]
         rows.append(row)
     interval = (f"{fmt(params.static_start_s, 1)} … {fmt(params.static_end_s, 1)} s" if static
-                else "no static interval (the measured scatter of a moving platform is its "
-                "motion, so only the prediction is given; set static_start_s/static_end_s "
-                "to a period when it stood still)")
+                else f"no static interval ({MOVING_REASON})")
     out += ctx.table(["Method", "Epochs", "σ heading", "pred.", "σ pitch", "pred.", "σ roll",
                       "pred."], rows, col_widths=[0.22, 0.1] + [0.113] * 6,
                      caption=f"Standard deviation of the angles over {interval} and the "

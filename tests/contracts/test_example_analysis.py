@@ -58,3 +58,24 @@ def test_report_includes_the_example_section(with_example, project_path, tmp_pat
     assert main(["report", str(project_path), "--out", str(pdf)]) == 0
     text = "".join(page.extract_text() for page in PdfReader(pdf).pages)
     assert "Heave Statistics" in text and "Shortest period" in text
+
+
+def test_example_panel_runs_in_a_worker_and_says_the_project_changed(qtbot, project_path):
+    """Run from the panel: off the GUI thread, then ``sig_project_modified`` (the main
+    window marks the project changed, the other panels redraw) and the table is shown
+    with human labels."""
+    example_discovered()  # puts the example on sys.path
+    from hydrosync_heave_stats.panel import HeaveStatsPanel
+
+    panel = HeaveStatsPanel()
+    qtbot.addWidget(panel)
+    with Project.open(project_path) as project:
+        panel.set_project(project)
+        assert panel.run_button.isEnabled()
+        with qtbot.waitSignal(panel.sig_project_modified, timeout=60_000):
+            panel.run_button.click()
+        assert panel.wait_idle(30.0)
+        assert project.exists("results/heave_stats/lines")
+        model = panel.table.table_model
+        assert model.rowCount() == 13
+        assert model.header(2) == "RMS heave [m]"

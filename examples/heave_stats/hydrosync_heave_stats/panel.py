@@ -1,17 +1,26 @@
-"""The GUI panel: the schema's form, a Run button and the per-line table."""
+"""The GUI panel: the schema's form, Run, a summary and the per-line table.
+
+Built on :class:`hydrosync_gui.analysis_panel.AnalysisPanel`, which lays out the form
+(scrolling), Run and the summary, runs ``spec.run`` in a worker with progress and Cancel,
+emits ``sig_project_modified`` when the run has stored its results (so the main window
+marks the project changed and the other panels redraw) and then calls :meth:`redraw`.
+"""
 
 from __future__ import annotations
 
-from PySide6.QtWidgets import QLabel, QPushButton, QVBoxLayout
-
 from hydrosync_core.params import stored
-from hydrosync_gui.plugin_panel import PluginPanel
-from hydrosync_gui.widgets import ColumnsTable, ParamForm
-from hydrosync_heave_stats.method import RESULT, run
+from hydrosync_gui.analysis_panel import AnalysisPanel
+from hydrosync_gui.widgets import ColumnsTable
+from hydrosync_heave_stats.method import RESULT
 from hydrosync_heave_stats.params import HeaveStatsParams
 
+LABELS = {"name": "Line", "samples": "Samples", "rms_m": "RMS heave",
+          "significant_m": "Significant heave (4σ)", "peak_period_s": "Dominant period"}
+UNITS = {"rms_m": "m", "significant_m": "m", "peak_period_s": "s"}
+FORMATS = {"rms_m": "{:.3f}", "significant_m": "{:.3f}", "peak_period_s": "{:.1f}"}
 
-class HeaveStatsPanel(PluginPanel):
+
+class HeaveStatsPanel(AnalysisPanel):
     """Heave statistics per line."""
 
     def __init__(self, spec=None, parent=None) -> None:
@@ -19,34 +28,21 @@ class HeaveStatsPanel(PluginPanel):
             from hydrosync_heave_stats import SPEC
 
             spec = SPEC
-        super().__init__(spec, parent)
-        self.form = ParamForm(HeaveStatsParams)
-        self.run_button = QPushButton("Run")
-        self.run_button.clicked.connect(self._on_run)
-        self.summary = QLabel()
+        super().__init__(spec, HeaveStatsParams, parent)
         self.table = ColumnsTable()
-        layout = QVBoxLayout(self)
-        for widget in (self.form, self.run_button, self.summary, self.table):
-            layout.addWidget(widget)
+        self.add_tab("Lines", self.table)
+        self.build()
 
-    def refresh(self) -> None:
+    def redraw(self) -> None:
         project = self.project
         missing = self.spec.missing_inputs(project) if project is not None else ["a project"]
         self.run_button.setEnabled(not missing and not self.busy)
         if project is None or not project.exists(f"{RESULT}/lines"):
             self.summary.setText("Needs " + ", ".join(missing) if missing else "Press Run.")
-            self.table.set_columns({})
+            self.table.clear()
             return
         self.form.set_params(stored(HeaveStatsParams, project, RESULT))
-        self.table.set_columns(project.get_table(f"{RESULT}/lines"),
-                               units={"rms_m": "m", "significant_m": "m", "peak_period_s": "s"})
+        self.table.set_columns(project.get_table(f"{RESULT}/lines"), units=UNITS,
+                               formats=FORMATS, labels=LABELS,
+                               missing={"peak_period_s": "\u2014"})
         self.summary.setText("Heave statistics of the stored run.")
-
-    def _on_run(self) -> None:
-        project, params = self.project, self.form.params()
-        self.run_button.setEnabled(False)
-        self.start_work(lambda progress, cancel: run(project, params, progress, cancel),
-                        lambda _table: self.refresh(), label="Heave statistics")
-
-    def work_done(self) -> None:
-        self.run_button.setEnabled(True)

@@ -197,9 +197,9 @@ def register(sub: argparse._SubParsersAction) -> None:
     p.add_argument("project", help="project file (.h5)")
     for name, kind in kinds().items():
         flags = [f"--{name}"] + ([f"--{name.replace('_', '-')}"] if "_" in name else [])
+        more = f" (repeatable: {kind.repeatable})" if kind.repeatable else ""
         p.add_argument(*flags, dest=name, metavar="FILE", action="append",
-                       help=kind.description + " (repeatable where the kind collects several "
-                       "files, e.g. one .pos per antenna)")
+                       help=kind.description + more)
     p.add_argument(
         "--heave-positive", choices=("up", "down"), default=None,
         help="direction of positive heave in the --attitude CSV (formats.md: up) or the "

@@ -23,8 +23,12 @@ from hydrosync_core.params import add_cli_arguments, from_cli
 
 
 def _check_out(path: Path | None, option: str) -> None:
+    from hydrosync_core.atomic import check_writable
+
     if path is not None and not path.parent.resolve().is_dir():
         raise InputError(str(path), f"folder of {option} does not exist")
+    if path is not None:
+        check_writable(path, option)  # not a device, FIFO or /proc file; writable
 
 
 def _write(res, out: Path, forward_only: bool) -> None:

@@ -171,9 +171,21 @@ class Candidate:
     carry: dict[str, np.ndarray] | None = None
     last_quality: float = np.nan
 
+    lag_ref: float | None = None
+
+    def add_lag(self, lag: np.ndarray) -> None:
+        """Keep logger − sentence differences for the median, as float32 offsets from the
+        first block's median (4 bytes a record; the offsets are small, so exact to 1e-10 s)."""
+        if lag.size == 0:
+            return
+        if self.lag_ref is None:
+            self.lag_ref = float(np.median(lag))
+        self.lags.append((lag - self.lag_ref).astype(np.float32))
+
     def lag(self) -> float | None:
-        values = np.concatenate(self.lags) if self.lags else np.zeros(0)
-        return float(np.median(values)) if values.size else None
+        if not self.lags:
+            return None
+        return self.lag_ref + float(np.median(np.concatenate(self.lags).astype(np.float64)))
 
 
 @dataclass
@@ -329,7 +341,7 @@ def _gnss_records(state, cand, block, kinds, events, key, options):
     _count(cand.skipped, rec.skipped)
     cand.parsed += rec.index.size
     time, lag = record_times(state, block, events, rec.index, rec.tod)
-    cand.lags.append(lag)
+    cand.add_lag(lag)
     return {"pos": (rec.index + state.offset).astype(np.float64), "tod": rec.tod,
             "time": time, "height": rec.height, "lat": rec.lat, "lon": rec.lon,
             "quality": rec.quality}
@@ -373,7 +385,7 @@ def motion_block(state: FileState, cands: dict[str, Candidate]):
             cand.parsed += rec.index.size
             time, lag = record_times(state, block, events, rec.index, rec.tod,
                                      has_time=key == "PASHR")
-            cand.lags.append(lag)
+            cand.add_lag(lag)
             _emit(cand, {"time": time, "roll": rec.roll, "pitch": rec.pitch,
                          "heading": rec.heading, "heave": rec.heave})
 

@@ -46,12 +46,12 @@ def sentence_kinds(log: LogLines) -> dict[str, np.ndarray]:
     flip mid-file changes nothing); proprietary ones by address plus first field.
     """
     codes, names = nk.kind_codes(log.buf, log.start, log.end)
-    if not names:
-        return {}
-    order = np.argsort(codes, kind="stable")
-    bounds = np.searchsorted(codes[order], np.arange(len(names) + 1))
-    return {name: order[bounds[j]:bounds[j + 1]] for j, name in enumerate(names)
-            if bounds[j + 1] > bounds[j]}
+    if len(names) > 64:
+        order = np.argsort(codes, kind="stable")
+        bounds = np.searchsorted(codes[order], np.arange(len(names) + 1))
+        return {name: order[bounds[j]:bounds[j + 1]] for j, name in enumerate(names)
+                if bounds[j + 1] > bounds[j]}
+    return {name: np.flatnonzero(codes == j) for j, name in enumerate(names)}
 
 
 @dataclass

@@ -459,6 +459,44 @@ def _kinds(buf, starts, ends, width):
     return out
 
 
+@njit(cache=True, nogil=True)
+def _codes(keys, limit):
+    """Number the distinct rows of *keys* in order of appearance (at most *limit*; -1
+    beyond). The previous row's code is tried first: logs repeat kinds in runs."""
+    n, width = keys.shape
+    table = np.zeros((limit, width), np.uint8)
+    codes = np.empty(n, np.int64)
+    count = 0
+    last = -1
+    for r in range(n):
+        found = -1
+        if last >= 0:
+            same = True
+            for q in range(width):
+                if keys[r, q] != table[last, q]:
+                    same = False
+                    break
+            if same:
+                found = last
+        if found < 0:
+            for c in range(count):
+                same = True
+                for q in range(width):
+                    if keys[r, q] != table[c, q]:
+                        same = False
+                        break
+                if same:
+                    found = c
+                    break
+        if found < 0 and count < limit:
+            table[count, :] = keys[r, :]
+            found = count
+            count += 1
+        codes[r] = found
+        last = found
+    return codes, table[:count]
+
+
 def kind_codes(buf, starts, ends, width: int = 16) -> tuple[np.ndarray, list[str]]:
     """Sentence kind of every body (``GGA``, ``PTNL,GGK``, ``PSXN,23``, ``TSS1``…).
 
@@ -468,9 +506,12 @@ def kind_codes(buf, starts, ends, width: int = 16) -> tuple[np.ndarray, list[str
     """
     if starts.size == 0:
         return np.zeros(0, np.int64), []
-    keys = _kinds(buf, starts, ends, width).view(f"S{width}").reshape(starts.size)
-    names, codes = np.unique(keys, return_inverse=True)
-    return codes.reshape(-1), [v.decode("latin-1") for v in names]
+    keys = _kinds(buf, starts, ends, width)
+    codes, table = _codes(keys, 4096)
+    if (codes < 0).any():  # more than 4096 kinds: binary noise read as addresses
+        names, codes = np.unique(keys.view(f"S{width}").reshape(-1), return_inverse=True)
+        return codes.reshape(-1), [v.decode("latin-1") for v in names]
+    return codes, [bytes(row).rstrip(b"\0").decode("latin-1") for row in table]
 
 
 @njit(cache=True, nogil=True)

@@ -314,7 +314,7 @@ def _merge(buf, plain, first_line, kernel, found: _Found, counts, styles) -> Raw
             state[with_cs] = np.where(computed == stated, nk.CS_OK, nk.CS_BAD)
         states.append(state)
     line_no = np.concatenate([plain + first_line, np.asarray(found.line, np.int64)])
-    order = np.argsort(line_no, kind="stable")
+    order = np.argsort(line_no, kind="stable") if n_extra else slice(None)
     tss = np.concatenate([np.zeros(plain.size, bool),
                           np.array([b.startswith(":") for b in found.body], bool)])
     return RawBlock(

@@ -55,7 +55,8 @@ class MotionRecords:
 
     ``index`` sentence indices; ``tod`` UTC seconds of day (NaN when the format has no
     time); roll, pitch, heading in degrees (HydroSync conventions); heave in metres *as
-    written in the file* (sign applied later); ``sigma`` optional dict of σ arrays (deg).
+    written in the file* (sign applied later); ``sigma`` optional dict of σ arrays (deg;
+    not read: no analysis uses the sensor's stated σ).
     """
 
     source: str
@@ -86,8 +87,6 @@ def parse_pashr(log: LogLines, index: np.ndarray) -> MotionRecords:
     roll, r_empty, r_bad = nf.floats(log, index, 4)
     pitch, p_empty, p_bad = nf.floats(log, index, 5)
     heave, v_empty, v_bad = nf.floats(log, index, 6)
-    sig = {name: nf.floats(log, index, k)[0]
-           for name, k in (("sigma_roll", 7), ("sigma_pitch", 8), ("sigma_heading", 9))}
     keep = np.ones(index.size, dtype=bool)
     skipped: dict[str, int] = {}
     nf.drop(skipped, "empty attitude field", h_empty | r_empty | p_empty, keep)
@@ -96,7 +95,7 @@ def parse_pashr(log: LogLines, index: np.ndarray) -> MotionRecords:
     tod = nf.tod_field(log, index, 1)
     return MotionRecords(
         "PASHR", index[keep], tod[keep], roll[keep], pitch[keep], heading[keep],
-        heave[keep], {k: v[keep] for k, v in sig.items()}, skipped,
+        heave[keep], {}, skipped,
     )
 
 

@@ -19,6 +19,7 @@ import numpy as np
 from reportlab.graphics.shapes import Circle, Drawing, Group, Line, PolyLine, Rect, String
 from reportlab.lib import colors
 
+from hydrosync_core.report.decimate import RESOLUTION, cloud_indices, line_indices
 from hydrosync_core.report.styles import FONT, GRID, INK, MUTED, SERIES
 
 FONT_SIZE = 7.5
@@ -242,7 +243,10 @@ class Chart:
             xv, yv = px(s.x), py(s.y)
             keep = np.isfinite(xv) & np.isfinite(yv) & inside(xv, yv)
             r = s.size
-            for a, b in zip(xv[keep].tolist(), yv[keep].tolist(), strict=True):
+            xv, yv = xv[keep], yv[keep]
+            # Markers hidden under others add bytes and layout time, nothing to see.
+            shown = cloud_indices(xv, yv, max(RESOLUTION, r / 2))
+            for a, b in zip(xv[shown].tolist(), yv[shown].tolist(), strict=True):
                 if s.marker == "square":
                     g.add(Rect(a - r, b - r, 2 * r, 2 * r, fillColor=s.color, strokeColor=None))
                 else:
@@ -258,6 +262,9 @@ class Chart:
                 seg = seg[ok[seg]] if len(seg) else seg
                 if len(seg) < 2:
                     continue
+                # A long series as its per-column envelope: the same ink, a fraction of
+                # the vertices (a survey day drew as a solid block of 10⁵ segments).
+                seg = seg[line_indices(xv[seg], yv[seg])]
                 pts = np.column_stack([xv[seg], yv[seg]]).ravel().tolist()
                 g.add(PolyLine(pts, strokeColor=s.color, strokeWidth=s.width,
                                strokeDashArray=s.dash, strokeLineJoin=1))

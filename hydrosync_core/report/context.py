@@ -237,16 +237,21 @@ class ReportContext:
         return self.table(["Item", "Value"], rows, col_widths=[key_width, 1 - key_width],
                           numeric_from=2, caption=caption)
 
-    def params_table(self, params, caption: str) -> list[Flowable]:
+    def params_table(self, params, caption: str,
+                     blank: dict[str, str] | None = None) -> list[Flowable]:
         """Every processing parameter of *params* (a ``Params`` instance) with its unit.
 
         Labels, units and the meaning of "not set" come from the analysis's parameter
-        schema, so the report lists exactly what the method was run with.
+        schema, so the report lists exactly what the method was run with. A value that
+        prints empty (an empty text parameter) shows ``blank[name]`` — what the analysis
+        did instead — or "(empty)": a blank cell reads as a fault.
         """
         from hydrosync_core.params import describe
 
+        blank = blank or {}
         rows = [[Paragraph(esc(label), self.styles["Cell"]),
-                 Paragraph(esc(value), self.styles["Cell"]),
+                 Paragraph(esc(value if value.strip() else blank.get(name, "(empty)")),
+                           self.styles["Cell"]),
                  Paragraph(f"<font face='Courier' size='7'>{esc(name)}</font>",
                            self.styles["Cell"])]
                 for label, value, name in describe(type(params), params.to_dict())]

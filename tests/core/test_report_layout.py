@@ -82,3 +82,40 @@ def test_demo_report_has_no_nearly_empty_page(hydrosync_demo, tmp_path):
     assert layout.fill and layout.sparse_pages() == [], layout.fill
     assert len(layout.fill) <= 21
     assert max(layout.fill) <= 1.0 + 1e-9
+
+
+def test_envelope_is_each_slices_range_and_median():
+    """A long noisy angle: the band spans each slice's min..max and the line is its median
+    (an epoch-by-epoch line printed as a solid block, #26); a short series stays a line."""
+    import numpy as np
+
+    from hydrosync_core.report.charts import Chart
+
+    rng = np.random.default_rng(6)
+    t = np.arange(6000) * 0.1
+    y = np.sin(t / 60) + rng.normal(0, 0.4, t.size)
+    chart = Chart(width=200, height=150).envelope(t, y, label="pitch", bins=60)
+    band, line = chart.series
+    assert (band.kind, line.kind, line.label) == ("band", "line", "pitch")
+    slices = np.array_split(y, 60)  # 100 samples each, equal slices of t
+    np.testing.assert_allclose(band.y, [s.min() for s in slices])
+    np.testing.assert_allclose(band.y2, [s.max() for s in slices])
+    np.testing.assert_allclose(line.y, [np.sort(s)[49] for s in slices])
+    assert chart.drawing() is not None
+    short = Chart(width=200, height=150).envelope(t[:100], y[:100], bins=60)
+    assert [s.kind for s in short.series] == ["line"] and short.series[0].x.size == 100
+
+
+def test_an_empty_text_parameter_is_never_a_blank_cell():
+    """GNSS attitude printed "Direct-method antennas" with an empty value (#26)."""
+    from hydrosync_core.methods.gnss_attitude.params import GnssAttitudeParams
+
+    ctx = ReportContext(width=WIDTH)
+    table = _table(ctx.params_table(GnssAttitudeParams(), "p", blank={
+        "direct_antennas": "automatic"}))
+    values = {row[2].getPlainText(): row[1].getPlainText() for row in table._cellvalues[1:]}
+    assert values["direct_antennas"] == "automatic"
+    assert all(v.strip() for v in values.values())
+    plain = _table(ctx.params_table(GnssAttitudeParams(), "p"))
+    assert {row[2].getPlainText(): row[1].getPlainText()
+            for row in plain._cellvalues[1:]}["direct_antennas"] == "(empty)"

@@ -9,8 +9,8 @@ import numpy as np
 import pytest
 
 from hydrosync_core.methods.latency import estimate_latency, prefilter
-from hydrosync_core.methods.latency.api import implausible_uncertainty
 from hydrosync_core.methods.latency.demo import fill_demo
+from hydrosync_core.methods.latency.outcome import implausible_uncertainty
 from hydrosync_core.methods.latency.params import ESTIMATOR_CHOICES, LatencyParams
 from hydrosync_core.methods.latency.project_run import run, stored_params
 from hydrosync_core.methods.latency.report_section import summary

@@ -76,17 +76,21 @@ def finish(setup: Setup, p: LatencyParams, peaks: list, warnings_pre: list, prog
     r_max = np.array([pk.r_max for pk in peaks])
     lat = np.array([pk.latency_s for pk in peaks])
     unc = np.array([pk.uncertainty_s for pk in peaks])
+    paper = p.paper_screening()
+    # A peak on the scan's edge is no maximum of R: the paper's premise (a range that
+    # holds the delay) fails for that line, so no rule keeps it — the paper's included.
     usable = np.array([ln.usable and not pk.at_edge
                        for ln, pk in zip(prepared, peaks, strict=True)])
     used = select_lines(r_max, p.min_r, usable)
-    not_credible = implausible_uncertainty(unc, used, p.max_line_sigma_s)
+    not_credible = (np.zeros_like(used) if paper
+                    else implausible_uncertainty(unc, used, p.max_line_sigma_s))
     for i in np.flatnonzero(not_credible):
         prepared[i].warnings.append(
             f"line {names[i]}: its uncertainty {unc[i]:.3g} s is not credible (R peak too "
             f"flat to locate; limit {p.max_line_sigma_s:g} s or {RELATIVE_SIGMA_LIMIT:g}x the "
             "median line): not used (tick it to use it anyway)")
     used &= ~not_credible
-    outliers = find_outliers(lat, unc, used, p.outlier_k)
+    outliers = find_outliers(lat, unc, used, 0.0 if paper else p.outlier_k)
     if outliers.any():
         median = float(np.median(lat[used]))
         for i in np.flatnonzero(outliers):
@@ -125,8 +129,9 @@ def finish(setup: Setup, p: LatencyParams, peaks: list, warnings_pre: list, prog
         warnings += more
     converged = comb.n_used > 0
     best = f"{np.nanmax(r_max):.3f}" if np.any(np.isfinite(r_max)) else "none"
+    rules = "paper's line rule" if paper else "extended line screening"
     message = (f"{comb.n_used} of {len(names)} lines used ({p.weighting} weights, "
-               f"{p.estimator} estimator)" if converged
+               f"{p.estimator} estimator, {rules})" if converged
                else f"no line with R_max > {p.min_r}: best R_max {best}")
     report(progress, 1.0, "done")
     return LatencyResult(

@@ -24,6 +24,7 @@ from reportlab.platypus import (
 )
 from reportlab.platypus.flowables import HRFlowable
 
+from hydrosync_core.i18n import language, tr
 from hydrosync_core.report.charts import Chart
 from hydrosync_core.report.styles import FONT_BOLD, RULE, stylesheet, table_style
 
@@ -54,6 +55,17 @@ class Figure(Flowable):
     def draw(self) -> None:
         self.caption.drawOn(self.canv, 0, 0)
         self.drawing.drawOn(self.canv, 0, self._cap_h)
+
+
+def _translated_cell(cell):
+    """A table cell in the report's language: text and Paragraphs through the catalogue
+    (numbers have no entry and pass unchanged); other flowables as they are."""
+    if isinstance(cell, Paragraph):
+        source = getattr(cell, "text", None)
+        if isinstance(source, str) and tr(source) != source:
+            return Paragraph(tr(source), cell.style)
+        return cell
+    return cell if isinstance(cell, Flowable) else tr(str(cell))
 
 
 def markup(text: str) -> str:
@@ -125,21 +137,21 @@ class ReportContext:
     """
 
     width: float
-    styles: object = field(default_factory=stylesheet)
+    styles: object = field(default_factory=lambda: stylesheet(cjk=language() == "zh_CN"))
     figure_count: int = 0
     table_count: int = 0
 
     # ------------------------------------------------------------------ text
     def heading(self, text: str, level: int = 1) -> Paragraph:
         """A section (level 1) or sub-section (level 2) heading; appears in the outline."""
-        return Paragraph(esc(text), self.styles["H1" if level == 1 else "H2"])
+        return Paragraph(esc(tr(text)), self.styles["H1" if level == 1 else "H2"])
 
     def para(self, text: str, style: str = "Body") -> Paragraph:
         """A paragraph; *text* may use reportlab mark-up (``<b>``, ``<i>``, ``<sub>``)."""
-        return Paragraph(markup(text), self.styles[style])
+        return Paragraph(markup(tr(text)), self.styles[style])
 
     def warning(self, text: str) -> Paragraph:
-        return Paragraph(f"<b>Warning:</b> {esc(text)}", self.styles["Warning"])
+        return Paragraph(f"<b>{tr('Warning:')}</b> {esc(tr(text))}", self.styles["Warning"])
 
     def rule(self) -> HRFlowable:
         return HRFlowable(width="100%", thickness=0.5, color=RULE, spaceBefore=2, spaceAfter=6)
@@ -186,9 +198,9 @@ class ReportContext:
                                         leading=font_size + 2)
         head_right = ParagraphStyle("CellBoldRight", parent=head_style, alignment=TA_RIGHT)
         right = [i >= numeric_from and i not in left_columns for i in range(n_cols)]
-        head = [Paragraph(markup(h), head_right if right[i] else head_style)
+        head = [Paragraph(markup(tr(h)), head_right if right[i] else head_style)
                 for i, h in enumerate(header)]
-        data = [head] + [[c if isinstance(c, Flowable) else str(c) for c in r] for r in rows]
+        data = [head] + [[_translated_cell(c) for c in r] for r in rows]
         style = table_style(len(data), numeric_from=numeric_from, zebra=zebra,
                             font_size=font_size)
         style += [("ALIGN", (c, 0), (c, -1), "LEFT") for c in left_columns]
@@ -201,7 +213,8 @@ class ReportContext:
         if caption:
             self.table_count += 1
             # TableCaption keeps with the table (at least its first rows).
-            out.append(Paragraph(f"<b>Table {self.table_count}.</b> {markup(caption)}",
+            out.append(Paragraph(f"<b>{tr(f'Table {self.table_count}.')}</b> "
+                                 f"{markup(tr(caption))}",
                                  self.styles["TableCaption"]))
         out.append(table)
         out.append(Spacer(1, 8))
@@ -210,8 +223,8 @@ class ReportContext:
     def key_values(self, pairs: Sequence[tuple[str, str]], caption: str | None = None,
                    key_width: float = 0.38) -> list[Flowable]:
         """A two-column table of labelled values (no numeric alignment)."""
-        rows = [[Paragraph(esc(k), self.styles["Cell"]), Paragraph(esc(v), self.styles["Cell"])]
-                for k, v in pairs]
+        rows = [[Paragraph(esc(tr(k)), self.styles["Cell"]),
+                 Paragraph(esc(tr(v)), self.styles["Cell"])] for k, v in pairs]
         return self.table(["Item", "Value"], rows, col_widths=[key_width, 1 - key_width],
                           numeric_from=2, caption=caption)
 
@@ -223,8 +236,8 @@ class ReportContext:
         """
         from hydrosync_core.params import describe
 
-        rows = [[Paragraph(esc(label), self.styles["Cell"]),
-                 Paragraph(esc(value), self.styles["Cell"]),
+        rows = [[Paragraph(esc(tr(label)), self.styles["Cell"]),
+                 Paragraph(esc(tr(value)), self.styles["Cell"]),
                  Paragraph(f"<font face='Courier' size='7'>{esc(name)}</font>",
                            self.styles["Cell"])]
                 for label, value, name in describe(type(params), params.to_dict())]
@@ -253,6 +266,6 @@ class ReportContext:
                 x += chart.width
         else:
             drawing = content.drawing() if isinstance(content, Chart) else content
-        cap = Paragraph(f"<b>Figure {self.figure_count}.</b> {markup(caption)}",
+        cap = Paragraph(f"<b>{tr(f'Figure {self.figure_count}.')}</b> {markup(tr(caption))}",
                         self.styles["Caption"])
         return Figure(drawing, cap)

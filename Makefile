@@ -15,7 +15,14 @@ $(STAMP): pyproject.toml scripts/install-system-packages.sh
 	$(BIN)/python -m hydrosync_core.warmup
 	touch $(STAMP)
 
-install: $(STAMP)
+# Qt translation catalogues: resources/i18n/*.ts compiled to .qm (the GUI compiles a
+# missing or older one itself, into the temporary folder).
+QM := $(patsubst %.ts,%.qm,$(wildcard resources/i18n/*.ts))
+
+%.qm: %.ts $(STAMP)
+	$(BIN)/pyside6-lrelease -silent $< -qm $@
+
+install: $(STAMP) $(QM)
 
 demo: $(STAMP)
 	$(BIN)/hydrosync demo --out $(OUT)

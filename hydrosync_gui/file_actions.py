@@ -25,6 +25,7 @@ from hydrosync_core.importers.kinds import import_file, kinds
 from hydrosync_core.project import Project
 from hydrosync_core.project.subtree import copy_subtree
 from hydrosync_gui.dialogs import ImportDialog
+from hydrosync_gui.i18n import current as current_language
 
 log = logging.getLogger("hydrosync_gui.file")
 
@@ -246,10 +247,11 @@ class FileActions:
             self.export_report(path, build_report)
 
     def export_report(self, path: str, build_report: Callable) -> None:
-        """Run ``build_report(project, path[, progress, cancel])`` in a worker."""
+        """Run ``build_report(project, path[, progress, cancel, lang])`` in a worker."""
         project = self.project
         accepted = inspect.signature(build_report).parameters
         cancellable = "cancel" in accepted
+        language = current_language()
 
         def work(progress, cancel):
             kwargs = {}
@@ -257,6 +259,8 @@ class FileActions:
                 kwargs["progress"] = progress
             if cancellable:
                 kwargs["cancel"] = cancel
+            if "lang" in accepted:  # the report follows the workbench's language
+                kwargs["lang"] = language
             return build_report(project, path, **kwargs)
 
         def done(_result) -> None:

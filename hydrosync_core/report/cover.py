@@ -19,6 +19,7 @@ from reportlab.platypus.tableofcontents import TableOfContents
 
 from hydrosync_core import __version__
 from hydrosync_core.errors import InputError
+from hydrosync_core.i18n import tr
 from hydrosync_core.plugins.spec import PluginSpec, load_object
 from hydrosync_core.project.vessel import vessel_config
 from hydrosync_core.provenance import OUT_OF_DATE, stale_reasons
@@ -94,7 +95,7 @@ def cover_page(project, ctx: ReportContext, statuses: list[ModuleStatus]) -> lis
         vessel = f"(the vessel sheet could not be read: {exc.message})"
     now = datetime.now(UTC).strftime("%Y-%m-%d %H:%M:%S UTC")
     path = project.path
-    run = [s.spec.name for s in statuses if s.has_results]
+    run = [tr(s.spec.name) for s in statuses if s.has_results]
     pairs = [
         ("Project", project.name or "(unnamed)"),
         ("Vessel", vessel),
@@ -110,11 +111,11 @@ def cover_page(project, ctx: ReportContext, statuses: list[ModuleStatus]) -> lis
     ]
     out: list[Flowable] = [
         Spacer(1, 30 * mm),
-        Paragraph("Sensor calibration report", ctx.styles["Title"]),
-        Paragraph(esc(project.name or "Untitled project"), ctx.styles["Subtitle"]),
+        Paragraph(tr("Sensor calibration report"), ctx.styles["Title"]),
+        Paragraph(esc(project.name or tr("Untitled project")), ctx.styles["Subtitle"]),
     ]
-    rows = [[Paragraph(f"<b>{esc(k)}</b>", ctx.styles["Cell"]),
-             Paragraph(esc(v), ctx.styles["Cell"])] for k, v in pairs]
+    rows = [[Paragraph(f"<b>{esc(tr(k))}</b>", ctx.styles["Cell"]),
+             Paragraph(esc(tr(v)), ctx.styles["Cell"])] for k, v in pairs]
     info = Table(rows, colWidths=[0.26 * ctx.width, 0.74 * ctx.width], hAlign="LEFT")
     info.setStyle(TableStyle([
         ("VALIGN", (0, 0), (-1, -1), "TOP"),
@@ -128,8 +129,9 @@ def cover_page(project, ctx: ReportContext, statuses: list[ModuleStatus]) -> lis
 
 
 def _signoff(ctx: ReportContext) -> Table:
-    head = ["", "Name", "Signature", "Date"]
-    rows = [head] + [[role, "", "", ""] for role in ("Prepared by", "Checked by", "Approved by")]
+    head = ["", tr("Name"), tr("Signature"), tr("Date")]
+    rows = [head] + [[tr(role), "", "", ""]
+                     for role in ("Prepared by", "Checked by", "Approved by")]
     table = Table(rows, colWidths=[0.2 * ctx.width, 0.3 * ctx.width, 0.3 * ctx.width,
                                    0.2 * ctx.width], rowHeights=[14] + [26] * 3, hAlign="LEFT")
     table.setStyle(TableStyle([
@@ -147,8 +149,8 @@ def contents_and_summary(ctx: ReportContext, statuses: list[ModuleStatus]) -> li
     toc = TableOfContents()
     toc.levelStyles = [ctx.styles["TOC1"], ctx.styles["TOC2"]]
     toc.dotsMinLevel = 0
-    out: list[Flowable] = [Paragraph("Contents", ctx.styles["ContentsTitle"]), toc, Spacer(1, 10),
-                           ctx.heading("Summary of results")]
+    out: list[Flowable] = [Paragraph(tr("Contents"), ctx.styles["ContentsTitle"]), toc,
+                           Spacer(1, 10), ctx.heading("Summary of results")]
     if not statuses:
         out.append(ctx.para("No analysis module is installed."))
         return out
@@ -157,17 +159,17 @@ def contents_and_summary(ctx: ReportContext, statuses: list[ModuleStatus]) -> li
     for s in statuses:
         if rows:
             separators.append(("LINEABOVE", (0, len(rows) + 1), (-1, len(rows) + 1), 0.5, RULE))
-        name = Paragraph(f"<b>{esc(s.spec.name)}</b>"
-                         + (f"<br/><font color='#b00000'><b>{OUT_OF_DATE.upper()}</b></font>"
+        name = Paragraph(f"<b>{esc(tr(s.spec.name))}</b>"
+                         + (f"<br/><font color='#b00000'><b>{tr(OUT_OF_DATE.upper())}</b></font>"
                             if s.stale else ""), ctx.styles["Cell"])
         if not s.has_results:
-            rows.append([name, Paragraph(esc(s.reason), ctx.styles["Cell"]), "", ""])
+            rows.append([name, Paragraph(esc(tr(s.reason)), ctx.styles["Cell"]), "", ""])
             continue
         if not s.rows:
             rows.append([name, "results stored", "see section", ""])
         for i, (quantity, value) in enumerate(s.rows):
-            rows.append([name if i == 0 else "", Paragraph(esc(quantity), ctx.styles["Cell"]),
-                         Paragraph(esc(value), ctx.styles["Cell"]),
+            rows.append([name if i == 0 else "", Paragraph(esc(tr(quantity)), ctx.styles["Cell"]),
+                         Paragraph(esc(tr(value)), ctx.styles["Cell"]),
                          Paragraph(f"{esc(utc_text(s.run_utc))}<br/>HydroSync "
                                    f"{esc(s.software_version)}" if i == 0 else "",
                                    ctx.styles["Small"])])

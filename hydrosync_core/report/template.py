@@ -14,6 +14,7 @@ from reportlab.lib.units import mm
 from reportlab.pdfgen import canvas as rl_canvas
 from reportlab.platypus import BaseDocTemplate, Frame, KeepTogether, PageTemplate, Paragraph, Table
 
+from hydrosync_core.i18n import tr
 from hydrosync_core.progress import check_cancel, report
 from hydrosync_core.report.styles import ACCENT, FONT, MUTED, PAGE_MARGIN, RULE
 
@@ -50,7 +51,7 @@ class NumberedCanvas(rl_canvas.Canvas):
         self.saveState()
         self.setFont(FONT, 8)
         self.setFillColor(MUTED)
-        self.drawRightString(width - PAGE_MARGIN, 10 * mm, f"page {page} of {total}")
+        self.drawRightString(width - PAGE_MARGIN, 10 * mm, tr(f"page {page} of {total}"))
         self.drawString(PAGE_MARGIN, 10 * mm, self.footer_left[:110])
         if page > 1:  # the cover carries its own title block
             self.drawString(PAGE_MARGIN, height - 11 * mm, self.header_text[:120])

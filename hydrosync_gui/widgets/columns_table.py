@@ -20,8 +20,10 @@ from __future__ import annotations
 from collections.abc import Mapping
 
 import numpy as np
-from PySide6.QtCore import QAbstractTableModel, QModelIndex, QPersistentModelIndex, Qt
+from PySide6.QtCore import QAbstractTableModel, QEvent, QModelIndex, QPersistentModelIndex, Qt
 from PySide6.QtWidgets import QAbstractItemView, QHeaderView, QTableView, QWidget
+
+from hydrosync_gui.i18n import tr
 
 _Index = QModelIndex | QPersistentModelIndex
 
@@ -107,16 +109,16 @@ class ColumnsTableModel(QAbstractTableModel):
     def headerData(self, section: int, orientation, role=Qt.ItemDataRole.DisplayRole):  # noqa: N802
         horizontal = orientation == Qt.Orientation.Horizontal
         if role == Qt.ItemDataRole.ToolTipRole and horizontal and section < len(self._tips):
-            return self._tips[section] or None
+            return tr(self._tips[section]) or None
         if role != Qt.ItemDataRole.DisplayRole:
             return None
         if horizontal:
-            return self._headers[section] if section < len(self._headers) else None
+            return tr(self._headers[section]) if section < len(self._headers) else None
         return str(section + 1)
 
     def header(self, column: int) -> str:
-        """The displayed header of *column* (label and unit)."""
-        return self._headers[column]
+        """The displayed header of *column* (label and unit, in the workbench's language)."""
+        return tr(self._headers[column])
 
 
 class ColumnsTable(QTableView):
@@ -132,6 +134,12 @@ class ColumnsTable(QTableView):
         self.verticalHeader().setDefaultSectionSize(20)
         self.horizontalHeader().setSectionResizeMode(QHeaderView.ResizeMode.Interactive)
         self.horizontalHeader().setStretchLastSection(True)
+
+    def changeEvent(self, event) -> None:  # noqa: N802 (Qt API)
+        if event.type() == QEvent.Type.LanguageChange and self.table_model.columnCount():
+            self.table_model.headerDataChanged.emit(Qt.Orientation.Horizontal, 0,
+                                                    self.table_model.columnCount() - 1)
+        super().changeEvent(event)
 
     def set_columns(
         self,

@@ -1,0 +1,1166 @@
+<?xml version="1.0" encoding="utf-8"?>
+<!DOCTYPE TS>
+<TS version="2.1" language="zh_CN" sourcelanguage="en">
+    <context>
+        <name>hydrosync</name>
+        <message>
+            <source>(not saved)</source>
+            <translation>(未保存)</translation>
+        </message>
+        <message>
+            <source>(not set in the vessel sheet)</source>
+            <translation>(船舶参数表中未设置)</translation>
+        </message>
+        <message>
+            <source>(unnamed)</source>
+            <translation>(未命名)</translation>
+        </message>
+        <message>
+            <source>3 × the median INS interval</source>
+            <translation>3 × 惯导数据间隔中值</translation>
+        </message>
+        <message>
+            <source>A-priori σ horizontal</source>
+            <translation>水平先验 σ</translation>
+        </message>
+        <message>
+            <source>A-priori σ vertical</source>
+            <translation>垂直先验 σ</translation>
+        </message>
+        <message>
+            <source>Accelerometer bias σ</source>
+            <translation>加速度计零偏 σ</translation>
+        </message>
+        <message>
+            <source>Accelerometer block</source>
+            <translation>加速度计分块</translation>
+        </message>
+        <message>
+            <source>Accepted solutions</source>
+            <translation>采用的解</translation>
+        </message>
+        <message>
+            <source>Angle tolerance</source>
+            <translation>角度收敛阈值</translation>
+        </message>
+        <message>
+            <source>Appendix: data sources</source>
+            <translation>附录:数据来源</translation>
+        </message>
+        <message>
+            <source>Appendix: data sources, vessel offsets and survey lines</source>
+            <translation>附录:数据来源、船体偏移量与测线</translation>
+        </message>
+        <message>
+            <source>Approved by</source>
+            <translation>审批</translation>
+        </message>
+        <message>
+            <source>Band refit width</source>
+            <translation>带状重拟合宽度</translation>
+        </message>
+        <message>
+            <source>Baseline length tolerance</source>
+            <translation>基线长度容差</translation>
+        </message>
+        <message>
+            <source>Build tolerance (orientation)</source>
+            <translation>建造容差(姿态)</translation>
+        </message>
+        <message>
+            <source>Build tolerance (position)</source>
+            <translation>建造容差(位置)</translation>
+        </message>
+        <message>
+            <source>Checked by</source>
+            <translation>校核</translation>
+        </message>
+        <message>
+            <source>Cluster distance (laser)</source>
+            <translation>聚类距离(激光)</translation>
+        </message>
+        <message>
+            <source>Cluster distance (multibeam)</source>
+            <translation>聚类距离(多波束)</translation>
+        </message>
+        <message>
+            <source>Coarse setup accuracy (angles)</source>
+            <translation>粗标定精度(角度)</translation>
+        </message>
+        <message>
+            <source>Coarse setup accuracy (lever arm)</source>
+            <translation>粗标定精度(杆臂)</translation>
+        </message>
+        <message>
+            <source>Computed (UTC, version)</source>
+            <translation>计算时间(UTC,版本)</translation>
+        </message>
+        <message>
+            <source>Constraint interval</source>
+            <translation>约束间隔</translation>
+        </message>
+        <message>
+            <source>Contents</source>
+            <translation>目录</translation>
+        </message>
+        <message>
+            <source>Convergence threshold</source>
+            <translation>收敛阈值</translation>
+        </message>
+        <message>
+            <source>Covariance step</source>
+            <translation>协方差步长</translation>
+        </message>
+        <message>
+            <source>Crop tolerance</source>
+            <translation>裁剪容差</translation>
+        </message>
+        <message>
+            <source>DBSCAN neighbourhood of the laser face clusters</source>
+            <translation>激光面聚类的 DBSCAN 邻域</translation>
+        </message>
+        <message>
+            <source>DBSCAN neighbourhood of the sounding face clusters</source>
+            <translation>测深点面聚类的 DBSCAN 邻域</translation>
+        </message>
+        <message>
+            <source>Date</source>
+            <translation>日期</translation>
+        </message>
+        <message>
+            <source>Detrend degree</source>
+            <translation>去趋势阶数</translation>
+        </message>
+        <message>
+            <source>Direct-method antennas</source>
+            <translation>直接法天线</translation>
+        </message>
+        <message>
+            <source>Down-sample above</source>
+            <translation>超过此点数则降采样</translation>
+        </message>
+        <message>
+            <source>Epoch matching</source>
+            <translation>历元匹配</translation>
+        </message>
+        <message>
+            <source>Estimator</source>
+            <translation>估计方法</translation>
+        </message>
+        <message>
+            <source>Face edge margin</source>
+            <translation>面边缘余量</translation>
+        </message>
+        <message>
+            <source>Fewest vectors</source>
+            <translation>最少矢量数</translation>
+        </message>
+        <message>
+            <source>File</source>
+            <translation>文件</translation>
+        </message>
+        <message>
+            <source>Final values</source>
+            <translation>最终值</translation>
+        </message>
+        <message>
+            <source>Flag above σ (angles)</source>
+            <translation>σ 超过此值则标记(角度)</translation>
+        </message>
+        <message>
+            <source>Flag above σ (lever arm)</source>
+            <translation>σ 超过此值则标记(杆臂)</translation>
+        </message>
+        <message>
+            <source>GNSS Attitude</source>
+            <translation>GNSS 定姿</translation>
+        </message>
+        <message>
+            <source>GNSS antenna phase centre relative to the motion sensor, body frame x forward, y starboard, z down; default: from the vessel sheet</source>
+            <translation>GNSS 天线相位中心相对于姿态传感器的位置,载体坐标系 x 向前、y 向右舷、z 向下;默认取自船舶参数表</translation>
+        </message>
+        <message>
+            <source>GNSS error correlation time</source>
+            <translation>GNSS 误差相关时间</translation>
+        </message>
+        <message>
+            <source>GNSS innovation gate</source>
+            <translation>GNSS 新息门限</translation>
+        </message>
+        <message>
+            <source>GNSS noise model</source>
+            <translation>GNSS 噪声模型</translation>
+        </message>
+        <message>
+            <source>GNSS σ horizontal</source>
+            <translation>GNSS 水平 σ</translation>
+        </message>
+        <message>
+            <source>GNSS σ scale</source>
+            <translation>GNSS σ 比例因子</translation>
+        </message>
+        <message>
+            <source>GNSS σ vertical</source>
+            <translation>GNSS 垂直 σ</translation>
+        </message>
+        <message>
+            <source>GNSS/INS Smoother</source>
+            <translation>GNSS/INS 组合导航平滑</translation>
+        </message>
+        <message>
+            <source>Gap factor</source>
+            <translation>间断因子</translation>
+        </message>
+        <message>
+            <source>Gauss–Markov correlation time of the INS attitude errors</source>
+            <translation>惯导姿态误差的高斯–马尔可夫相关时间</translation>
+        </message>
+        <message>
+            <source>Gravity</source>
+            <translation>重力</translation>
+        </message>
+        <message>
+            <source>Gyro bias σ</source>
+            <translation>陀螺零偏 σ</translation>
+        </message>
+        <message>
+            <source>Heave sign in file</source>
+            <translation>文件中的升沉符号</translation>
+        </message>
+        <message>
+            <source>Huber threshold</source>
+            <translation>Huber 阈值</translation>
+        </message>
+        <message>
+            <source>IMU mounting angles</source>
+            <translation>IMU 安装角</translation>
+        </message>
+        <message>
+            <source>INS accuracy (1σ)</source>
+            <translation>惯导精度(1σ)</translation>
+        </message>
+        <message>
+            <source>INS error correlation time</source>
+            <translation>惯导误差相关时间</translation>
+        </message>
+        <message>
+            <source>INS gap</source>
+            <translation>惯导数据间断</translation>
+        </message>
+        <message>
+            <source>INS intervals longer than this are gaps: pings inside are dropped</source>
+            <translation>惯导数据间隔超过此值即为间断:其中的 ping 被舍弃</translation>
+        </message>
+        <message>
+            <source>INS roll, pitch and heading accuracy from its specification, propagated into the σ of the result (0: the INS is taken as exact and σ are a lower bound)</source>
+            <translation>惯导横摇、纵摇和航向的标称精度,传播到结果的 σ 中(0:视惯导为无误差,σ 为下限)</translation>
+        </message>
+        <message>
+            <source>Import warning</source>
+            <translation>导入警告</translation>
+        </message>
+        <message>
+            <source>Item</source>
+            <translation>项目</translation>
+        </message>
+        <message>
+            <source>Iteration and adjustment</source>
+            <translation>迭代与平差</translation>
+        </message>
+        <message>
+            <source>Key results of every module. Values are the final, corrected values; uncertainties are one standard deviation unless stated.</source>
+            <translation>各模块的主要结果。数值为最终改正后的值;除另有说明外,不确定度均为一倍标准差。</translation>
+        </message>
+        <message>
+            <source>Largest credible line σ</source>
+            <translation>测线 σ 可信上限</translation>
+        </message>
+        <message>
+            <source>Largest spread</source>
+            <translation>最大离散度</translation>
+        </message>
+        <message>
+            <source>Laser crop tolerance</source>
+            <translation>激光裁剪容差</translation>
+        </message>
+        <message>
+            <source>Laser voxel size</source>
+            <translation>激光体素大小</translation>
+        </message>
+        <message>
+            <source>Latency</source>
+            <translation>时间延迟</translation>
+        </message>
+        <message>
+            <source>Learning rate α</source>
+            <translation>学习率 α</translation>
+        </message>
+        <message>
+            <source>Levelling time</source>
+            <translation>调平时间</translation>
+        </message>
+        <message>
+            <source>Lever arm (antenna − motion sensor)</source>
+            <translation>杆臂(天线 − 姿态传感器)</translation>
+        </message>
+        <message>
+            <source>Lever-arm tolerance</source>
+            <translation>杆臂收敛阈值</translation>
+        </message>
+        <message>
+            <source>Line</source>
+            <translation>测线</translation>
+        </message>
+        <message>
+            <source>Log records</source>
+            <translation>日志记录</translation>
+        </message>
+        <message>
+            <source>Mahony Ki</source>
+            <translation>Mahony Ki</translation>
+        </message>
+        <message>
+            <source>Mahony Kp</source>
+            <translation>Mahony Kp</translation>
+        </message>
+        <message>
+            <source>Max iterations / round</source>
+            <translation>每轮最大迭代次数</translation>
+        </message>
+        <message>
+            <source>Max points per face</source>
+            <translation>每面最多点数</translation>
+        </message>
+        <message>
+            <source>Max rounds</source>
+            <translation>最大轮数</translation>
+        </message>
+        <message>
+            <source>Maximum iterations</source>
+            <translation>最大迭代次数</translation>
+        </message>
+        <message>
+            <source>Min points per face</source>
+            <translation>每面最少点数</translation>
+        </message>
+        <message>
+            <source>Minimum epochs per line</source>
+            <translation>每条测线最少历元数</translation>
+        </message>
+        <message>
+            <source>Module</source>
+            <translation>模块</translation>
+        </message>
+        <message>
+            <source>Modules with results</source>
+            <translation>有结果的模块</translation>
+        </message>
+        <message>
+            <source>Monte-Carlo runs</source>
+            <translation>蒙特卡洛次数</translation>
+        </message>
+        <message>
+            <source>Motion constraints</source>
+            <translation>运动约束</translation>
+        </message>
+        <message>
+            <source>Moving alignment speed</source>
+            <translation>动态对准速度</translation>
+        </message>
+        <message>
+            <source>Moving alignment σ</source>
+            <translation>动态对准 σ</translation>
+        </message>
+        <message>
+            <source>NHC σ</source>
+            <translation>非完整约束 σ</translation>
+        </message>
+        <message>
+            <source>Name</source>
+            <translation>姓名</translation>
+        </message>
+        <message>
+            <source>Name (--param)</source>
+            <translation>名称(--param)</translation>
+        </message>
+        <message>
+            <source>No analysis module is installed.</source>
+            <translation>未安装分析模块。</translation>
+        </message>
+        <message>
+            <source>No imported file is recorded in the project (its raw data were written by a simulator or an older HydroSync).</source>
+            <translation>项目中没有导入文件的记录(其原始数据由模拟器或旧版 HydroSync 写入)。</translation>
+        </message>
+        <message>
+            <source>Non-holonomic constraint</source>
+            <translation>非完整约束</translation>
+        </message>
+        <message>
+            <source>Notes</source>
+            <translation>备注</translation>
+        </message>
+        <message>
+            <source>OUT OF DATE</source>
+            <translation>已过期</translation>
+        </message>
+        <message>
+            <source>Outlier limit</source>
+            <translation>粗差限值</translation>
+        </message>
+        <message>
+            <source>Parameter</source>
+            <translation>参数</translation>
+        </message>
+        <message>
+            <source>Points kept for views</source>
+            <translation>视图保留点数</translation>
+        </message>
+        <message>
+            <source>Pool Calibration</source>
+            <translation>水池检校</translation>
+        </message>
+        <message>
+            <source>Prepared by</source>
+            <translation>编制</translation>
+        </message>
+        <message>
+            <source>Project</source>
+            <translation>项目</translation>
+        </message>
+        <message>
+            <source>Project created</source>
+            <translation>项目创建时间</translation>
+        </message>
+        <message>
+            <source>Project file</source>
+            <translation>项目文件</translation>
+        </message>
+        <message>
+            <source>Project file SHA-256</source>
+            <translation>项目文件 SHA-256</translation>
+        </message>
+        <message>
+            <source>Project last saved</source>
+            <translation>项目最后保存时间</translation>
+        </message>
+        <message>
+            <source>Quantity</source>
+            <translation>量</translation>
+        </message>
+        <message>
+            <source>R threshold</source>
+            <translation>R 阈值</translation>
+        </message>
+        <message>
+            <source>RANSAC threshold (laser)</source>
+            <translation>RANSAC 阈值(激光)</translation>
+        </message>
+        <message>
+            <source>RANSAC threshold (multibeam)</source>
+            <translation>RANSAC 阈值(多波束)</translation>
+        </message>
+        <message>
+            <source>RTS smoothing</source>
+            <translation>RTS 反向平滑</translation>
+        </message>
+        <message>
+            <source>Re-crop RANSAC threshold</source>
+            <translation>再裁剪 RANSAC 阈值</translation>
+        </message>
+        <message>
+            <source>Re-crop tolerance</source>
+            <translation>再裁剪容差</translation>
+        </message>
+        <message>
+            <source>Records</source>
+            <translation>记录数</translation>
+        </message>
+        <message>
+            <source>Rejection floor</source>
+            <translation>剔除下限</translation>
+        </message>
+        <message>
+            <source>Rejection limit</source>
+            <translation>剔除限值</translation>
+        </message>
+        <message>
+            <source>Report date</source>
+            <translation>报告日期</translation>
+        </message>
+        <message>
+            <source>Reported method</source>
+            <translation>报告方法</translation>
+        </message>
+        <message>
+            <source>Scale-factor states</source>
+            <translation>比例因子状态</translation>
+        </message>
+        <message>
+            <source>Scan range</source>
+            <translation>搜索范围</translation>
+        </message>
+        <message>
+            <source>Segmentation</source>
+            <translation>分割</translation>
+        </message>
+        <message>
+            <source>Sensor</source>
+            <translation>传感器</translation>
+        </message>
+        <message>
+            <source>Sensor calibration report</source>
+            <translation>传感器检校报告</translation>
+        </message>
+        <message>
+            <source>Set aside</source>
+            <translation>剔除</translation>
+        </message>
+        <message>
+            <source>Shortest vector</source>
+            <translation>最短矢量</translation>
+        </message>
+        <message>
+            <source>Shot window</source>
+            <translation>观测窗口</translation>
+        </message>
+        <message>
+            <source>Signature</source>
+            <translation>签名</translation>
+        </message>
+        <message>
+            <source>Skip at line start</source>
+            <translation>测线起始跳过</translation>
+        </message>
+        <message>
+            <source>Smoother node interval</source>
+            <translation>平滑节点间隔</translation>
+        </message>
+        <message>
+            <source>Software</source>
+            <translation>软件</translation>
+        </message>
+        <message>
+            <source>Source</source>
+            <translation>来源</translation>
+        </message>
+        <message>
+            <source>Standstill accel std</source>
+            <translation>静止加速度标准差</translation>
+        </message>
+        <message>
+            <source>Standstill rate</source>
+            <translation>静止角速率</translation>
+        </message>
+        <message>
+            <source>Standstill window</source>
+            <translation>静止检测窗口</translation>
+        </message>
+        <message>
+            <source>Start – end</source>
+            <translation>开始 – 结束</translation>
+        </message>
+        <message>
+            <source>Static alignment time</source>
+            <translation>静态对准时间</translation>
+        </message>
+        <message>
+            <source>Static interval end</source>
+            <translation>静态区间结束</translation>
+        </message>
+        <message>
+            <source>Static interval start</source>
+            <translation>静态区间开始</translation>
+        </message>
+        <message>
+            <source>Step</source>
+            <translation>步长</translation>
+        </message>
+        <message>
+            <source>Stop threshold ε</source>
+            <translation>停止阈值 ε</translation>
+        </message>
+        <message>
+            <source>Summary of results</source>
+            <translation>结果汇总</translation>
+        </message>
+        <message>
+            <source>Survey lines</source>
+            <translation>测线</translation>
+        </message>
+        <message>
+            <source>Survey lines (raw/lines) with their start and end times.</source>
+            <translation>测线(raw/lines)及其开始和结束时间。</translation>
+        </message>
+        <message>
+            <source>The project holds no vessel offset sheet.</source>
+            <translation>项目中没有船体偏移量表。</translation>
+        </message>
+        <message>
+            <source>Tilt Alignment</source>
+            <translation>倾斜测量初始对准</translation>
+        </message>
+        <message>
+            <source>Time span</source>
+            <translation>时间跨度</translation>
+        </message>
+        <message>
+            <source>Time tags</source>
+            <translation>时间标签</translation>
+        </message>
+        <message>
+            <source>Tip tolerance</source>
+            <translation>杆尖容差</translation>
+        </message>
+        <message>
+            <source>Untitled project</source>
+            <translation>未命名项目</translation>
+        </message>
+        <message>
+            <source>Value</source>
+            <translation>值</translation>
+        </message>
+        <message>
+            <source>Vessel</source>
+            <translation>船舶</translation>
+        </message>
+        <message>
+            <source>Vessel offset sheet as stored in the project (body frame, relative to the reference point).</source>
+            <translation>项目中保存的船体偏移量表(载体坐标系,相对于参考点)。</translation>
+        </message>
+        <message>
+            <source>Vessel offsets</source>
+            <translation>船体偏移量</translation>
+        </message>
+        <message>
+            <source>Warn above |correlation|</source>
+            <translation>|相关系数| 超过此值则警告</translation>
+        </message>
+        <message>
+            <source>Warning:</source>
+            <translation>警告:</translation>
+        </message>
+        <message>
+            <source>Water-line margin</source>
+            <translation>水线余量</translation>
+        </message>
+        <message>
+            <source>Weights</source>
+            <translation>权</translation>
+        </message>
+        <message>
+            <source>ZUPT speed limit</source>
+            <translation>零速修正速度限值</translation>
+        </message>
+        <message>
+            <source>ZUPT σ</source>
+            <translation>零速修正 σ</translation>
+        </message>
+        <message>
+            <source>Zero-velocity updates</source>
+            <translation>零速修正</translation>
+        </message>
+        <message>
+            <source>a lever-arm component whose σ exceeds this is flagged as poorly determined (default: half an accuracy target of 2 mm)</source>
+            <translation>σ 超过此值的杆臂分量标记为确定性差(默认:2 mm 精度目标的一半)</translation>
+        </message>
+        <message>
+            <source>a line whose own uncertainty exceeds this, or 10x the median of the selected lines, is not used (its R peak is too flat to locate); a warning names it</source>
+            <translation>自身不确定度超过此值或超过所选测线中值 10 倍的测线不予采用(其 R 峰过于平坦,无法定位);警告中列出该测线</translation>
+        </message>
+        <message>
+            <source>a vector is rejected when its own heading departs from the median by more than this many robust σ (or the floor below, whichever is larger)</source>
+            <translation>矢量自身航向偏离中值超过此倍数的稳健 σ(或下方的下限,取较大者)时被剔除</translation>
+        </message>
+        <message>
+            <source>a-priori 1σ of one horizontal antenna coordinate (RTK fixed: about 1 cm)</source>
+            <translation>单个天线水平坐标的先验 1σ(RTK 固定解:约 1 cm)</translation>
+        </message>
+        <message>
+            <source>a-priori 1σ of the antenna height</source>
+            <translation>天线高程的先验 1σ</translation>
+        </message>
+        <message>
+            <source>an angle whose σ exceeds this is flagged as poorly determined (default: half an accuracy target of 0.02°, so an unflagged angle meets it at about 2σ)</source>
+            <translation>σ 超过此值的角度标记为确定性差(默认:0.02° 精度目标的一半,未标记的角度约在 2σ 水平满足目标)</translation>
+        </message>
+        <message>
+            <source>an antenna whose measured distances to the others disagree with the known geometry by more than this is dropped for that epoch</source>
+            <translation>某天线到其他天线的实测距离与已知几何相差超过此值时,该历元舍弃此天线</translation>
+        </message>
+        <message>
+            <source>an interval longer than this many median intervals between solved epochs counts as a gap</source>
+            <translation>解算历元之间的间隔超过中值间隔的此倍数即视为间断</translation>
+        </message>
+        <message>
+            <source>an interval longer than this many median intervals is a data gap</source>
+            <translation>间隔超过中值间隔的此倍数即为数据间断</translation>
+        </message>
+        <message>
+            <source>angle iteration + lever-arm step repeated at most this often</source>
+            <translation>角度迭代 + 杆臂步骤最多重复的次数</translation>
+        </message>
+        <message>
+            <source>angle iterations per round at most</source>
+            <translation>每轮最多角度迭代次数</translation>
+        </message>
+        <message>
+            <source>antenna positions used: fixed = RTK fixed only (Q=1), float = fixed or float (Q&lt;=2), any = every solution</source>
+            <translation>采用的天线位置:fixed = 仅 RTK 固定解(Q=1),float = 固定解或浮点解(Q&lt;=2),any = 全部解</translation>
+        </message>
+        <message>
+            <source>auto: check the file's GNSS σ against the data (forward innovations normalised by their predicted std: RMS 0.8-1.25, autocorrelation at 1 s below 0.3) and, if they disagree, re-estimate — white σ scaled to the residual scatter, the rest as a time-correlated (Gauss-Markov) GNSS error with τ by maximum likelihood — reported with the result; file: the file's σ (× the scale) as white noise</source>
+            <translation>auto:用数据检验文件中的 GNSS σ(前向新息除以其预测标准差:RMS 0.8-1.25,1 s 处自相关低于 0.3),不符时重新估计——白噪声 σ 按残差离散缩放,其余作为时间相关(高斯-马尔可夫)GNSS 误差,τ 用最大似然估计——随结果一并报告;file:文件中的 σ(× 比例因子)作为白噪声</translation>
+        </message>
+        <message>
+            <source>crop tolerance around the faces once the first solution is known</source>
+            <translation>得到首次解后标靶面周围的裁剪容差</translation>
+        </message>
+        <message>
+            <source>degree of the polynomial (tide, squat) removed from each line's heights</source>
+            <translation>从每条测线高程中去除的多项式(潮位、下坐)阶数</translation>
+        </message>
+        <message>
+            <source>end (time of week) of the statistics interval</source>
+            <translation>统计区间的结束时刻(周内秒)</translation>
+        </message>
+        <message>
+            <source>estimate gyro and accelerometer scale factors (21 states) besides the 15 states of Wang et al. (position, velocity, attitude, gyro and accelerometer biases)</source>
+            <translation>在 Wang 等的 15 维状态(位置、速度、姿态、陀螺和加速度计零偏)之外估计陀螺和加速度计比例因子(21 维状态)</translation>
+        </message>
+        <message>
+            <source>faces with fewer points in either cloud are not used</source>
+            <translation>任一点云中点数少于此值的面不予采用</translation>
+        </message>
+        <message>
+            <source>faces with more points are randomly thinned (seeded)</source>
+            <translation>点数更多的面随机抽稀(固定随机种子)</translation>
+        </message>
+        <message>
+            <source>factor on the std of the GNSS file</source>
+            <translation>GNSS 文件标准差的乘数</translation>
+        </message>
+        <message>
+            <source>final values from the joint least-squares adjustment (with σ) or from the patent's iteration</source>
+            <translation>最终值取自联合最小二乘平差(带 σ)或专利的迭代法</translation>
+        </message>
+        <message>
+            <source>first epoch</source>
+            <translation>首历元</translation>
+        </message>
+        <message>
+            <source>gradient descent stops when its step |L| is below this</source>
+            <translation>梯度下降步长 |L| 小于此值时停止</translation>
+        </message>
+        <message>
+            <source>gradient-descent iterations before it is reported not converged</source>
+            <translation>报告未收敛之前的梯度下降迭代次数</translation>
+        </message>
+        <message>
+            <source>gradient-descent step factor on the normalised J(ψ) (whose curvature is about 2: 0.5 is a Newton step, above 1 diverges)</source>
+            <translation>归一化 J(ψ) 上的梯度下降步长因子(其曲率约为 2:0.5 即牛顿步,大于 1 发散)</translation>
+        </message>
+        <message>
+            <source>heading-only methods: the tip is the mean of the tilt-compensated epochs of the last seconds of the record (the pole held on the point after the swing)</source>
+            <translation>仅航向的方法:杆尖取记录最后若干秒倾斜补偿后历元的平均(摆动后对中杆停在点上)</translation>
+        </message>
+        <message>
+            <source>how far from the design faces laser points are kept</source>
+            <translation>保留距设计面多远以内的激光点</translation>
+        </message>
+        <message>
+            <source>how far from the design faces soundings are first looked for (halved twice while the coarse setup is aligned); at least the error of the coarse setup at the target</source>
+            <translation>首先在距设计面多远以内寻找测深点(粗标定对准过程中减半两次);至少为粗标定在标靶处的误差</translation>
+        </message>
+        <message>
+            <source>how well a below-water block is oriented relative to its above-water twin (± per axis, half-width; σ = tol/√3), propagated into the σ of the result</source>
+            <translation>水下块体相对于其水上对应块体的姿态精度(每轴 ±,半宽;σ = tol/√3),传播到结果的 σ 中</translation>
+        </message>
+        <message>
+            <source>how well a below-water block is placed relative to its above-water twin (± per axis, half-width; σ = tol/√3): the design translation between twins is known only to this, and it is propagated into the σ of the result</source>
+            <translation>水下块体相对于其水上对应块体的位置精度(每轴 ±,半宽;σ = tol/√3):对应块体间的设计平移量仅精确到此值,并传播到结果的 σ 中</translation>
+        </message>
+        <message>
+            <source>initial roll/pitch/heading std of a moving alignment</source>
+            <translation>动态对准的初始横摇/纵摇/航向标准差</translation>
+        </message>
+        <message>
+            <source>integral gain of the Mahony levelling filter (gyro-bias estimate)</source>
+            <translation>Mahony 调平滤波器的积分增益(陀螺零偏估计)</translation>
+        </message>
+        <message>
+            <source>joint method: a-priori 1σ of the accelerometer bias; a swing in one plane cannot tell it from the tilt out of that plane, so this bound matters</source>
+            <translation>联合法:加速度计零偏的先验 1σ;单平面内的摆动无法将其与该平面外的倾斜区分,因此此约束很重要</translation>
+        </message>
+        <message>
+            <source>joint method: a-priori 1σ of the gyro bias (datasheet bias stability)</source>
+            <translation>联合法:陀螺零偏的先验 1σ(器件手册的零偏稳定性)</translation>
+        </message>
+        <message>
+            <source>joint method: accelerometers enter in Hann windows twice this long, one every this many seconds (overlapping by half)</source>
+            <translation>联合法:加速度计以两倍此长度的 Hann 窗进入,每隔此秒数一个(重叠一半)</translation>
+        </message>
+        <message>
+            <source>land vehicles: lateral and vertical velocity in the vehicle frame are zero (Wang et al.); leave off for vessels, which sway and heave</source>
+            <translation>陆地车辆:车体坐标系中横向和垂向速度为零(Wang 等);船舶有横荡和升沉,应关闭</translation>
+        </message>
+        <message>
+            <source>largest mean angular-rate magnitude over the window</source>
+            <translation>窗口内平均角速率幅值的上限</translation>
+        </message>
+        <message>
+            <source>largest specific-force standard deviation (any axis) over the window</source>
+            <translation>窗口内比力标准差(任一轴)的上限</translation>
+        </message>
+        <message>
+            <source>laser clouds with more points are voxel down-sampled</source>
+            <translation>点数更多的激光点云进行体素降采样</translation>
+        </message>
+        <message>
+            <source>laser points and soundings stored for the plan views of panel and report</source>
+            <translation>为面板和报告平面图保存的激光点和测深点</translation>
+        </message>
+        <message>
+            <source>last epoch</source>
+            <translation>末历元</translation>
+        </message>
+        <message>
+            <source>least-squares iterations per epoch before it is flagged not converged</source>
+            <translation>每历元最小二乘迭代次数,超过则标记为未收敛</translation>
+        </message>
+        <message>
+            <source>lines whose best correlation R_max is above this are used (Qi et al. 2010: 0.85)</source>
+            <translation>最大相关系数 R_max 高于此值的测线予以采用(Qi 等 2010:0.85)</translation>
+        </message>
+        <message>
+            <source>lines whose delay departs from the median by more than K robust σ are not used (0 disables; needs 4 or more lines)</source>
+            <translation>时间延迟偏离中值超过 K 倍稳健 σ 的测线不予采用(0 为关闭;需 4 条及以上测线)</translation>
+        </message>
+        <message>
+            <source>lines with fewer GNSS epochs are not used</source>
+            <translation>GNSS 历元数少于此值的测线不予采用</translation>
+        </message>
+        <message>
+            <source>longest time between stored smoother nodes (the smoothed correction is interpolated between nodes)</source>
+            <translation>保存的平滑节点之间的最长时间(节点之间对平滑改正进行插值)</translation>
+        </message>
+        <message>
+            <source>magnitude of gravity at the point</source>
+            <translation>该点的重力大小</translation>
+        </message>
+        <message>
+            <source>model the GNSS error as white plus a Gauss-Markov error of this correlation time (white part scaled from the residuals, the rest of the file's σ correlated); 0 = chosen by the auto check</source>
+            <translation>将 GNSS 误差建模为白噪声加上此相关时间的高斯-马尔可夫误差(白噪声部分按残差缩放,文件 σ 的其余部分为相关误差);0 = 由 auto 检验选定</translation>
+        </message>
+        <message>
+            <source>never (the project exists only in memory)</source>
+            <translation>从未保存(项目仅在内存中)</translation>
+        </message>
+        <message>
+            <source>no ZUPT while the filter speed exceeds this (a quiet IMU at constant speed is not a standstill)</source>
+            <translation>滤波速度超过此值时不做零速修正(匀速运动中平稳的 IMU 并非静止)</translation>
+        </message>
+        <message>
+            <source>none</source>
+            <translation>无</translation>
+        </message>
+        <message>
+            <source>normal gravity at the latitude (geodetic input), else 9.80665</source>
+            <translation>该纬度的正常重力(大地坐标输入),否则为 9.80665</translation>
+        </message>
+        <message>
+            <source>not run (inputs present)</source>
+            <translation>未运行(输入已具备)</translation>
+        </message>
+        <message>
+            <source>not saved</source>
+            <translation>未保存</translation>
+        </message>
+        <message>
+            <source>not set</source>
+            <translation>未设置</translation>
+        </message>
+        <message>
+            <source>observation vectors (antenna displacements between two epochs) shorter than this horizontally are not used: their heading is dominated by noise</source>
+            <translation>水平长度短于此值的观测矢量(两历元间的天线位移)不予采用:其航向主要由噪声决定</translation>
+        </message>
+        <message>
+            <source>out of date</source>
+            <translation>已过期</translation>
+        </message>
+        <message>
+            <source>pairs of parameters more correlated than this are flagged</source>
+            <translation>相关性高于此值的参数对予以标记</translation>
+        </message>
+        <message>
+            <source>per-antenna horizontal position noise (1σ) for the precision prediction and for weights = apriori (Liu et al.: about 0.6 cm)</source>
+            <translation>每个天线的水平位置噪声(1σ),用于精度预测以及 weights = apriori(Liu 等:约 0.6 cm)</translation>
+        </message>
+        <message>
+            <source>per-antenna vertical position noise (1σ) for the precision prediction and for weights = apriori</source>
+            <translation>每个天线的垂直位置噪声(1σ),用于精度预测以及 weights = apriori</translation>
+        </message>
+        <message>
+            <source>ping-time block of the cluster-robust check that inflates σ when residuals of neighbouring soundings are correlated</source>
+            <translation>聚类稳健检验的 ping 时间分块:相邻测深点残差相关时放大 σ</translation>
+        </message>
+        <message>
+            <source>pitch [°]</source>
+            <translation>纵摇 [°]</translation>
+        </message>
+        <message>
+            <source>plane inlier distance of the tight re-crop</source>
+            <translation>精细再裁剪的平面内点距离</translation>
+        </message>
+        <message>
+            <source>plane inlier distance, laser points</source>
+            <translation>平面内点距离,激光点</translation>
+        </message>
+        <message>
+            <source>plane inlier distance, soundings (coarse setup)</source>
+            <translation>平面内点距离,测深点(粗标定)</translation>
+        </message>
+        <message>
+            <source>point-to-plane residuals beyond this are down-weighted (robust adjustment)</source>
+            <translation>超过此值的点到平面残差降权(稳健平差)</translation>
+        </message>
+        <message>
+            <source>points this close to a face's edges are not used</source>
+            <translation>距面边缘此距离以内的点不予采用</translation>
+        </message>
+        <message>
+            <source>points this close to the water level are not used</source>
+            <translation>距水面此距离以内的点不予采用</translation>
+        </message>
+        <message>
+            <source>position covariance of each antenna: file = the std columns of the .pos files (a-priori σ when absent), apriori = the a-priori σ above</source>
+            <translation>各天线的位置协方差:file = .pos 文件中的标准差列(缺失时用先验 σ),apriori = 上方的先验 σ</translation>
+        </message>
+        <message>
+            <source>proportional gain of the Mahony levelling filter</source>
+            <translation>Mahony 调平滤波器的比例增益</translation>
+        </message>
+        <message>
+            <source>qi2010 = the published method (correlation of the raw series); qi2010_antialias = the same after low-passing the high-rate heave to the GNSS band; weighted = coherence-weighted cross-correlation (lower error with coloured sensor noise); auto = qi2010 or weighted, whichever has the smaller uncertainty (see docs/benchmarks.md)</source>
+            <translation>qi2010 = 论文方法(原始序列的相关);qi2010_antialias = 先将高频升沉低通滤波到 GNSS 频带后同上;weighted = 相干加权互相关(传感器有色噪声下误差更小);auto = qi2010 与 weighted 中不确定度较小者(见 docs/benchmarks.md)</translation>
+        </message>
+        <message>
+            <source>range of delays tried; symmetric by default since the sign is not known</source>
+            <translation>试算的时间延迟范围;符号未知,故默认对称</translation>
+        </message>
+        <message>
+            <source>reject a GNSS fix whose normalised innovation squared exceeds this (3 degrees of freedom: 16.3 = 99.9 %); 0 = accept all</source>
+            <translation>归一化新息平方超过此值的 GNSS 定位予以剔除(3 个自由度:16.3 = 99.9 %);0 = 全部接受</translation>
+        </message>
+        <message>
+            <source>result written as tip and heading misalignment: joint = batch least squares over the whole swing (attitude, tip, IMU biases; best in the benchmark), mbgd/bgd/sgd = Li et al.'s gradient descent, svd = Wahba, closed_form = exact heading-only least squares; all are always computed</source>
+            <translation>作为杆尖和航向失准角输出的结果:joint = 全摆动过程的批量最小二乘(姿态、杆尖、IMU 零偏;基准测试中最优),mbgd/bgd/sgd = Li 等的梯度下降,svd = Wahba 法,closed_form = 仅航向的精确最小二乘;所有方法总会计算</translation>
+        </message>
+        <message>
+            <source>results stored</source>
+            <translation>结果已保存</translation>
+        </message>
+        <message>
+            <source>roll [°]</source>
+            <translation>横摇 [°]</translation>
+        </message>
+        <message>
+            <source>roll, pitch, yaw of the IMU body frame relative to the vehicle frame: C(vehicle ← IMU) = Rz(yaw)·Ry(pitch)·Rx(roll), e.g. yaw 90 when the IMU's x axis points to the vehicle's starboard (the NHC applies in the vehicle frame)</source>
+            <translation>IMU 载体坐标系相对于车体坐标系的横摇、纵摇、艏摇:C(车体 ← IMU) = Rz(艏摇)·Ry(纵摇)·Rx(横摇),例如 IMU 的 x 轴指向车辆右舷时艏摇为 90(非完整约束作用于车体坐标系)</translation>
+        </message>
+        <message>
+            <source>rounds stop when the lever arm changes less than this</source>
+            <translation>杆臂变化小于此值时停止迭代轮次</translation>
+        </message>
+        <message>
+            <source>run the Rauch-Tung-Striebel backward pass after the forward filter</source>
+            <translation>前向滤波之后进行 Rauch-Tung-Striebel 反向平滑</translation>
+        </message>
+        <message>
+            <source>scan step of the delay (Qi et al. 2010: 0.005 s); refined below the step</source>
+            <translation>时间延迟的搜索步长(Qi 等 2010:0.005 s);在步长以下进一步细化</translation>
+        </message>
+        <message>
+            <source>seconds of unsteady run-in skipped at each line start (Qi et al. 2010 skip ≥ 60 s; 0 when the line times already exclude it)</source>
+            <translation>每条测线起始处跳过的不稳定上线段秒数(Qi 等 2010 跳过 ≥ 60 s;测线时间已排除时为 0)</translation>
+        </message>
+        <message>
+            <source>see section</source>
+            <translation>见相应章节</translation>
+        </message>
+        <message>
+            <source>simulated swings like this one (pole, rate, tilt, noise) solved by every method for the error histogram and tip scatter; 0 = none</source>
+            <translation>与本次相同(对中杆、速率、倾斜、噪声)的模拟摆动,用每种方法解算,得到误差直方图和杆尖离散;0 = 不做</translation>
+        </message>
+        <message>
+            <source>solution written to attitude.csv and summarised: lsq = iterative weighted least squares (Liu et al.), direct = three-antenna direct method (Liu et al.), wahba = closed-form optimal rotation; all three are always computed</source>
+            <translation>写入 attitude.csv 并汇总的解:lsq = 迭代加权最小二乘(Liu 等),direct = 三天线直接法(Liu 等),wahba = 闭合形式最优旋转;三种方法总会计算</translation>
+        </message>
+        <message>
+            <source>standard deviation of the lateral and vertical vehicle-frame velocity</source>
+            <translation>车体坐标系横向和垂向速度的标准差</translation>
+        </message>
+        <message>
+            <source>standard deviation of the zero velocity</source>
+            <translation>零速的标准差</translation>
+        </message>
+        <message>
+            <source>start (time of week) of the interval whose scatter gives the statistics table</source>
+            <translation>统计表所用离散区间的开始时刻(周内秒)</translation>
+        </message>
+        <message>
+            <source>symmetric band (in robust σ) around each face's own plane kept by the refit (0: off)</source>
+            <translation>重拟合在各面自身平面两侧保留的对称带宽(以稳健 σ 计;0:关闭)</translation>
+        </message>
+        <message>
+            <source>the covariance is propagated over blocks of IMU epochs this long (the mechanisation runs at every IMU epoch)</source>
+            <translation>协方差按此长度的 IMU 历元块传播(力学编排在每个 IMU 历元进行)</translation>
+        </message>
+        <message>
+            <source>the first seconds of the record, pole held near vertical, used by the Mahony filter to level the IMU before the swing</source>
+            <translation>记录开头对中杆近乎竖直的若干秒,Mahony 滤波器在摆动前用其调平 IMU</translation>
+        </message>
+        <message>
+            <source>the least-squares iteration stops when every angle correction is below this</source>
+            <translation>所有角度改正数都小于此值时最小二乘迭代停止</translation>
+        </message>
+        <message>
+            <source>the patent's iteration stops when every angle correction is below this</source>
+            <translation>所有角度改正数都小于此值时专利的迭代停止</translation>
+        </message>
+        <message>
+            <source>three antenna names 'A1,A2,A3' for the direct method (A1→A2 the first baseline); empty = the largest triangle among the antennas available</source>
+            <translation>直接法的三个天线名 'A1,A2,A3'(A1→A2 为第一条基线);空 = 可用天线中最大的三角形</translation>
+        </message>
+        <message>
+            <source>time between NHC/ZUPT updates (also sets the smoother's node density)</source>
+            <translation>非完整约束/零速修正更新的时间间隔(也决定平滑节点密度)</translation>
+        </message>
+        <message>
+            <source>times of the antenna files are rounded to this before epochs are matched</source>
+            <translation>历元匹配前将天线文件的时间取整到此值</translation>
+        </message>
+        <message>
+            <source>vectors within this of the median heading are always kept</source>
+            <translation>航向与中值相差在此值以内的矢量总是保留</translation>
+        </message>
+        <message>
+            <source>vessel sheet</source>
+            <translation>船舶参数表</translation>
+        </message>
+        <message>
+            <source>vessel sheet (gnss − motion)</source>
+            <translation>船舶参数表(gnss − 姿态传感器)</translation>
+        </message>
+        <message>
+            <source>voxel down-sampling of very large laser clouds (0: off)</source>
+            <translation>超大激光点云的体素降采样(0:关闭)</translation>
+        </message>
+        <message>
+            <source>warn when the horizontal circle holding the tip with 99 % probability is wider than this (a swing nearly in one plane leaves the accelerometer bias along the swing axis mixed with the tilt out of the plane)</source>
+            <translation>以 99 % 概率包含杆尖的水平圆宽于此值时警告(近乎单平面的摆动会使沿摆动轴的加速度计零偏与平面外倾斜混叠)</translation>
+        </message>
+        <message>
+            <source>weights of the line mean: r = R_max of each line (Qi et al. 2010), inverse_variance = 1/uncertainty²</source>
+            <translation>测线均值的权:r = 各测线的 R_max(Qi 等 2010),inverse_variance = 1/不确定度²</translation>
+        </message>
+        <message>
+            <source>when the per-vector headings spread more than this (robust σ), the vector set is refused as faulty (noise or IMU fault): undetermined</source>
+            <translation>各矢量航向的离散(稳健 σ)超过此值时,该矢量集视为异常(噪声或 IMU 故障)而拒绝:无法确定</translation>
+        </message>
+        <message>
+            <source>window of the IMU statistics that detect a standstill</source>
+            <translation>检测静止的 IMU 统计窗口</translation>
+        </message>
+        <message>
+            <source>without an initial attitude and no usable static start: the heading is the GNSS course at the first epoch faster than this</source>
+            <translation>无初始姿态且无可用静止起始段时:航向取首个速度超过此值历元的 GNSS 航迹向</translation>
+        </message>
+        <message>
+            <source>without an initial attitude in the configuration: length of the quiet start used for levelling and gyrocompassing</source>
+            <translation>配置中无初始姿态时:用于调平和陀螺寻北的平稳起始段长度</translation>
+        </message>
+        <message>
+            <source>x fwd [m]</source>
+            <translation>x 向前 [m]</translation>
+        </message>
+        <message>
+            <source>y stbd [m]</source>
+            <translation>y 右舷 [m]</translation>
+        </message>
+        <message>
+            <source>yaw [°]</source>
+            <translation>艏摇 [°]</translation>
+        </message>
+        <message>
+            <source>z down [m]</source>
+            <translation>z 向下 [m]</translation>
+        </message>
+        <message>
+            <source>zero velocity when the IMU is quiet and the filter speed is below the ZUPT speed</source>
+            <translation>IMU 平稳且滤波速度低于零速修正速度时视为零速</translation>
+        </message>
+        <message>
+            <source>± accuracy of the coarse boresight (installation drawing); an angle the data determine no better than this is undetermined and keeps its coarse value</source>
+            <translation>粗安装偏角的 ± 精度(安装图);数据确定精度不优于此值的角度视为无法确定,保留其粗值</translation>
+        </message>
+        <message>
+            <source>± accuracy of the coarse lever arm; a component the data determine no better than this is undetermined and keeps its coarse value</source>
+            <translation>粗杆臂的 ± 精度;数据确定精度不优于此值的分量视为无法确定,保留其粗值</translation>
+        </message>
+        <message>
+            <source>σ ping block</source>
+            <translation>σ ping 分块</translation>
+        </message>
+    </context>
+    <context>
+        <name>hydrosync-patterns</name>
+        <message>
+            <source>Figure {0}.</source>
+            <translation>图 {0}.</translation>
+        </message>
+        <message>
+            <source>HydroSync report — {0}</source>
+            <translation>HydroSync 报告 — {0}</translation>
+        </message>
+        <message>
+            <source>Modules not run (their sections are omitted): {0}.</source>
+            <translation>未运行的模块(其章节从略):{0}。</translation>
+        </message>
+        <message>
+            <source>OUT OF DATE: these results no longer match the project — {0}. Run the analysis again before signing.</source>
+            <translation>已过期:这些结果与项目不再一致 — {0}。签署前请重新运行分析。</translation>
+        </message>
+        <message>
+            <source>Table {0}.</source>
+            <translation>表 {0}.</translation>
+        </message>
+        <message>
+            <source>The data-sources appendix could not be produced: {0}.</source>
+            <translation>无法生成数据来源附录:{0}。</translation>
+        </message>
+        <message>
+            <source>The {0} section could not be produced: {1}. The results stored in the project are unaffected; repair or re-import the damaged data and run the module again.</source>
+            <translation>无法生成 {0} 章节:{1}。项目中保存的结果不受影响;请修复或重新导入受损数据后再次运行该模块。</translation>
+        </message>
+        <message>
+            <source>This module provides no report section. Its results are stored in the project under &lt;b&gt;/{0}&lt;/b&gt;: {1}.</source>
+            <translation>此模块不提供报告章节。其结果保存在项目的 &lt;b&gt;/{0}&lt;/b&gt; 下:{1}。</translation>
+        </message>
+        <message>
+            <source>not run: inputs missing ({0})</source>
+            <translation>未运行:缺少输入({0})</translation>
+        </message>
+        <message>
+            <source>page {0} of {1}</source>
+            <translation>第 {0} 页,共 {1} 页</translation>
+        </message>
+        <message>
+            <source>{0} (the project has unsaved changes)</source>
+            <translation>{0}(项目有未保存的修改)</translation>
+        </message>
+        <message>
+            <source>{0} results are out of date: {1}. They were computed from other inputs than the project now holds; run the analysis again before signing.</source>
+            <translation>{0} 的结果已过期:{1}。其计算所用输入与项目现有输入不同;签署前请重新运行分析。</translation>
+        </message>
+    </context>
+</TS>

@@ -30,6 +30,7 @@ from hydrosync_core.methods.gins_smoother.config import (
 from hydrosync_core.methods.gins_smoother.io import GnssData, ImuData
 from hydrosync_core.methods.gins_smoother.params import RAN, GinsParams
 from hydrosync_core.progress import check_cancel, report
+from hydrosync_core.rotations import euler_zyx_matrix
 
 CHUNK_S = 60.0  # seconds of IMU data per compiled chunk (progress / cancel granularity)
 
@@ -195,18 +196,7 @@ def gnss_residuals(gnss: GnssData, traj: Trajectory, lever) -> np.ndarray:
 
 
 def _lever_vec(att_rad: np.ndarray, lever) -> np.ndarray:
-    r, p, y = att_rad[:, 0], att_rad[:, 1], att_rad[:, 2]
-    cr, sr, cp, sp, cy, sy = np.cos(r), np.sin(r), np.cos(p), np.sin(p), np.cos(y), np.sin(y)
-    C = np.empty((r.size, 3, 3))
-    C[:, 0, 0] = cy * cp
-    C[:, 0, 1] = cy * sp * sr - sy * cr
-    C[:, 0, 2] = cy * sp * cr + sy * sr
-    C[:, 1, 0] = sy * cp
-    C[:, 1, 1] = sy * sp * sr + cy * cr
-    C[:, 1, 2] = sy * sp * cr - cy * sr
-    C[:, 2, 0] = -sp
-    C[:, 2, 1] = cp * sr
-    C[:, 2, 2] = cp * cr
+    C = euler_zyx_matrix(att_rad[:, 0], att_rad[:, 1], att_rad[:, 2])
     return C @ np.asarray(lever, float)
 
 

@@ -16,6 +16,7 @@ from datetime import UTC, datetime
 from pathlib import Path
 from typing import Any
 
+from hydrosync_core.inputs import input_ok
 from hydrosync_core.plugins.spec import DataKind, load_object
 from hydrosync_core.project import Project, schema
 
@@ -84,6 +85,8 @@ def import_file(project: Project, kind: str, path: str | os.PathLike, **options:
     if unknown:
         raise ValueError(f"import kind '{kind}' takes no option {', '.join(unknown)}")
     path = Path(path)
+    if not path.is_dir():  # a recording kind takes a folder; its reader checks it
+        input_ok(path, f"--{kind} file", text=spec.store != "points")
     reader = load_object(spec.reader)
     if spec.store == "custom":
         message = reader(project, spec.target, path, **given)

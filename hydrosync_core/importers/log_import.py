@@ -28,6 +28,7 @@ from hydrosync_core.importers import nmea_gnss as ng
 from hydrosync_core.importers import nmea_motion as nm
 from hydrosync_core.importers.import_report import ImportReport
 from hydrosync_core.importers.nmea_lines import LogLines, split_log
+from hydrosync_core.inputs import input_ok
 from hydrosync_core.progress import CancelToken, ProgressCallback, check_cancel, report
 
 __all__ = ["ImportReport", "import_attitude_log", "import_gnss_log", "store_attitude_log",
@@ -37,6 +38,7 @@ MAX_LOG_BYTES = 2_000_000_000
 
 
 def _read_log(path: Path, progress, cancel) -> LogLines:
+    input_ok(path, "log", max_bytes=MAX_LOG_BYTES)  # not a FIFO, device or sparse file
     if not path.exists():
         raise InputError(str(path), "no such file")
     if path.is_dir():

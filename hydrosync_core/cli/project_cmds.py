@@ -73,30 +73,56 @@ def cmd_info(args: argparse.Namespace) -> int:
             else:
                 shape = "x".join(str(n) for n in info.shape) or "scalar"
                 print(f"  {'  ' * depth}{label}  {shape} {info.dtype}")
-        _print_results_status(project)
+        damaged = _print_results_status(project)
+    if damaged:
+        first = next(iter(damaged.items()))
+        raise InputError(args.project, f"INPUT DAMAGED: {len(damaged)} stored data set(s) "
+                         f"fail the read-back against their checksums, e.g. /{first[0]} "
+                         f"{first[1]} (listed above)")
     return 0
 
 
-def _print_results_status(project: Project) -> None:
-    """One line per stored result: up to date, or out of date and why."""
+def _print_results_status(project: Project) -> dict[str, str]:
+    """One line per stored result: up to date, out of date and why, or INPUT DAMAGED
+    (its stored inputs, read back, fail their checksums). Returns the damaged data sets
+    (all of ``raw/`` and every result's inputs are read back)."""
     from hydrosync_core.plugins import plugin_specs
+    from hydrosync_core.project.verify import damaged
     from hydrosync_core.provenance import OUT_OF_DATE, read_record, stale_reasons
 
     specs = [s for s in plugin_specs() if project.exists(f"results/{s.id}")]
+    records = {s.id: read_record(project, f"results/{s.id}") or {} for s in specs}
+    inputs = ["raw"] + [p for rec in records.values() for p in (rec.get("inputs") or {})]
+    bad = damaged(project, inputs)
     if not specs:
-        return
+        _print_damaged(bad)
+        return bad
     print("results:")
     for spec in specs:
         path = f"results/{spec.id}"
+        hit = [p for p in bad if any(p == i or p.startswith(i.rstrip("/") + "/")
+                                     for i in records[spec.id].get("inputs") or {})]
         try:
             reasons = stale_reasons(project, path)
-            when = (read_record(project, path) or {}).get("run_utc") or \
-                project.attrs(path).get("run_utc", "?")
+            when = records[spec.id].get("run_utc") or project.attrs(path).get("run_utc", "?")
         except InputError as exc:  # a damaged project: info still lists what it holds
             print(f"  {spec.id}: status cannot be checked: {exc.message}")
             continue
-        state = f"{OUT_OF_DATE.upper()}: " + "; ".join(reasons) if reasons else "up to date"
+        if hit:
+            state = "INPUT DAMAGED: " + "; ".join(f"/{p} {bad[p]}" for p in hit)
+        else:
+            state = (f"{OUT_OF_DATE.upper()}: " + "; ".join(reasons) if reasons
+                     else "up to date")
         print(f"  {spec.id}: {state} (computed {when})")
+    _print_damaged(bad)
+    return bad
+
+
+def _print_damaged(bad: dict[str, str]) -> None:
+    if bad:
+        print("damaged data (read back against their checksums):")
+        for path, what in bad.items():
+            print(f"  /{path}: {what}")
 
 
 def cmd_vessel(args: argparse.Namespace) -> int:

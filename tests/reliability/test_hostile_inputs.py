@@ -194,3 +194,17 @@ def test_symlink_loop_as_project_is_exit_2(tmp_path, faults):
         done = run_cli(*args)
         _one_line_exit_2(done.returncode, done.stderr, faults,
                          f"symlink loop as project ({args[0]})", "loop.h5")
+
+
+def test_stored_line_ending_before_it_starts_is_named(project):
+    """In a project (not through the importer, which checks it too): the validation of
+    /raw/lines names the line instead of the later "no line has 30 epochs"."""
+    import numpy as np
+
+    from hydrosync_core.errors import ProjectDataError
+    from hydrosync_core.project.validate import check_table
+
+    table = {"name": np.array(["L1", "L2"]), "start": np.array([100.0, 200.0]),
+             "end": np.array([50.0, 300.0])}
+    with pytest.raises(ProjectDataError, match="line 'L1' ends .* before or when it starts"):
+        check_table(str(project), "raw/lines", table)

@@ -86,7 +86,7 @@ def import_file(project: Project, kind: str, path: str | os.PathLike, **options:
         raise ValueError(f"import kind '{kind}' takes no option {', '.join(unknown)}")
     path = Path(path)
     if not path.is_dir():  # a recording kind takes a folder; its reader checks it
-        input_ok(path, f"--{kind} file", text=spec.store != "points")
+        input_ok(path, f"--{kind.replace('_', '-')} file", text=spec.store != "points")
     reader = load_object(spec.reader)
     if spec.store == "custom":
         message = reader(project, spec.target, path, **given)

@@ -35,6 +35,7 @@ from hydrosync_core.importers import nmea_gnss as ng
 from hydrosync_core.importers import nmea_lines as nl
 from hydrosync_core.importers import nmea_motion as nm
 from hydrosync_core.importers.table_sink import TableSink
+from hydrosync_core.inputs import input_ok
 from hydrosync_core.progress import check_cancel, report
 
 BLOCK_BYTES = 32 << 20
@@ -48,6 +49,7 @@ MOTION_COLUMNS = ("time", "roll", "pitch", "heading", "heave")
 
 def check_file(path: Path) -> int:
     """Size of *path* in bytes, or the one-line reason it cannot be read as a log."""
+    input_ok(path, "log", max_bytes=MAX_LOG_BYTES * 8)  # not a FIFO, device or sparse file
     if not path.exists():
         raise InputError(str(path), "no such file")
     if path.is_dir():

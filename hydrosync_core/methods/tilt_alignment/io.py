@@ -19,6 +19,7 @@ from hydrosync_core import plausible
 from hydrosync_core.errors import InputError
 from hydrosync_core.importers.csv_table import read_numeric_csv
 from hydrosync_core.importers.pool_json import finite_number, read_json
+from hydrosync_core.inputs import input_ok
 
 IMU_COLUMNS = ("time", "gx", "gy", "gz", "ax", "ay", "az")
 RATE: plausible.Limits = (-100.0, 100.0, "rad/s")
@@ -35,6 +36,7 @@ POLE_LIMITS: plausible.Limits = (0.05, 20.0, "m")
 
 def read_imu_csv(path: str | os.PathLike) -> dict[str, np.ndarray]:
     """Columns of ``imu.csv`` sorted by time (at least 50 rows, gaps checked)."""
+    input_ok(path, "IMU CSV")
     cols = read_numeric_csv(path, IMU_COLUMNS, min_rows=50, limits=IMU_LIMITS)
     check_imu_times(cols["time"], str(path))
     return cols
@@ -68,6 +70,7 @@ def read_gnss_csv(path: str | os.PathLike) -> dict[str, np.ndarray]:
 
     The form is decided by the header: ENU when it has ``e, n, u``, else geodetic.
     """
+    input_ok(path, "GNSS CSV")
     path = Path(path)
     names = _header_names(path)
     wanted = ENU if all(c in names for c in ENU) or not all(c in names for c in LLH) else LLH

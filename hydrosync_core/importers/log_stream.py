@@ -37,8 +37,8 @@ from hydrosync_core.importers import nmea_motion as nm
 from hydrosync_core.importers.table_sink import TableSink
 from hydrosync_core.progress import check_cancel, report
 
-BLOCK_BYTES = 32 << 20
-"""Bytes read at a time (whole lines): ~0.4 M lines of a tagged log."""
+BLOCK_BYTES = 16 << 20
+"""Bytes read at a time (whole lines): ~0.2 M lines of a tagged log."""
 MAX_LOG_BYTES = 2_000_000_000
 GNSS_KINDS = ("GGA", "PTNL,GGK", "GST", "ZDA", "RMC")
 MOTION_KINDS = ("PASHR", "PSXN,23", "PSXN,20", "TSS1", "HDT", "ZDA", "RMC", "PTNL,GGK")
@@ -63,28 +63,28 @@ def check_file(path: Path) -> int:
 def blocks(path: Path, block_bytes: int | None = None):
     """Yield ``(buf, first_line, bytes_done)``: blocks of whole lines of *path* (uint8).
 
-    A block ends after its last ``\\n``; the rest of the read waits for the next block, so
-    a sentence, a CRLF pair or a binary run cut by a read is whole in one block. The last
-    block may end without ``\\n`` (a file cut mid-sentence).
+    A block ends after its last ``\n`` and the next read starts right after it (the file
+    is read again from there, nothing is copied), so a sentence, a CRLF pair or a binary
+    run cut by a read is whole in one block. A line longer than a block doubles the read.
+    The last block may end without ``\n`` (a file cut mid-sentence).
     """
-    block_bytes = block_bytes or BLOCK_BYTES
+    size = block_bytes or BLOCK_BYTES
     line = 1
-    done = 0
-    rest = b""
+    pos = 0
     with open(path, "rb") as handle:
-        while chunk := handle.read(block_bytes):
-            done += len(chunk)
-            data = rest + chunk if rest else chunk
-            cut = data.rfind(b"\n") + 1
+        while True:
+            handle.seek(pos)
+            chunk = handle.read(size)
+            if not chunk:
+                return
+            cut = len(chunk) if len(chunk) < size else chunk.rfind(b"\n") + 1
             if cut == 0:
-                rest = data
+                size *= 2
                 continue
-            rest = data[cut:]
-            buf = np.frombuffer(data, np.uint8, count=cut)
-            yield buf, line, done
-            line += int(np.count_nonzero(buf == 10))
-    if rest:
-        yield np.frombuffer(rest, np.uint8), line, done
+            yield np.frombuffer(chunk, np.uint8, count=cut), line, pos + cut
+            line += chunk.count(b"\n", 0, cut)
+            pos += cut
+            del chunk
 
 
 # ----------------------------------------------------------------------------- census

@@ -183,9 +183,16 @@ class Candidate:
         self.lags.append((lag - self.lag_ref).astype(np.float32))
 
     def lag(self) -> float | None:
+        """Median of logger − sentence (s), partitioning the offsets in place."""
         if not self.lags:
             return None
-        return self.lag_ref + float(np.median(np.concatenate(self.lags).astype(np.float64)))
+        v = np.concatenate(self.lags)
+        self.lags = [v]
+        n = v.size
+        k = n // 2
+        v.partition([k - 1, k] if n % 2 == 0 else k)
+        middle = float(v[k]) if n % 2 else (float(v[k - 1]) + float(v[k])) / 2.0
+        return self.lag_ref + middle
 
 
 @dataclass

@@ -144,14 +144,26 @@ class Census:
                     self.first_event[policy] = (float(events.day[0]), float(events.tod[0]))
 
 
+_CENSUS: dict[tuple, Census] = {}
+"""The last files surveyed, by (path, size, modification time): the GNSS and the attitude
+import of one logger file (one ``hydrosync import``) survey it once."""
+
+
 def census(path: Path, progress=None, cancel=None, share: float = 0.3) -> Census:
     """Pass 1 over *path* (progress reported on 0..*share*)."""
-    size = max(path.stat().st_size, 1)
+    stat = path.stat()
+    key = (str(path.resolve()), stat.st_size, stat.st_mtime_ns, BLOCK_BYTES)
+    if key in _CENSUS:
+        return _CENSUS[key]
+    size = max(stat.st_size, 1)
     out = Census()
     for buf, first_line, done in blocks(path):
         check_cancel(cancel)
         out.add(nl.scan_block(buf, first_line), str(path))
         report(progress, share * done / size, f"{path.name}: surveying {done >> 20} MiB")
+    if len(_CENSUS) >= 64:
+        _CENSUS.clear()
+    _CENSUS[key] = out
     return out
 
 

@@ -133,7 +133,7 @@ def measured(args: list[str]) -> tuple[float, float, str]:
     peak resident memory, ``VmHWM`` of ``/proc/self/status``. Not ``ru_maxrss``: it keeps
     the peak of the process before ``exec``, i.e. of this benchmark when it forked (the
     simulated day), nor RUSAGE_CHILDREN, which keeps the largest child so far."""
-    code = ("import runpy, sys, time\n"
+    code = ("import os, runpy, sys, time\n"
             "sys.argv = sys.argv[1:]\n"
             "t = time.perf_counter()\n"
             "try:\n"
@@ -142,12 +142,16 @@ def measured(args: list[str]) -> tuple[float, float, str]:
             "    if e.code: raise\n"
             "finally:\n"
             "    hwm = [ln for ln in open('/proc/self/status') if ln.startswith('VmHWM')]\n"
-            "    print('@@', time.perf_counter() - t, hwm[0].split()[1], file=sys.stderr)\n")
+            "    cpu = sum(os.times()[:2])\n"
+            "    print('@@', time.perf_counter() - t, hwm[0].split()[1], cpu, file=sys.stderr)\n")
     proc = subprocess.run([sys.executable, "-c", code, *args], capture_output=True, text=True,
                           env={**os.environ, "HYDROSYNC_PROGRESS": "off"})
     if proc.returncode:
         raise RuntimeError(f"{' '.join(args)} failed: {proc.stderr[-2000:]}")
     mark = [ln for ln in proc.stderr.splitlines() if ln.startswith("@@")][-1].split()
+    print(f"    [{' '.join(a if len(a) < 40 else '…' + a[-30:] for a in args[1:])}: "
+          f"wall {float(mark[1]):.1f} s, CPU {float(mark[3]):.1f} s, "
+          f"peak {float(mark[2]) / 1024:.0f} MiB]", flush=True)
     return float(mark[1]), float(mark[2]) / 1024.0, proc.stdout
 
 
@@ -157,12 +161,15 @@ def pynmeagps_hour(path: Path, max_lines: int) -> tuple[float, int]:
 
     n = 0
     start = time.perf_counter()
+    cpu = time.process_time()
     with open(path) as handle:
         for line in handle:
             NMEAReader.parse(line[line.index("$"):])
             n += 1
             if n >= max_lines:
                 break
+    print(f"    [pynmeagps: wall {time.perf_counter() - start:.1f} s, "
+          f"CPU {time.process_time() - cpu:.1f} s for {n} sentences]", flush=True)
     return time.perf_counter() - start, n
 
 

@@ -180,6 +180,41 @@ def import_day(files: dict, project: Path, hourly: bool) -> tuple[float, float, 
                      logs, "--heave-positive", "up", "--lines", str(files["lines"])])
 
 
+GUI_CODE = """
+import os, sys, time
+os.environ.setdefault("QT_QPA_PLATFORM", "offscreen")
+from PySide6.QtWidgets import QApplication
+from hydrosync_core.project import Project
+from plugins.latency.panel import LatencyPanel
+app = QApplication([])
+panel = LatencyPanel()
+panel.resize(1300, 850)
+panel.show()
+app.processEvents()
+t0 = time.perf_counter()
+project = Project.open(sys.argv[1], readonly=True)
+t_open = time.perf_counter() - t0
+t0 = time.perf_counter()
+panel.set_project(project)
+app.processEvents()
+t_bind = time.perf_counter() - t0
+title = panel.series_plot.plotItem.titleLabel
+t1 = time.perf_counter()
+while not title.text.startswith("line ") and time.perf_counter() - t1 < 300:
+    app.processEvents()
+    time.sleep(0.002)
+print(f"open {t_open:.2f} s, panel bound {t_bind:.2f} s, first line's series plotted "
+      f"{time.perf_counter() - t1:.2f} s later")
+"""
+
+
+def _gui_script(folder: Path) -> Path:
+    """The Latency panel opening the imported day: open, bind, first series plot."""
+    path = folder / "gui.py"
+    path.write_text(GUI_CODE)
+    return path
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--dir", type=Path, default=Path(tempfile.gettempdir()) / "hs-stream")
@@ -230,6 +265,8 @@ def main() -> None:
                 wall_l, peak_l, out = measured([HYDROSYNC, "run", "latency", str(project)])
                 print(f"latency run: {wall_l:.1f} s, {peak_l:.0f} MiB; true "
                       f"{truth['latency_s']} s\n{out}")
+                wall_g, peak_g, out = measured([str(_gui_script(args.dir)), str(project)])
+                print(f"GUI (offscreen): {out.strip()}; peak {peak_g:.0f} MiB")
     print(f"{'case':28s} {'log MB':>7s} {'s':>7s} {'peak MiB':>9s} {'project MB':>10s}")
     for name, size, wall, peak, psize, _ in rows:
         print(f"{name:28s} {size:7.0f} {wall:7.1f} {peak:9.0f} {psize:10.0f}")

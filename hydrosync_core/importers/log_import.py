@@ -337,6 +337,7 @@ def _store(project, target: str, paths, reader, options, progress=None, cancel=N
         for j, (path, size) in enumerate(zip(files, sizes, strict=True)):
             sub = sub_progress(progress, 0.95 * done / total, 0.95 * (done + size) / total)
             group = handle.create_group(f"file{j}")
+            group.attrs["intermediate"] = len(files) > 1
             columns, rep = reader(path, group, progress=sub, cancel=cancel, **options)
             # the datasets are closed here, reopened by name when merged (one chunk cache
             # at a time, not one per file)

@@ -441,8 +441,11 @@ def _motion_records(cand: Candidate, block, kinds, key: str):
 
 
 def new_candidates(group: h5py.Group, keys, columns) -> dict[str, Candidate]:
-    """One sink per candidate source, in a subgroup of *group* each."""
-    return {key: Candidate(key, TableSink(group.create_group(key.replace(",", "_")), columns))
+    """One sink per candidate source, in a subgroup of *group* each; compressed unless
+    *group* says ``intermediate`` (one of several files, copied on when merged)."""
+    compress = not group.attrs.get("intermediate", False)
+    return {key: Candidate(key, TableSink(group.create_group(key.replace(",", "_")), columns,
+                                          compress))
             for key in keys}
 
 

@@ -51,8 +51,11 @@ def _import_one(project: Project, kind: DataKind, files: list[str],
 
     options = {name: getattr(args, name, None) for name in kind.options}
     progress = TerminalProgress(f"import --{kind.name.replace('_', '-')}")
-    return import_file(project, kind.name, files if len(files) > 1 else files[0],
-                       progress=progress, **options)
+    try:
+        return import_file(project, kind.name, files if len(files) > 1 else files[0],
+                           progress=progress, **options)
+    finally:
+        progress.done()
 
 
 def _human(nbytes: int) -> str:

@@ -131,3 +131,29 @@ def test_param_form_unbounded_tuple_fits_a_narrow_column(qtbot):
     assert arm.minimumSizeHint().width() < 330
     form.set_params({"arm": [-123.456, 0.0, 999.999]})
     assert form.values()["arm"] == (-123.456, 0.0, 999.999)  # narrow, still every digit kept
+
+
+def test_long_headers_wrap_onto_two_lines_when_asked(qtbot):
+    """A wide header made a column of four-digit numbers 170 px wide (#26)."""
+    from hydrosync_gui.widgets.columns_table import wrap_header
+
+    assert wrap_header("predicted σ heading [°]") == "predicted σ\nheading [°]"
+    assert wrap_header("Epochs") == "Epochs"
+    assert wrap_header("σ heading [°]") == "σ heading [°]"  # short: one line
+    assert wrap_header("Joint residual [mm]") == "Joint\nresidual [mm]"  # unit kept
+    table = ColumnsTable(wrap_headers=True)
+    qtbot.addWidget(table)
+    values = {"pred_heading": np.array([0.112, 0.1477]), "n": np.array([592, 592])}
+    labels = {"pred_heading": "predicted σ heading"}
+    table.set_columns(values, units={"pred_heading": "°"}, labels=labels,
+                      formats={"pred_heading": "{:.4f}"})
+    model = table.table_model
+    assert model.headerData(0, Qt.Orientation.Horizontal) == "predicted σ\nheading [°]"
+    assert model.header(0) == "predicted σ heading [°]"
+    plain = ColumnsTable()
+    qtbot.addWidget(plain)
+    plain.set_columns(values, units={"pred_heading": "°"}, labels=labels)
+    table.show()
+    plain.show()
+    qtbot.wait(10)
+    assert table.columnWidth(0) < plain.columnWidth(0)

@@ -157,3 +157,29 @@ def test_long_headers_wrap_onto_two_lines_when_asked(qtbot):
     plain.show()
     qtbot.wait(10)
     assert table.columnWidth(0) < plain.columnWidth(0)
+
+
+def test_log_console_keeps_library_chatter_out(qtbot):
+    """PyOpenGL's "OpenGL_accelerate module loaded" INFO line appeared at start-up (#26):
+    other libraries' INFO lines stay out, their warnings and HydroSync's own lines show,
+    and with -v (debug) everything shows."""
+    console = LogConsole()
+    qtbot.addWidget(console)
+    root = logging.getLogger()
+    old = root.level
+    root.setLevel(logging.DEBUG)
+    try:
+        console.install(level=logging.INFO)
+        logging.getLogger("OpenGL.acceleratesupport").info("OpenGL_accelerate module loaded")
+        logging.getLogger("OpenGL.acceleratesupport").warning("no GL context")
+        logging.getLogger("hydrosync_gui.plugin_host").info("opened panel 'Latency'")
+        qtbot.waitUntil(lambda: len(console.lines()) == 2)
+        assert [line.split(" ", 1)[1] for line in console.lines()] == [
+            "WARNING OpenGL.acceleratesupport: no GL context",
+            "INFO hydrosync_gui.plugin_host: opened panel 'Latency'"]
+        console.install(level=logging.DEBUG)
+        logging.getLogger("OpenGL.acceleratesupport").info("OpenGL_accelerate module loaded")
+        qtbot.waitUntil(lambda: len(console.lines()) == 3)
+    finally:
+        console.uninstall()
+        root.setLevel(old)

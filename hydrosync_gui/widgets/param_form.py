@@ -23,7 +23,7 @@ from __future__ import annotations
 from collections.abc import Mapping
 from typing import Any
 
-from PySide6.QtCore import Qt, Signal
+from PySide6.QtCore import QSize, Qt, Signal
 from PySide6.QtWidgets import (
     QCheckBox,
     QComboBox,
@@ -178,12 +178,38 @@ class _Editor(QWidget):
 
 
 def _form(parent: QWidget | None = None) -> QFormLayout:
-    """A form layout whose long rows put the field under its label when the column is
-    narrow (the panel gives the room to its results, not to the widest label + field)."""
+    """A form layout; :class:`ParamForm` decides whether its rows wrap (all or none)."""
     form = QFormLayout(parent)
     form.setFieldGrowthPolicy(QFormLayout.FieldGrowthPolicy.AllNonFixedFieldsGrow)
-    form.setRowWrapPolicy(QFormLayout.RowWrapPolicy.WrapLongRows)
+    form.setRowWrapPolicy(QFormLayout.RowWrapPolicy.DontWrapRows)
     return form
+
+
+def _row_widths(form: QFormLayout) -> tuple[list[int], list[int]]:
+    labels, fields = [0], [0]
+    for row in range(form.rowCount()):
+        label = form.itemAt(row, QFormLayout.ItemRole.LabelRole)
+        field = form.itemAt(row, QFormLayout.ItemRole.FieldRole)
+        if label is not None and label.widget() is not None and label.widget().text():
+            labels.append(label.widget().sizeHint().width())
+        if field is not None and field.widget() is not None:
+            fields.append(field.widget().minimumSizeHint().width())
+    return labels, fields
+
+
+def stacked_width(form: QFormLayout) -> int:
+    """Pixels *form* needs with every field under its label (margins included)."""
+    labels, fields = _row_widths(form)
+    margins = form.contentsMargins()
+    return max(max(labels), max(fields)) + margins.left() + margins.right()
+
+
+def side_by_side_width(form: QFormLayout) -> int:
+    """Pixels *form* needs to put every field beside its label (margins included)."""
+    labels, fields = _row_widths(form)
+    margins = form.contentsMargins()
+    spacing = max(form.horizontalSpacing(), 0) if max(labels) else 0
+    return max(labels) + spacing + max(fields) + margins.left() + margins.right()
 
 
 class ParamForm(QWidget):
@@ -221,6 +247,8 @@ class ParamForm(QWidget):
                 groups[info.meta.group].addRow(label, editor)
             else:
                 main.addRow(label, editor)
+        self.forms = [main, *groups.values(), advanced_form]
+        self.wrapped = False
         self.advanced = advanced
         self.advanced_button = QToolButton()
         self.advanced_button.setObjectName("advanced_toggle")
@@ -235,6 +263,47 @@ class ParamForm(QWidget):
         else:
             self.advanced_button.hide()
         advanced.setVisible(False)
+
+    def minimumSizeHint(self) -> QSize:  # noqa: N802 - Qt override
+        """As narrow as the form is with every field under its label, so that the column
+        holding it may be narrower than label + field side by side: the form then wraps
+        its rows (:meth:`fit_rows`) instead of pushing a horizontal scroll bar."""
+        hint = super().minimumSizeHint()
+        narrow = 0
+        for form in self.forms:
+            laid_out = form.geometry().width()
+            extra = max(self.width() - laid_out, 0) if laid_out > 0 else 0
+            narrow = max(narrow, stacked_width(form) + extra)
+        return QSize(min(hint.width(), narrow) if narrow else hint.width(), hint.height())
+
+    def resizeEvent(self, event) -> None:  # noqa: N802 - Qt override
+        """Wrap all rows (field under label) or none: row by row, a narrow column mixed
+        fields beside and under their labels, which reads as a misaligned form."""
+        super().resizeEvent(event)
+        self.fit_rows(event.size().width())
+
+    def showEvent(self, event) -> None:  # noqa: N802 - Qt override
+        # Before the first show the labels are not polished and measure narrower.
+        super().showEvent(event)
+        self.fit_rows(self.width())
+
+    def fit_rows(self, width: int) -> bool:
+        """Put every field under its label if any row does not fit *width* pixels beside
+        its label, else every field beside it; return whether the rows are wrapped."""
+        need = 0
+        for form in self.forms:
+            # A group box's frame and margins come on top of its form's own need.
+            laid_out = form.geometry().width()
+            extra = self.width() - laid_out if laid_out > 0 else 0
+            need = max(need, side_by_side_width(form) + max(extra, 0))
+        wrap = need > width
+        if wrap != self.wrapped:
+            self.wrapped = wrap
+            policy = (QFormLayout.RowWrapPolicy.WrapAllRows if wrap
+                      else QFormLayout.RowWrapPolicy.DontWrapRows)
+            for form in self.forms:
+                form.setRowWrapPolicy(policy)
+        return wrap
 
     def _on_advanced(self, shown: bool) -> None:
         self.advanced.setVisible(shown)

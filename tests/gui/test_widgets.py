@@ -183,3 +183,34 @@ def test_log_console_keeps_library_chatter_out(qtbot):
     finally:
         console.uninstall()
         root.setLevel(old)
+
+
+@pytest.mark.parametrize(("width", "wrapped"), [(260, True), (900, False)])
+def test_param_form_rows_wrap_all_or_none(qtbot, width, wrapped):
+    """In a narrow column every field goes under its label; in a wide one every field is
+    beside it — never a mix of the two (#26)."""
+    from PySide6.QtWidgets import QFormLayout, QScrollArea
+
+    from hydrosync_core.methods.pool_calibration.params import PoolParams
+
+    form = ParamForm(PoolParams)
+    scroll = QScrollArea()  # as the panels hold it
+    scroll.setWidget(form)
+    scroll.setWidgetResizable(True)
+    qtbot.addWidget(scroll)
+    scroll.resize(width, 600)
+    scroll.show()
+    qtbot.wait(30)
+    assert form.width() <= scroll.viewport().width()  # no horizontal scrolling
+    policy = (QFormLayout.RowWrapPolicy.WrapAllRows if wrapped
+              else QFormLayout.RowWrapPolicy.DontWrapRows)
+    assert form.wrapped is wrapped
+    assert {f.rowWrapPolicy() for f in form.forms} == {policy}
+    qtbot.wait(20)
+    # every visible editor starts at the same x within its form: all beside or all under
+    for layout in form.forms:
+        xs = {layout.itemAt(r, QFormLayout.ItemRole.FieldRole).widget().x()
+              for r in range(layout.rowCount())
+              if layout.itemAt(r, QFormLayout.ItemRole.LabelRole) is not None
+              and layout.itemAt(r, QFormLayout.ItemRole.FieldRole).widget().isVisible()}
+        assert len(xs) <= 1, xs

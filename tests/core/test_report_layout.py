@@ -158,3 +158,31 @@ def test_summary_table_marks_the_values_the_analysis_flags(tmp_path, monkeypatch
     assert "flagged: σ 0.016° above the 0.01° threshold" in flat
     assert "\u2691 Lever arm z (down)" in flat
     assert "marks a value the analysis flags" in flat
+
+
+def test_a_long_survey_line_list_is_printed_two_lines_to_a_row(tmp_path):
+    """A 500-line day's appendix took 11 mostly white pages of one narrow column (#26)."""
+    import numpy as np
+
+    from hydrosync_core.project import Project
+    from hydrosync_core.report import build_report
+
+    project = Project.new("lines")
+    start = 345_600 + np.arange(500) * 170.0
+    project.put_table("raw/lines", {"name": np.array([f"L{i:03d}" for i in range(1, 501)]),
+                                    "start": start, "end": start + 120})
+    layout = PageLayout()
+    out = build_report(project, tmp_path / "lines.pdf", layout=layout)
+    assert len(layout.fill) <= 7 and layout.sparse_pages() == []
+    import subprocess
+
+    text = subprocess.run(["pdftotext", "-layout", str(out), "-"], capture_output=True,
+                          text=True, check=True).stdout
+    assert re_search(r"L001 +raw 345600\.000 … 345720\.000 s .*L002 +raw 345770\.000", text)
+    assert "L500" in text
+
+
+def re_search(pattern: str, text: str) -> bool:
+    import re
+
+    return re.search(pattern, text) is not None

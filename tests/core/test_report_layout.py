@@ -186,3 +186,21 @@ def re_search(pattern: str, text: str) -> bool:
     import re
 
     return re.search(pattern, text) is not None
+
+
+def test_band_of_many_curves_is_one_shaded_polygon_with_a_legend_entry():
+    import numpy as np
+    from reportlab.graphics.shapes import Polygon
+
+    from hydrosync_core.report.charts import Chart
+
+    x = np.linspace(-1, 1, 201)
+    curves = np.array([0.9 - 0.3 * (x - s) ** 2 for s in np.linspace(0.2, 0.4, 500)])
+    chart = Chart(width=400, height=200).band(x, curves.min(0), curves.max(0),
+                                              label="500 lines: range")
+    chart.line(x, np.median(curves, 0), label="median")
+    drawing = chart.drawing()
+    shapes = [s for g in drawing.contents for s in getattr(g, "contents", [])]
+    assert sum(isinstance(s, Polygon) for s in shapes) == 1
+    strings = [s.text for s in drawing.contents if hasattr(s, "text")]
+    assert "500 lines: range" in strings and "median" in strings

@@ -52,9 +52,10 @@ class _Editor(QWidget):
 
     sig_changed = Signal()
 
-    def __init__(self, info: FieldInfo) -> None:
+    def __init__(self, info: FieldInfo, choice_labels: Mapping[str, str] | None = None) -> None:
         super().__init__()
         self.info = info
+        self.choice_labels = dict(choice_labels or {})
         layout = QHBoxLayout()
         layout.setContentsMargins(0, 0, 0, 0)
         outer = QVBoxLayout(self)
@@ -124,8 +125,10 @@ class _Editor(QWidget):
             return [check]
         if info.meta.choices:
             box = QComboBox()
-            box.addItems(list(info.meta.choices))
-            box.currentTextChanged.connect(self.sig_changed)
+            # The surveyor reads the label ("least squares"); the value stays the key.
+            for choice in info.meta.choices:
+                box.addItem(self.choice_labels.get(choice, choice), choice)
+            box.currentIndexChanged.connect(self.sig_changed)
             return [box]
         line = QLineEdit()
         line.textChanged.connect(self.sig_changed)
@@ -144,7 +147,8 @@ class _Editor(QWidget):
         values = []
         for part in self.parts:
             if isinstance(part, QComboBox):
-                values.append(part.currentText())
+                data = part.currentData()
+                values.append(data if data is not None else part.currentText())
             elif isinstance(part, QCheckBox):
                 values.append(part.isChecked())
             elif isinstance(part, QSpinBox | QDoubleSpinBox):
@@ -160,7 +164,11 @@ class _Editor(QWidget):
         values = list(value) if self.info.kind == "tuple" else [value]
         for part, v in zip(self.parts, values, strict=False):
             if isinstance(part, QComboBox):
-                part.setCurrentText(str(v))
+                index = part.findData(str(v))
+                if index >= 0:
+                    part.setCurrentIndex(index)
+                else:
+                    part.setCurrentText(str(v))
             elif isinstance(part, QCheckBox):
                 part.setChecked(bool(v))
             elif isinstance(part, QSpinBox):
@@ -213,13 +221,20 @@ def side_by_side_width(form: QFormLayout) -> int:
 
 
 class ParamForm(QWidget):
-    """Editors for every field of a :class:`~hydrosync_core.params.Params` schema."""
+    """Editors for every field of a :class:`~hydrosync_core.params.Params` schema.
+
+    *choice_labels* ``{field: {value: label}}``: what a choice box shows for each value
+    (the words of the panel and PDF, "least squares" for ``lsq``); the value is still
+    what :meth:`values` returns.
+    """
 
     sig_changed = Signal()
 
-    def __init__(self, schema: type[Params], parent: QWidget | None = None) -> None:
+    def __init__(self, schema: type[Params], parent: QWidget | None = None,
+                 choice_labels: Mapping[str, Mapping[str, str]] | None = None) -> None:
         super().__init__(parent)
         self.schema = schema
+        choice_labels = choice_labels or {}
         self.editors: dict[str, _Editor] = {}
         outer = QVBoxLayout(self)
         outer.setContentsMargins(0, 0, 0, 0)
@@ -232,7 +247,7 @@ class ParamForm(QWidget):
         advanced_form = _form()
         advanced_layout.addLayout(advanced_form)
         for info in schema.schema():
-            editor = _Editor(info)
+            editor = _Editor(info, choice_labels.get(info.name))
             editor.setObjectName(f"param_{info.name}")
             editor.sig_changed.connect(self.sig_changed)
             self.editors[info.name] = editor

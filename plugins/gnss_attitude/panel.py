@@ -42,7 +42,7 @@ class GnssAttitudePanel(AnalysisPanel):
             from plugins.gnss_attitude import SPEC
 
             spec = SPEC
-        super().__init__(spec, GnssAttitudeParams, parent)
+        super().__init__(spec, GnssAttitudeParams, parent, choice_labels={"method": LABELS})
         self.stats = ColumnsTable(wrap_headers=True)
         self.series = {a: _plot(f"{a} [°]") for a in ANGLES}
         self.series["pitch"].setXLink(self.series["heading"])

@@ -214,3 +214,21 @@ def test_param_form_rows_wrap_all_or_none(qtbot, width, wrapped):
               if layout.itemAt(r, QFormLayout.ItemRole.LabelRole) is not None
               and layout.itemAt(r, QFormLayout.ItemRole.FieldRole).widget().isVisible()}
         assert len(xs) <= 1, xs
+
+
+def test_choice_boxes_show_labels_and_return_values(qtbot):
+    """"Reported method: lsq" showed the key; the box shows the words of the panel and PDF
+    and the form still returns the key (#26)."""
+    from hydrosync_core.methods.gnss_attitude.params import GnssAttitudeParams
+
+    labels = {"lsq": "least squares", "direct": "direct (3 antennas)"}
+    form = ParamForm(GnssAttitudeParams, choice_labels={"method": labels})
+    qtbot.addWidget(form)
+    box = form.editors["method"].parts[0]
+    assert box.currentText() == "least squares"
+    assert form.values()["method"] == "lsq"
+    form.set_params({"method": "direct"})
+    assert box.currentText() == "direct (3 antennas)"
+    assert form.params().method == "direct"
+    assert [box.itemData(i) for i in range(box.count())] == list(
+        GnssAttitudeParams.schema()[0].meta.choices)

@@ -261,11 +261,11 @@ def _joint(seg, p, mfaces, r_a, l_a, cancel):
               build_sigma=b_sig, coarse=theta_c, coarse_sigma=c_sig)
     obs = {}
     try:
-        obs = _joint_obs(seg, mfaces, p.min_points)
+        obs = _joint_obs(seg, mfaces, p.min_soundings)
         first = adjust(seg.ctx, obs, r_a, l_a, fix=structural_fix(seg.roles, obs),
                        covariance=False, huber_m=p.huber_m, cancel=cancel)
         mfaces = _resegment(seg, p, first.r_m, first.lever, cancel)
-        obs = _joint_obs(seg, mfaces, p.min_points)
+        obs = _joint_obs(seg, mfaces, p.min_soundings)
         fit = adjust(seg.ctx, obs, first.r_m, first.lever,
                      fix=structural_fix(seg.roles, obs), **kw)
     except (ValueError, np.linalg.LinAlgError) as exc:

@@ -10,7 +10,8 @@ from collections.abc import Mapping
 import numpy as np
 
 from hydrosync_core.methods.latency import passes, weighted
-from hydrosync_core.methods.latency.inputs import Setup, check_usable, set_up
+from hydrosync_core.methods.latency.heave_filter import with_declared_filter
+from hydrosync_core.methods.latency.inputs import Setup, check_inputs, check_usable, set_up
 from hydrosync_core.methods.latency.outcome import finish, with_joint_peak, with_quality
 from hydrosync_core.methods.latency.params import LatencyParams
 from hydrosync_core.methods.latency.result import LatencyResult
@@ -28,6 +29,10 @@ def estimate_latency(
     line has enough epochs.
     """
     p = params if isinstance(params, LatencyParams) else LatencyParams.from_dict(params)
+    if p.heave_filter == "highpass":
+        check_inputs(gnss, attitude, lever_arm)  # a one-line error before filtering
+        gnss, attitude = with_declared_filter(gnss, attitude, lever_arm, p.heave_filter_order,
+                                              p.heave_filter_period_s)
     if p.estimator == "auto":
         return _auto(gnss, attitude, lines, lever_arm, p, progress, cancel)
     return _single(set_up(gnss, attitude, lines, lever_arm, p), p, progress, cancel)

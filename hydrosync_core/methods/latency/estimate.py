@@ -10,8 +10,10 @@ from collections.abc import Mapping
 import numpy as np
 
 from hydrosync_core.methods.latency import passes, weighted
+from hydrosync_core.methods.latency.fix_quality import screen_fixes
 from hydrosync_core.methods.latency.heave_filter import with_declared_filter
 from hydrosync_core.methods.latency.inputs import Setup, check_inputs, check_usable, set_up
+from hydrosync_core.methods.latency.model_flags import with_model_check
 from hydrosync_core.methods.latency.outcome import finish, with_joint_peak, with_quality
 from hydrosync_core.methods.latency.params import LatencyParams
 from hydrosync_core.methods.latency.result import LatencyResult
@@ -29,13 +31,19 @@ def estimate_latency(
     line has enough epochs.
     """
     p = params if isinstance(params, LatencyParams) else LatencyParams.from_dict(params)
+    gnss, fix_warnings = screen_fixes(gnss, p.fix_qualities)
     if p.heave_filter == "highpass":
         check_inputs(gnss, attitude, lever_arm)  # a one-line error before filtering
         gnss, attitude = with_declared_filter(gnss, attitude, lever_arm, p.heave_filter_order,
                                               p.heave_filter_period_s)
     if p.estimator == "auto":
-        return _auto(gnss, attitude, lines, lever_arm, p, progress, cancel)
-    return _single(set_up(gnss, attitude, lines, lever_arm, p), p, progress, cancel)
+        result = _auto(gnss, attitude, lines, lever_arm, p, progress, cancel)
+    else:
+        result = _single(set_up(gnss, attitude, lines, lever_arm, p), p, progress, cancel)
+    result = with_model_check(result, gnss, attitude, p)
+    if fix_warnings:
+        result = dataclasses.replace(result, warnings=result.warnings + tuple(fix_warnings))
+    return result
 
 
 def _single(setup: Setup, p: LatencyParams, progress, cancel) -> LatencyResult:
@@ -95,6 +103,9 @@ def _auto(gnss, attitude, lines, lever_arm, p: LatencyParams, progress, cancel
     report(progress, 1.0, "done")
     note = (f"auto: {best.estimator} (σ {best.uncertainty_s * 1e3:.2f} ms; {other.estimator} "
             f"{other.uncertainty_s * 1e3:.2f} ms, Δt {other.latency_s:+.4f} s)")
-    return dataclasses.replace(best, params=p.to_dict(),
+    diagnostics = {**best.diagnostics, "other_estimate": {
+        "estimator": other.estimator, "latency_s": other.latency_s,
+        "uncertainty_s": other.uncertainty_s}}
+    return dataclasses.replace(best, params=p.to_dict(), diagnostics=diagnostics,
                                message=f"{best.message}; {note}" if best.converged
                                else best.message)

@@ -50,6 +50,22 @@ ESTIMATOR_NAMES = {
 }
 
 
+def parse_qualities(text: str) -> tuple[int, ...] | None:
+    """``"auto"`` -> None; ``"4,5"`` -> (4, 5). Raises InputError naming the field."""
+    text = str(text).strip().lower()
+    if text in ("", "auto"):
+        return None
+    try:
+        values = tuple(sorted({int(v) for v in text.replace(" ", "").split(",") if v}))
+    except ValueError:
+        raise InputError(None, f"fix qualities must be 'auto' or numbers like '4,5', got "
+                         f"'{text}'", field="fix_qualities") from None
+    if not values or any(v < 0 or v > 9 for v in values):
+        raise InputError(None, f"fix qualities must be GGA indicators 0-9, got '{text}'",
+                         field="fix_qualities")
+    return values
+
+
 def estimator_label(name: str | None) -> str:
     """``"qi2010 — correlation of raw series (Qi et al. 2010)"`` for the panel and the PDF."""
     name = str(name or "qi2010")
@@ -114,6 +130,10 @@ class LatencyParams(Params):
              "also drop lines whose σ is not credible or that are outliers; auto = paper "
              "for qi2010, extended for the other estimators (a peak on the scan's edge is "
              "never used)")
+    fix_qualities: str = param(
+        "auto", label="GNSS fix qualities", advanced=True,
+        help="GGA fix qualities used: auto = only RTK fixed (4) when the log has any, else "
+             "all with a warning naming them; or a list such as '4,5'")
     heave_filter: str = param(
         "unknown", label="Heave filter", choices=HEAVE_FILTERS,
         help="the motion sensor's heave filter: highpass = a causal high-pass (order and "
@@ -159,6 +179,7 @@ class LatencyParams(Params):
         if not hi > lo:
             raise InputError(None, f"range maximum must be above minimum, got {lo:g}..{hi:g}",
                              field="range_s")
+        parse_qualities(self.fix_qualities)
         if self.step_s > hi - lo:
             raise InputError(None, f"step must be within the range, got {self.step_s:g} s",
                              field="step_s")

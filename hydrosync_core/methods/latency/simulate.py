@@ -71,6 +71,10 @@ class DayConfig:
     constant (the complementary filter's GNSS branch; the motion is the INS's), instead of
     raw RTK white noise."""
     attitude_out_hz: float = 0.0
+    attitude_tag_delay_s: float = 0.0
+    """The attitude's time-tag convention: records tagged this long after they were
+    measured (e.g. half a sample for a tag at the end of the integration interval). The
+    relative delay to find is then ``latency_s − attitude_tag_delay_s``."""
     """> 0: the attitude is reported at this rate (every k-th sample of the internal
     *attitude_hz* record), e.g. 1 Hz like the Seapath logs' PSXN records."""
 
@@ -224,10 +228,10 @@ def simulate_day(config: DayConfig | None = None, seed: int = 0) -> dict:
         pitch_meas = pitch + rng.standard_normal(n) * noise
     if cfg.heave_filter_order > 0:
         heave_meas = _sensor_heave_filter(heave_meas, fs, cfg)
-    t_out = t
+    t_out = t + cfg.attitude_tag_delay_s
     if cfg.attitude_out_hz > 0:
         keep = slice(None, None, max(int(round(fs / cfg.attitude_out_hz)), 1))
-        t_out, heading = t[keep], heading[keep]
+        t_out, heading = t_out[keep], heading[keep]
         roll_meas, pitch_meas, heave_meas = roll_meas[keep], pitch_meas[keep], heave_meas[keep]
 
     starts = cfg.t0 + np.arange(cfg.n_lines) * period
@@ -244,7 +248,8 @@ def simulate_day(config: DayConfig | None = None, seed: int = 0) -> dict:
         },
         "lines": {"name": names, "start": starts, "end": ends},
         "truth": {
-            "latency_s": cfg.latency_s, "lever_arm_m": lever.tolist(),
+            "latency_s": cfg.latency_s - cfg.attitude_tag_delay_s,
+            "lever_arm_m": lever.tolist(),
             "gnss_true_time": t_meas,
         },
     }

@@ -17,6 +17,7 @@ from hydrosync_core.methods.latency.model_flags import with_model_check
 from hydrosync_core.methods.latency.outcome import finish, with_joint_peak, with_quality
 from hydrosync_core.methods.latency.params import LatencyParams
 from hydrosync_core.methods.latency.result import LatencyResult
+from hydrosync_core.methods.latency.upsample import band_limited, upsampling_factor
 from hydrosync_core.progress import report, sub_progress
 
 
@@ -36,11 +37,19 @@ def estimate_latency(
         check_inputs(gnss, attitude, lever_arm)  # a one-line error before filtering
         gnss, attitude = with_declared_filter(gnss, attitude, lever_arm, p.heave_filter_order,
                                               p.heave_filter_period_s)
-    if p.estimator == "auto":
+    factor = upsampling_factor(np.asarray(attitude["time"], dtype=float)) \
+        if p.estimator != "qi2010" and "time" in attitude else 1
+    fine = band_limited(attitude, factor) if factor > 1 else attitude
+    if p.estimator == "auto" and factor > 1:
+        result = _auto_apart(gnss, attitude, fine, lines, lever_arm, p, progress, cancel)
+    elif p.estimator == "auto":
         result = _auto(gnss, attitude, lines, lever_arm, p, progress, cancel)
     else:
-        result = _single(set_up(gnss, attitude, lines, lever_arm, p), p, progress, cancel)
-    result = with_model_check(result, gnss, attitude, p)
+        result = _single(set_up(gnss, fine, lines, lever_arm, p), p, progress, cancel)
+    if factor > 1:
+        result = dataclasses.replace(result, diagnostics={
+            **result.diagnostics, "attitude_upsampled": factor})
+    result = with_model_check(result, gnss, fine, p)
     if fix_warnings:
         result = dataclasses.replace(result, warnings=result.warnings + tuple(fix_warnings))
     return result
@@ -69,6 +78,36 @@ def _single(setup: Setup, p: LatencyParams, progress, cancel) -> LatencyResult:
     return finish(setup, p, peaks, warnings_pre, progress, cancel, before)
 
 
+def _auto_apart(gnss, attitude, fine, lines, lever_arm, p: LatencyParams, progress, cancel
+                ) -> LatencyResult:
+    """``auto`` on a low-rate attitude record: qi2010 on the records as published, the
+    weighted estimator on the band-limited upsampled ones (:mod:`.upsample`)."""
+    runs = {"qi2010": _single(set_up(gnss, attitude, lines, lever_arm, p), dataclasses.replace(
+                p, estimator="qi2010"), sub_progress(progress, 0.0, 0.4), cancel),
+            "weighted": _single(set_up(gnss, fine, lines, lever_arm, p), dataclasses.replace(
+                p, estimator="weighted"), sub_progress(progress, 0.4, 1.0), cancel)}
+    return _chosen(runs, p)
+
+
+def _sigma_key(r: LatencyResult) -> float:
+    return r.uncertainty_s if r.converged and np.isfinite(r.uncertainty_s) else np.inf
+
+
+def _chosen(runs: dict, p: LatencyParams) -> LatencyResult:
+    """The run with the smaller σ, quoting the other (message and diagnostics)."""
+
+    best = min(runs.values(), key=_sigma_key)
+    other = runs["weighted" if best.estimator == "qi2010" else "qi2010"]
+    note = (f"auto: {best.estimator} (σ {best.uncertainty_s * 1e3:.2f} ms; {other.estimator} "
+            f"{other.uncertainty_s * 1e3:.2f} ms, Δt {other.latency_s:+.4f} s)")
+    diagnostics = {**best.diagnostics, "other_estimate": {
+        "estimator": other.estimator, "latency_s": other.latency_s,
+        "uncertainty_s": other.uncertainty_s}}
+    return dataclasses.replace(best, params=p.to_dict(), diagnostics=diagnostics,
+                               message=f"{best.message}; {note}" if best.converged
+                               else best.message)
+
+
 def _auto(gnss, attitude, lines, lever_arm, p: LatencyParams, progress, cancel
           ) -> LatencyResult:
     """``estimator = auto``: qi2010 and weighted, the one with the smaller uncertainty.
@@ -93,19 +132,8 @@ def _auto(gnss, attitude, lines, lever_arm, p: LatencyParams, progress, cancel
             "weighted": (finish(s_w, p_w, peaks, warnings_pre, None, cancel, joint=False),
                          s_w)}
 
-    def key(r: LatencyResult) -> float:
-        return r.uncertainty_s if r.converged and np.isfinite(r.uncertainty_s) else np.inf
-
-    best = min((r for r, _ in runs.values()), key=key)
-    other = runs["weighted" if best.estimator == "qi2010" else "qi2010"][0]
+    best = min((r for r, _ in runs.values()), key=_sigma_key)
     report(progress, 0.95, "quality")
     best = with_joint_peak(with_quality(best, runs[best.estimator][1], before))
     report(progress, 1.0, "done")
-    note = (f"auto: {best.estimator} (σ {best.uncertainty_s * 1e3:.2f} ms; {other.estimator} "
-            f"{other.uncertainty_s * 1e3:.2f} ms, Δt {other.latency_s:+.4f} s)")
-    diagnostics = {**best.diagnostics, "other_estimate": {
-        "estimator": other.estimator, "latency_s": other.latency_s,
-        "uncertainty_s": other.uncertainty_s}}
-    return dataclasses.replace(best, params=p.to_dict(), diagnostics=diagnostics,
-                               message=f"{best.message}; {note}" if best.converged
-                               else best.message)
+    return _chosen({**{name: r for name, (r, _) in runs.items()}, best.estimator: best}, p)

@@ -54,7 +54,10 @@ def _line_pairs(result: LatencyResult, gnss: Mapping, attitude: Mapping,
     return pairs, median_interval(t_g)
 
 
-def _cause(p: LatencyParams) -> str:
+def _cause(p: LatencyParams, upsampled: bool = False) -> str:
+    if upsampled:
+        return ("qi2010 interpolates the low-rate attitude linearly (biased by up to ~20 ms "
+                "in simulation), or a heave filter's phase, or INS-blended heights")
     if p.heave_filter == "highpass":
         return ("the declared heave filter does not match the sensor's, or the heights are "
                 "INS-blended")
@@ -87,7 +90,8 @@ def _flags(result: LatencyResult, check: ModelCheck, p: LatencyParams
             warnings.append(
                 f"delay model: {result.estimator} and {other['estimator']} differ by "
                 f"{gap * 1e3:.0f} ms ({gap / scale:.1f} σ of their difference): "
-                f"{_cause(p)}; σ widened to cover the gap")
+                f"{_cause(p, 'attitude_upsampled' in result.diagnostics)}; σ widened to "
+                "cover the gap")
             sigma = max(sigma, gap / GAP_SIGMAS)
             notes.append(f"{result.estimator} and {other['estimator']} disagree")
     return sigma, warnings, notes

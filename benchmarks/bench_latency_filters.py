@@ -14,7 +14,8 @@ each: the default (``auto``), the published method (``qi2010``) and a plain refe
 estimator written here (per line the argmax of ``np.corrcoef`` over the 5 ms grid, no
 refinement, equal-weight mean of the lines with R > 0.85, given the declared filter's
 inputs when there is one; no σ): bias, RMSE, mean σ,
-95 % coverage and the share of days flagged by the delay-model check.
+95 % coverage and the share of days flagged by the delay-model check, over the days with a
+result; days without one (no line above the R threshold) are counted apart.
 
 Run: ``.venv/bin/python benchmarks/bench_latency_filters.py [--days 40]``.
 """
@@ -79,13 +80,16 @@ def plain_reference(day: dict, arm) -> float:
 
 
 def _stats(errors, sigmas, covered, flagged) -> str:
+    """Bias, RMSE, mean σ, coverage and flags over the days with a result; the days
+    without one (no line above the R threshold, e.g. a calm sea) are counted apart."""
     e = np.asarray(errors) * 1e3
     ok = np.isfinite(e)
     text = (f"{np.mean(e[ok]):+6.1f} | {np.sqrt(np.mean(e[ok] ** 2)):6.1f} | ")
     if sigmas is None:
-        return text + "— | — | — |"
+        return text + f"— | — | — | {int((~ok).sum())} |"
+    covered, flagged = np.asarray(covered)[ok], np.asarray(flagged)[ok]
     return (text + f"{np.nanmean(sigmas) * 1e3:5.1f} | {np.mean(covered):.3f} | "
-            f"{np.mean(flagged):.2f} |")
+            f"{np.mean(flagged):.2f} | {int((~ok).sum())} |")
 
 
 def main() -> None:
@@ -94,8 +98,8 @@ def main() -> None:
     args = ap.parse_args()
     rng = np.random.default_rng(2929)
     print(f"{args.days} days per row; errors in ms\n")
-    print("| days | estimator | bias | RMSE | mean σ | 95 % coverage | flagged |")
-    print("|---|---|---|---|---|---|---|")
+    print("| days | estimator | bias | RMSE | mean σ | 95 % coverage | flagged | no result |")
+    print("|---|---|---|---|---|---|---|---|")
     started = time.perf_counter()
     for kind in ("filter declared", "filter not declared", "no causal filter"):
         rows = {name: ([], [], [], []) for name in ("auto", "qi2010", "plain")}

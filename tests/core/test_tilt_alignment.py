@@ -417,3 +417,14 @@ def test_foreign_swings_with_the_defaults():
         assert j["gyro_noise_deg_s_per_sample"] == pytest.approx(0.02, rel=0.3)
         assert j["accel_noise_m_s2_per_sample"] == pytest.approx(0.01, rel=0.3)
     assert abs(np.mean(offsets)) < 1.5
+
+
+def test_an_imu_noisier_than_its_grade_is_named():
+    """Consumer noise (0.015°/s/√Hz) declared industrial (0.004): 3.75× the gyro noise,
+    beyond the 3× limit; declared consumer, nothing is said."""
+    sim = simulate_swing(SwingConfig(gyro_noise_deg_s_rthz=0.015, accel_noise_m_s2_rthz=0.002,
+                                     tilt_deg=45.0, shape_ratio=0.5), seed=2)
+    said = _solve(sim, TiltParams(imu_grade="industrial")).warnings
+    assert any("noisier than its grade" in w and "gyro" in w for w in said), said
+    said = _solve(sim, TiltParams(imu_grade="consumer")).warnings
+    assert not any("noisier" in w for w in said)

@@ -298,6 +298,28 @@ def _adjust_with_time_check(rec: _Record, C0: np.ndarray, tip0: np.ndarray, p: T
     return joint
 
 
+#: the record's IMU noise beyond this multiple of its grade's is named (a wrong grade)
+NOISE_WARN_FACTOR = 3.0
+
+
+def grade_warning(rec: _Record, p: TiltParams) -> str | None:
+    """A warning when the IMU is noisier than its declared grade allows."""
+    rate = 1.0 / float(np.median(np.diff(rec.time)))
+    grade = p.grade
+    gyro = math.radians(grade.gyro_noise_deg_s_rthz) * math.sqrt(rate)
+    accel = grade.accel_noise_m_s2_rthz * math.sqrt(rate)
+    worse = [f"{name} {shown:.2g} {unit} per sample (a {p.imu_grade} IMU: {nominal:.2g})"
+             for name, v, ref, shown, nominal, unit in (
+                 ("gyro", rec.gyro_noise, gyro, math.degrees(rec.gyro_noise),
+                  math.degrees(gyro), "°/s"),
+                 ("accelerometer", rec.accel_noise, accel, rec.accel_noise, accel, "m/s²"))
+             if v > NOISE_WARN_FACTOR * ref]
+    if not worse:
+        return None
+    return (f"the IMU is noisier than its grade: {', '.join(worse)}; its bias priors may "
+            "be too narrow as well (--imu-grade)")
+
+
 def _joint_warnings(joint: JointResult, rec: _Record, convention: str) -> list[str]:
     """Down-weighted GNSS epochs, a corrected time offset and a likely convention
     mismatch."""
@@ -397,6 +419,9 @@ def solve_record(time: np.ndarray, gyro: np.ndarray, accel: np.ndarray, gnss_tim
     methods = _heading_only_methods(rec, vec, screening, p, cancel)
     report(progress, 0.3, "heading-only solutions")
     methods["joint"], joint, warnings = _joint_method(rec, methods, p, convention, cancel)
+    noisy = grade_warning(rec, p)
+    if noisy:
+        warnings.append(noisy)
     report(progress, 0.9, "joint batch least squares")
     best = next((methods[n] for n in ("joint", "closed_form", "bgd") if methods[n].ok), None)
     tilt = _epoch_tilt(rec, best, joint)

@@ -21,11 +21,11 @@ import math
 from dataclasses import dataclass, field, replace
 
 import numpy as np
-from scipy.spatial.transform import Rotation
 
 from hydrosync_core.methods.tilt_alignment.geometry import E_DOWN
 from hydrosync_core.methods.tilt_alignment.imu_convention import CONVENTIONS, TAG_FRACTION
 from hydrosync_core.methods.tilt_alignment.params import IMU_GRADES
+from hydrosync_core.rotations import euler_zyx_matrix, log_so3
 
 #: IMU grades as simulated: gyro noise (°/s/√Hz), gyro bias 1σ (°/s), accel noise
 #: (m/s²/√Hz), accel bias 1σ (m/s²) — the documented numbers of ``params.IMU_GRADES``.
@@ -149,7 +149,7 @@ def _angles(cfg: SwingConfig, t: np.ndarray, wob: tuple, scale: float) -> np.nda
 
 
 def _matrices(angles: np.ndarray) -> np.ndarray:
-    return Rotation.from_euler("ZYX", angles[:, [2, 1, 0]]).as_matrix()
+    return euler_zyx_matrix(angles[:, 0], angles[:, 1], angles[:, 2])
 
 
 def _noise(rng: np.random.Generator, sigma: float, shape: tuple, taps: int) -> np.ndarray:
@@ -186,12 +186,12 @@ def _imu_samples(cfg: SwingConfig, t: np.ndarray, wob: tuple, scale: float
     tags = m * (np.arange(t.size) + 1)               # fine index of each tag
     if cfg.imu_convention == "instant":
         rel = np.einsum("kji,kjl->kil", Cf[tags - 1], Cf[tags + 1])
-        gyro = Rotation.from_matrix(rel).as_rotvec() / (2 * h)
+        gyro = log_so3(rel) / (2 * h)
         f = ff[tags]
     else:
         start = tags - int(round(TAG_FRACTION[cfg.imu_convention] * m))
         rel = np.einsum("kji,kjl->kil", Cf[start], Cf[start + m])
-        gyro = Rotation.from_matrix(rel).as_rotvec() / dt
+        gyro = log_so3(rel) / dt
         idx = start[:, None] + np.arange(m + 1)[None, :]
         wts = np.full(m + 1, 1.0 / m)
         wts[[0, -1]] *= 0.5

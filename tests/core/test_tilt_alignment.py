@@ -394,8 +394,9 @@ def test_foreign_swings_with_the_defaults():
     """Swings simulated outside the team (MEMS, instantaneous samples, no time offset):
     with the command's defaults every tip within 1 cm and no warning, the GNSS offset
     consistent with 0 (mean within ±1.5 ms, each within 3σ) and the IMU noise the joint
-    method reports within 30 % of the data's (0.02°/s, 0.01 m/s² per sample; the record's
-    own measure is within 5 %, the variance components may only raise it)."""
+    method reports within 40 % of the data's (0.02°/s, 0.01 m/s² per sample; the record's
+    own measure is within 5 %, the variance components may only raise it, and they rest on
+    about 60 accelerometer windows: ±18 % in variance at 1σ)."""
     from hydrosync_core.methods.tilt_alignment.io import read_gnss_csv, read_imu_csv
     from hydrosync_core.methods.tilt_alignment.solve_files import result_document, solve_columns
 
@@ -414,8 +415,8 @@ def test_foreign_swings_with_the_defaults():
         j = doc["joint"]
         assert abs(j["time_offset_ms"]) < 3 * j["time_offset_std_ms"], d.name
         offsets.append(j["time_offset_ms"])
-        assert j["gyro_noise_deg_s_per_sample"] == pytest.approx(0.02, rel=0.3)
-        assert j["accel_noise_m_s2_per_sample"] == pytest.approx(0.01, rel=0.3)
+        assert j["gyro_noise_deg_s_per_sample"] == pytest.approx(0.02, rel=0.4)
+        assert j["accel_noise_m_s2_per_sample"] == pytest.approx(0.01, rel=0.4)
     assert abs(np.mean(offsets)) < 1.5
 
 
@@ -428,3 +429,16 @@ def test_an_imu_noisier_than_its_grade_is_named():
     assert any("noisier than its grade" in w and "gyro" in w for w in said), said
     said = _solve(sim, TiltParams(imu_grade="consumer")).warnings
     assert not any("noisier" in w for w in said)
+
+
+def test_model_error_of_a_fast_swing_at_50_hz_is_not_read_as_noise():
+    """Three sweeps of 50° in 2.5 s sampled at 50 Hz: second differences of the antenna
+    path differ from the instantaneous acceleration by Δt²/12·a'' (~5·10⁻³ m/s² here);
+    with the NED Numerov weights the accelerometer noise the joint method reports stays
+    within 35 % of the simulated 0.0085 m/s² per sample (taken as they are, the rows gave
+    3×: the variance components absorb a model error)."""
+    cfg = SwingConfig(tilt_deg=50, sweeps=3, shape_ratio=0.5, imu_rate_hz=50.0,
+                      wobble_deg=0.0, gyro_bias_deg_s=(0.03, -0.04, 0.02),
+                      accel_bias_m_s2=(0.01, -0.02, 0.015))
+    sol = _solve(simulate_swing(cfg, seed=4))
+    assert sol.joint.accel_noise_m_s2 == pytest.approx(0.0012 * math.sqrt(50), rel=0.35)

@@ -107,6 +107,7 @@ class _Record:
     window: np.ndarray
     gyro_noise: float        # per-row white noise of the rows as recorded (rad/s, m/s²):
     accel_noise: float       # the model grid's averaged rows would understate it
+    instant: bool = False    # instantaneous accelerometer rows (else interval means)
 
 
 def _heading_only(name: str, R: np.ndarray, C_epochs: np.ndarray, C_imu0: np.ndarray,
@@ -196,7 +197,7 @@ def _prepare(time, gyro, accel, gnss_time, gnss_ned, length, p: TiltParams, g: f
     C_ep[:, :, 2] = u_imu / length
     window = gnss_time >= gnss_time[-1] - p.tip_window_s
     return _Record(time, gyro, accel, gnss_time, gnss_ned, length, g, C_imu, C_ep, window,
-                   *noise)
+                   *noise, convention == "instant")
 
 
 def _vector_sets(vec: Vectors) -> dict[str, np.ndarray]:
@@ -283,7 +284,8 @@ def _adjust_with_time_check(rec: _Record, C0: np.ndarray, tip0: np.ndarray, p: T
                          accel_noise=rec.accel_noise,
                          gyro_bias_sigma=math.radians(p.gyro_bias_prior_deg_s),
                          accel_bias_sigma=p.accel_bias_prior_m_s2,
-                         cancel_check=(lambda: check_cancel(cancel)))
+                         cancel_check=(lambda: check_cancel(cancel)),
+                         accel_rows="instant" if rec.instant else "interval")
 
     joint = adjust(rec.gnss_time, C0, tip0)
     applied = 0.0

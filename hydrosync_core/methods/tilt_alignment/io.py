@@ -3,7 +3,8 @@
 ``imu.csv``: ``time, gx, gy, gz, ax, ay, az`` — angular rate (rad/s) and specific force
 (m/s²) in the IMU body frame (x forward, y right, z down along the pole towards the tip).
 ``gnss.csv``: ``time, e, n, u`` (local ENU, m) or ``time, lat, lon, height`` (deg, deg, m
-ellipsoidal): the antenna phase centre. ``pole.json``: ``{"pole_length_m": 1.865}``.
+ellipsoidal): the antenna phase centre. ``pole.json``: ``{"pole_length_m": 1.865}``, and
+optionally ``"imu_convention"`` (what an ``imu.csv`` row is, :mod:`.imu_convention`).
 Every error is one :class:`InputError` naming the file, line and field.
 """
 
@@ -91,9 +92,28 @@ def check_pole(document, source: str) -> float:
     return finite_number(source, document["pole_length_m"], "pole_length_m", POLE_LIMITS)
 
 
+def pole_convention(document, source: str) -> str | None:
+    """The IMU sample convention ``pole.json`` declares (``imu_convention``), or None."""
+    from hydrosync_core.methods.tilt_alignment.imu_convention import CONVENTIONS
+
+    value = document.get("imu_convention") if isinstance(document, dict) else None
+    if value is None:
+        return None
+    if value not in CONVENTIONS:
+        raise InputError(source, f"must be one of {', '.join(CONVENTIONS)}, got "
+                         f"{str(value)[:40]!r}", field="imu_convention")
+    return str(value)
+
+
 def read_pole_json(path: str | os.PathLike) -> dict:
-    """``pole.json`` as a checked document ``{"pole_length_m": l}``."""
-    return {"pole_length_m": check_pole(read_json(path), str(path))}
+    """``pole.json`` as a checked document ``{"pole_length_m": l}`` (with
+    ``imu_convention`` when it declares one)."""
+    doc = read_json(path)
+    out: dict = {"pole_length_m": check_pole(doc, str(path))}
+    convention = pole_convention(doc, str(path))
+    if convention is not None:
+        out["imu_convention"] = convention
+    return out
 
 
 def gnss_to_local(cols: dict[str, np.ndarray]) -> tuple[np.ndarray, dict]:

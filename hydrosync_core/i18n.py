@@ -174,8 +174,10 @@ def _fill(target: str, values: dict[str, str]) -> str:
 
 
 def is_translated(text: str, lang: str) -> bool:
-    """Whether *text* has an entry (exact, pattern, or label + unit) in *lang*."""
-    return _lookup(text, normalise(lang), 0) != text
+    """Whether *text* has an entry (exact, pattern, or label + unit) in *lang*; an entry
+    that keeps the English (a name such as ``Mahony Kp``) counts."""
+    lang = normalise(lang)
+    return text.strip() in catalogue(lang).exact or _lookup(text, lang, 0) != text
 
 
 @contextlib.contextmanager

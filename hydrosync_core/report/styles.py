@@ -97,11 +97,14 @@ def cjk_font_file() -> str:
                      "HYDROSYNC_CJK_FONT to a .ttf/.ttc file")
 
 
-def _cjk_font(name: str) -> TTFont:
+def _cjk_font(name: str, mono: bool = False) -> TTFont:
     # Only TrueType outlines: reportlab embeds (subsets) them, unlike its built-in CID
     # fonts, which each viewer substitutes differently. WenQuanYi Zen Hei carries Latin,
     # Greek (σ, Δ) and the signs ± ° → as well, so one face serves the whole page.
-    font = TTFont(name, cjk_font_file(), subfontIndex=0)
+    path = cjk_font_file()
+    # WenQuanYi Zen Hei's collection holds the proportional face first, the mono second.
+    index = 1 if mono and path.endswith("wqy-zenhei.ttc") else 0
+    font = TTFont(name, path, subfontIndex=index)
     glyphs, widths = font.face.charToGlyph, font.face.charWidths
     for missing, stand_in in _STAND_INS.items():
         if missing not in glyphs and stand_in in glyphs:  # a look-alike, not a tofu box
@@ -127,10 +130,12 @@ def language_fonts(lang: str) -> Iterator[None]:
         return
     if lang != "zh_CN":
         raise ValueError(f"no report fonts for language '{lang}'")
-    face = _cjk_font(FONT)  # one face for regular and bold: the font has no bold
-    # Helvetica too: it has no Chinese glyphs and is not embedded, and a section may name
-    # it directly (a bold table cell).
-    faces = dict.fromkeys((FONT, FONT_BOLD, "Helvetica", "Helvetica-Bold"), face)
+    face = _cjk_font(FONT)  # one face for every style: the font has no bold or italic
+    # Helvetica and Courier too: they have no Chinese glyphs and are not embedded, and a
+    # section may name them directly (a bold cell, parameter names in Courier).
+    faces = dict.fromkeys((FONT, FONT_BOLD, "DejaVuSans-Oblique", "DejaVuSans-BoldOblique",
+                           "Helvetica", "Helvetica-Bold", "Helvetica-Oblique"), face)
+    faces["Courier"] = _cjk_font("Courier", mono=True)
     with _FONT_SWAP:
         saved = {name: pdfmetrics._fonts.get(name) for name in faces}
         try:

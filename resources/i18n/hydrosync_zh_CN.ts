@@ -20,6 +20,14 @@
             <translation>3 × 惯导数据间隔中值</translation>
         </message>
         <message>
+            <source>95 % interval</source>
+            <translation>95 % 区间</translation>
+        </message>
+        <message>
+            <source>95 % interval of Δt</source>
+            <translation>Δt 的 95 % 区间</translation>
+        </message>
+        <message>
             <source>A-priori σ horizontal</source>
             <translation>水平先验 σ</translation>
         </message>
@@ -40,8 +48,16 @@
             <translation>采用的解</translation>
         </message>
         <message>
+            <source>Alignment</source>
+            <translation>对准</translation>
+        </message>
+        <message>
             <source>Angle tolerance</source>
             <translation>角度收敛阈值</translation>
+        </message>
+        <message>
+            <source>Antennas</source>
+            <translation>天线</translation>
         </message>
         <message>
             <source>Appendix: data sources</source>
@@ -52,8 +68,28 @@
             <translation>附录:数据来源、船体偏移量与测线</translation>
         </message>
         <message>
+            <source>Appendix: pool calibration, every patent iteration</source>
+            <translation>附录:水池检校,专利方法的每次迭代</translation>
+        </message>
+        <message>
             <source>Approved by</source>
             <translation>审批</translation>
+        </message>
+        <message>
+            <source>Attitude error against the reference (solution − reference, °), forward and smoothed; dashed: ±1σ of each solution; shaded: simulated GNSS outages.</source>
+            <translation>相对参考的姿态误差(解 − 参考,°),前向滤波和平滑后;虚线:各解的 ±1σ;阴影:模拟的 GNSS 中断。</translation>
+        </message>
+        <message>
+            <source>Attitude from a GNSS antenna array</source>
+            <translation>GNSS 天线阵列定姿</translation>
+        </message>
+        <message>
+            <source>BGD</source>
+            <translation>BGD</translation>
+        </message>
+        <message>
+            <source>BGD iterates</source>
+            <translation>BGD 迭代过程</translation>
         </message>
         <message>
             <source>Band refit width</source>
@@ -64,12 +100,56 @@
             <translation>基线长度容差</translation>
         </message>
         <message>
+            <source>Boresight angles and lever arm: the coarse values of the installation drawing, the patent method's and the joint adjustment's solutions, and the final values to enter in the acquisition software. An undetermined parameter keeps its coarse value (no σ); a parameter whose σ exceeds the warning threshold is flagged.</source>
+            <translation>安装偏角与杆臂:安装图给出的粗值、专利方法与联合平差的解,以及应输入采集软件的最终值。无法确定的参数保留其粗值(无 σ);σ 超过警告阈值的参数予以标记。</translation>
+        </message>
+        <message>
+            <source>Boresight corrections of each iteration (about the body axes), the accumulated angles and the largest remaining normal angle.</source>
+            <translation>每次迭代的安装偏角改正(绕载体坐标轴)、累计角度及剩余的最大法向夹角。</translation>
+        </message>
+        <message>
+            <source>Boresight pitch</source>
+            <translation>纵摇安装偏角</translation>
+        </message>
+        <message>
+            <source>Boresight pitch (final, 1σ)</source>
+            <translation>纵摇安装偏角(最终值,1σ)</translation>
+        </message>
+        <message>
+            <source>Boresight roll</source>
+            <translation>横摇安装偏角</translation>
+        </message>
+        <message>
+            <source>Boresight roll (final, 1σ)</source>
+            <translation>横摇安装偏角(最终值,1σ)</translation>
+        </message>
+        <message>
+            <source>Boresight yaw</source>
+            <translation>艏摇安装偏角</translation>
+        </message>
+        <message>
+            <source>Boresight yaw (final, 1σ)</source>
+            <translation>艏摇安装偏角(最终值,1σ)</translation>
+        </message>
+        <message>
+            <source>Build tolerance</source>
+            <translation>建造容差</translation>
+        </message>
+        <message>
             <source>Build tolerance (orientation)</source>
             <translation>建造容差(姿态)</translation>
         </message>
         <message>
             <source>Build tolerance (position)</source>
             <translation>建造容差(位置)</translation>
+        </message>
+        <message>
+            <source>Carries</source>
+            <translation>所含内容</translation>
+        </message>
+        <message>
+            <source>Caveat</source>
+            <translation>注意事项</translation>
         </message>
         <message>
             <source>Checked by</source>
@@ -84,12 +164,20 @@
             <translation>聚类距离(多波束)</translation>
         </message>
         <message>
+            <source>Coarse (setup)</source>
+            <translation>粗值(安装)</translation>
+        </message>
+        <message>
             <source>Coarse setup accuracy (angles)</source>
             <translation>粗标定精度(角度)</translation>
         </message>
         <message>
             <source>Coarse setup accuracy (lever arm)</source>
             <translation>粗标定精度(杆臂)</translation>
+        </message>
+        <message>
+            <source>Computed</source>
+            <translation>计算时间</translation>
         </message>
         <message>
             <source>Computed (UTC, version)</source>
@@ -104,8 +192,24 @@
             <translation>目录</translation>
         </message>
         <message>
+            <source>Convergence of the patent's iteration (steps 3.1–3.6): the largest angle between corresponding plane normals after each boresight update.</source>
+            <translation>专利迭代的收敛过程(步骤 3.1–3.6):每次安装偏角更新后对应平面法向间的最大夹角。</translation>
+        </message>
+        <message>
             <source>Convergence threshold</source>
             <translation>收敛阈值</translation>
+        </message>
+        <message>
+            <source>Correction (final − coarse)</source>
+            <translation>改正量(最终 − 粗值)</translation>
+        </message>
+        <message>
+            <source>Correlation R between detrended GNSS height and total heave as a function of the trial latency Δt, one curve per line (eq. 4) over the whole scan range.</source>
+            <translation>去趋势 GNSS 高程与总升沉之间的相关系数 R 随试算时间延迟 Δt 的变化,每条测线一条曲线(式 4),覆盖整个搜索范围。</translation>
+        </message>
+        <message>
+            <source>Correlation matrix of the joint adjustment's parameters. Values above 0.9 in magnitude (red) mean the pass geometry barely separates the two parameters.</source>
+            <translation>联合平差参数的相关矩阵。绝对值大于 0.9(红色)表示测量几何几乎无法区分这两个参数。</translation>
         </message>
         <message>
             <source>Covariance step</source>
@@ -128,6 +232,10 @@
             <translation>日期</translation>
         </message>
         <message>
+            <source>Detail of the correlation peaks: each dot is one line's (Δt, R&lt;sub&gt;max&lt;/sub&gt;), the vertical line the weighted mean and the band its 95 % interval.</source>
+            <translation>相关峰细节:每个点为一条测线的 (Δt, R&lt;sub&gt;max&lt;/sub&gt;),竖线为加权平均,色带为其 95 % 区间。</translation>
+        </message>
+        <message>
             <source>Detrend degree</source>
             <translation>去趋势阶数</translation>
         </message>
@@ -140,16 +248,68 @@
             <translation>超过此点数则降采样</translation>
         </message>
         <message>
+            <source>Drift across simulated GNSS outages.</source>
+            <translation>模拟 GNSS 中断期间的漂移。</translation>
+        </message>
+        <message>
+            <source>Elevation of the target seen from the vessel (north against up): laser points above the water line and multibeam soundings below it, georeferenced with the final values and coloured by the role of their face; design outlines in grey.</source>
+            <translation>从船上看标靶的立面图(北向对天向):水线以上为激光点,水线以下为多波束测深点,用最终值进行地理参考,并按所在面的作用着色;设计轮廓为灰色。</translation>
+        </message>
+        <message>
             <source>Epoch matching</source>
             <translation>历元匹配</translation>
+        </message>
+        <message>
+            <source>Epoch screening.</source>
+            <translation>历元筛选。</translation>
+        </message>
+        <message>
+            <source>Epochs</source>
+            <translation>历元</translation>
+        </message>
+        <message>
+            <source>Epochs matched / solved</source>
+            <translation>匹配 / 解算历元数</translation>
+        </message>
+        <message>
+            <source>Epochs solved</source>
+            <translation>解算历元数</translation>
+        </message>
+        <message>
+            <source>Epochs with an antenna dropped (length check)</source>
+            <translation>舍弃了天线的历元数(长度检验)</translation>
+        </message>
+        <message>
+            <source>Epochs with fewer than 3 usable antennas</source>
+            <translation>可用天线少于 3 个的历元数</translation>
         </message>
         <message>
             <source>Estimator</source>
             <translation>估计方法</translation>
         </message>
         <message>
+            <source>Estimator: &lt;b&gt;weighted&lt;/b&gt;, beyond the publication: the high-rate total heave is low-passed to the GNSS band (zero-phase) before eq. 3, and both series are weighted per frequency by their coherence pooled over the day's lines (maximum-likelihood generalised cross-correlation, Knapp and Carter 1976); R&lt;sub&gt;max&lt;/sub&gt; and the curves are the anti-aliased correlation, Δt and σ come from the weighted one. The published estimator stays available (parameter &lt;i&gt;estimator&lt;/i&gt; = qi2010).</source>
+            <translation>估计方法:&lt;b&gt;weighted&lt;/b&gt;,超出论文的部分:在式 3 之前先将高频总升沉低通滤波(零相位)到 GNSS 频带,两组序列按当天各测线汇总的相干性逐频率加权(最大似然广义互相关,Knapp 和 Carter 1976);R&lt;sub&gt;max&lt;/sub&gt; 和曲线为抗混叠后的相关,Δt 和 σ 取自加权相关。论文方法仍可使用(参数 &lt;i&gt;estimator&lt;/i&gt; = qi2010)。</translation>
+        </message>
+        <message>
+            <source>Estimator: the published one (raw series), as in Qi et al. (2010).</source>
+            <translation>估计方法:论文方法(原始序列),同 Qi 等(2010)。</translation>
+        </message>
+        <message>
+            <source>Face</source>
+            <translation>面</translation>
+        </message>
+        <message>
+            <source>Face (multibeam)</source>
+            <translation>面(多波束)</translation>
+        </message>
+        <message>
             <source>Face edge margin</source>
             <translation>面边缘余量</translation>
+        </message>
+        <message>
+            <source>Faces of the target design, their role inferred from geometry, points segmented in each cloud, plane-fit RMS, the angle between the laser and the final multibeam plane normals, and the parameters each face determines.</source>
+            <translation>标靶设计中的各面、由几何推断的作用、各点云中分割出的点数、平面拟合 RMS、激光与最终多波束平面法向的夹角,以及各面所确定的参数。</translation>
         </message>
         <message>
             <source>Fewest vectors</source>
@@ -160,8 +320,20 @@
             <translation>文件</translation>
         </message>
         <message>
+            <source>Final (joint)</source>
+            <translation>最终值(联合)</translation>
+        </message>
+        <message>
+            <source>Final latency Δt (1σ)</source>
+            <translation>最终时间延迟 Δt(1σ)</translation>
+        </message>
+        <message>
             <source>Final values</source>
             <translation>最终值</translation>
+        </message>
+        <message>
+            <source>Final values from</source>
+            <translation>最终值来源</translation>
         </message>
         <message>
             <source>Flag above σ (angles)</source>
@@ -172,6 +344,18 @@
             <translation>σ 超过此值则标记(杆臂)</translation>
         </message>
         <message>
+            <source>Forward horizontal RMS / yaw RMS vs reference</source>
+            <translation>前向滤波相对参考的水平 RMS / 艏摇 RMS</translation>
+        </message>
+        <message>
+            <source>Forward outage drift (max horizontal)</source>
+            <translation>前向滤波中断漂移(最大水平)</translation>
+        </message>
+        <message>
+            <source>GNSS</source>
+            <translation>GNSS</translation>
+        </message>
+        <message>
             <source>GNSS Attitude</source>
             <translation>GNSS 定姿</translation>
         </message>
@@ -180,8 +364,20 @@
             <translation>GNSS 天线相位中心相对于姿态传感器的位置,载体坐标系 x 向前、y 向右舷、z 向下;默认取自船舶参数表</translation>
         </message>
         <message>
+            <source>GNSS attitude: processing parameters.</source>
+            <translation>GNSS 定姿:处理参数。</translation>
+        </message>
+        <message>
             <source>GNSS error correlation time</source>
             <translation>GNSS 误差相关时间</translation>
+        </message>
+        <message>
+            <source>GNSS fixes in span / used</source>
+            <translation>时段内 / 采用的 GNSS 定位数</translation>
+        </message>
+        <message>
+            <source>GNSS height, detrended</source>
+            <translation>GNSS 高程(去趋势)</translation>
         </message>
         <message>
             <source>GNSS innovation gate</source>
@@ -208,8 +404,20 @@
             <translation>GNSS/INS 组合导航平滑</translation>
         </message>
         <message>
+            <source>GNSS/INS smoother: processing parameters.</source>
+            <translation>GNSS/INS 组合导航平滑:处理参数。</translation>
+        </message>
+        <message>
+            <source>GNSS/INS trajectory with RTS smoothing</source>
+            <translation>RTS 反向平滑的 GNSS/INS 轨迹</translation>
+        </message>
+        <message>
             <source>Gap factor</source>
             <translation>间断因子</translation>
+        </message>
+        <message>
+            <source>Gaps / longest</source>
+            <translation>间断数 / 最长</translation>
         </message>
         <message>
             <source>Gauss–Markov correlation time of the INS attitude errors</source>
@@ -224,12 +432,48 @@
             <translation>陀螺零偏 σ</translation>
         </message>
         <message>
+            <source>H RMS</source>
+            <translation>水平 RMS</translation>
+        </message>
+        <message>
+            <source>Heading</source>
+            <translation>航向</translation>
+        </message>
+        <message>
+            <source>Heading formal 1σ, RMS (least squares)</source>
+            <translation>航向形式 1σ,RMS(最小二乘)</translation>
+        </message>
+        <message>
+            <source>Heading, pitch and roll from the baselines between the antennas, rotated from ECEF to the local level frame at the array position: the three-antenna direct method and the iterative weighted least squares of Liu et al., and the optimal closed-form (Wahba) rotation as a cross-check. Angles in degrees; heading clockwise from north, pitch bow up, roll starboard down.</source>
+            <translation>由天线间基线求得的航向、纵摇和横摇,从 ECEF 旋转到天线阵列处的当地水平坐标系:Liu 等的三天线直接法和迭代加权最小二乘,并以闭合形式最优旋转(Wahba)作为交叉检核。角度单位为度;航向自北顺时针,纵摇艏抬升为正,横摇右舷下沉为正。</translation>
+        </message>
+        <message>
+            <source>Heading, pitch and roll: direct method (three antennas) and least squares overlaid (time from the first epoch).</source>
+            <translation>航向、纵摇和横摇:直接法(三天线)与最小二乘叠加显示(时间自首历元起算)。</translation>
+        </message>
+        <message>
+            <source>Heading-error histogram of the simulated swings (cf. Li et al., fig. 4).</source>
+            <translation>模拟摆动的航向误差直方图(参见 Li 等,图 4)。</translation>
+        </message>
+        <message>
             <source>Heave sign in file</source>
             <translation>文件中的升沉符号</translation>
         </message>
         <message>
+            <source>Horizontal tip errors of the simulated swings (cf. Li et al., figs. 6-9).</source>
+            <translation>模拟摆动的杆尖水平误差(参见 Li 等,图 6-9)。</translation>
+        </message>
+        <message>
             <source>Huber threshold</source>
             <translation>Huber 阈值</translation>
+        </message>
+        <message>
+            <source>IMU epochs</source>
+            <translation>IMU 历元数</translation>
+        </message>
+        <message>
+            <source>IMU epochs / GNSS fixes used</source>
+            <translation>IMU 历元数 / 采用的 GNSS 定位数</translation>
         </message>
         <message>
             <source>IMU mounting angles</source>
@@ -238,6 +482,14 @@
         <message>
             <source>INS accuracy (1σ)</source>
             <translation>惯导精度(1σ)</translation>
+        </message>
+        <message>
+            <source>INS attitude</source>
+            <translation>惯导姿态</translation>
+        </message>
+        <message>
+            <source>INS attitude taken as exact (no INS accuracy given): the σ are a lower bound</source>
+            <translation>惯导姿态视为无误差(未给出惯导精度):σ 为下限</translation>
         </message>
         <message>
             <source>INS error correlation time</source>
@@ -264,12 +516,40 @@
             <translation>项目</translation>
         </message>
         <message>
+            <source>Iteration</source>
+            <translation>迭代</translation>
+        </message>
+        <message>
             <source>Iteration and adjustment</source>
             <translation>迭代与平差</translation>
         </message>
         <message>
+            <source>Joint adjustment</source>
+            <translation>联合平差</translation>
+        </message>
+        <message>
+            <source>Joint adjustment ± 1σ</source>
+            <translation>联合平差 ± 1σ</translation>
+        </message>
+        <message>
+            <source>Joint adjustment: correlations</source>
+            <translation>联合平差:相关系数</translation>
+        </message>
+        <message>
+            <source>Joint estimate (all used lines at once)</source>
+            <translation>联合估计(同时使用全部采用的测线)</translation>
+        </message>
+        <message>
+            <source>Joint resid.</source>
+            <translation>联合残差</translation>
+        </message>
+        <message>
             <source>Key results of every module. Values are the final, corrected values; uncertainties are one standard deviation unless stated.</source>
             <translation>各模块的主要结果。数值为最终改正后的值;除另有说明外,不确定度均为一倍标准差。</translation>
+        </message>
+        <message>
+            <source>LSQ</source>
+            <translation>最小二乘</translation>
         </message>
         <message>
             <source>Largest credible line σ</source>
@@ -280,8 +560,20 @@
             <translation>最大离散度</translation>
         </message>
         <message>
+            <source>Laser RMS</source>
+            <translation>激光 RMS</translation>
+        </message>
+        <message>
             <source>Laser crop tolerance</source>
             <translation>激光裁剪容差</translation>
+        </message>
+        <message>
+            <source>Laser planes</source>
+            <translation>激光平面</translation>
+        </message>
+        <message>
+            <source>Laser pts</source>
+            <translation>激光点数</translation>
         </message>
         <message>
             <source>Laser voxel size</source>
@@ -292,8 +584,32 @@
             <translation>时间延迟</translation>
         </message>
         <message>
+            <source>Latency between GNSS heights and attitude</source>
+            <translation>GNSS 高程与姿态数据间的时间延迟</translation>
+        </message>
+        <message>
+            <source>Latency estimator</source>
+            <translation>时间延迟估计方法</translation>
+        </message>
+        <message>
+            <source>Latency Δt (GNSS tags late), 1σ</source>
+            <translation>时间延迟 Δt(GNSS 时间标签滞后),1σ</translation>
+        </message>
+        <message>
+            <source>Latency: final result.</source>
+            <translation>时间延迟:最终结果。</translation>
+        </message>
+        <message>
+            <source>Latency: processing parameters (lever arm “vessel sheet”: the value above was taken from it).</source>
+            <translation>时间延迟:处理参数(杆臂“船舶参数表”:上方的值取自该表)。</translation>
+        </message>
+        <message>
             <source>Learning rate α</source>
             <translation>学习率 α</translation>
+        </message>
+        <message>
+            <source>Length</source>
+            <translation>长度</translation>
         </message>
         <message>
             <source>Levelling time</source>
@@ -304,6 +620,34 @@
             <translation>杆臂(天线 − 姿态传感器)</translation>
         </message>
         <message>
+            <source>Lever arm GNSS antenna − motion sensor (x fwd, y stbd, z down)</source>
+            <translation>杆臂 GNSS 天线 − 姿态传感器(x 向前,y 右舷,z 向下)</translation>
+        </message>
+        <message>
+            <source>Lever arm x (forward)</source>
+            <translation>杆臂 x(向前)</translation>
+        </message>
+        <message>
+            <source>Lever arm x (forward) (final, 1σ)</source>
+            <translation>杆臂 x(向前)(最终值,1σ)</translation>
+        </message>
+        <message>
+            <source>Lever arm y (starboard)</source>
+            <translation>杆臂 y(右舷)</translation>
+        </message>
+        <message>
+            <source>Lever arm y (starboard) (final, 1σ)</source>
+            <translation>杆臂 y(右舷)(最终值,1σ)</translation>
+        </message>
+        <message>
+            <source>Lever arm z (down)</source>
+            <translation>杆臂 z(向下)</translation>
+        </message>
+        <message>
+            <source>Lever arm z (down) (final, 1σ)</source>
+            <translation>杆臂 z(向下)(最终值,1σ)</translation>
+        </message>
+        <message>
             <source>Lever-arm tolerance</source>
             <translation>杆臂收敛阈值</translation>
         </message>
@@ -312,8 +656,28 @@
             <translation>测线</translation>
         </message>
         <message>
+            <source>Lines used</source>
+            <translation>采用的测线</translation>
+        </message>
+        <message>
             <source>Log records</source>
             <translation>日志记录</translation>
+        </message>
+        <message>
+            <source>MBES RMS</source>
+            <translation>多波束 RMS</translation>
+        </message>
+        <message>
+            <source>MBES pts</source>
+            <translation>多波束点数</translation>
+        </message>
+        <message>
+            <source>MBGD (Li et al.)</source>
+            <translation>MBGD(Li 等)</translation>
+        </message>
+        <message>
+            <source>MBGD iterates</source>
+            <translation>MBGD 迭代过程</translation>
         </message>
         <message>
             <source>Mahony Ki</source>
@@ -328,6 +692,10 @@
             <translation>每轮最大迭代次数</translation>
         </message>
         <message>
+            <source>Max normal angle</source>
+            <translation>最大法向夹角</translation>
+        </message>
+        <message>
             <source>Max points per face</source>
             <translation>每面最多点数</translation>
         </message>
@@ -338,6 +706,14 @@
         <message>
             <source>Maximum iterations</source>
             <translation>最大迭代次数</translation>
+        </message>
+        <message>
+            <source>Method</source>
+            <translation>方法</translation>
+        </message>
+        <message>
+            <source>Method: pool calibration against a laser-scanned target (patent CN 105425246 B). Both point clouds are segmented into the design faces of the target; planes are fitted by total least squares. The patent method iterates the boresight angles from the angles between multibeam and laser plane normals (roll from the wall, pitch and yaw from the oblique faces), then derives the lever arm offsets (x from the wall, y from the oblique faces, z from the horizontal faces). The joint adjustment estimates all six parameters at once by minimising the point-to-plane distances of the multibeam soundings to the laser planes, with their covariance. Angles follow setup.json: R&lt;sub&gt;m&lt;/sub&gt; = Rz(yaw)·Ry(pitch)·Rx(roll); the lever arm is in the body frame (x forward, y starboard, z down).</source>
+            <translation>方法:以激光扫描标靶进行水池检校(专利 CN 105425246 B)。两组点云均分割为标靶的设计面;用整体最小二乘拟合平面。专利方法由多波束平面与激光平面法向间的夹角迭代求安装偏角(横摇取自墙面,纵摇和艏摇取自斜面),然后求杆臂偏移量(x 取自墙面,y 取自斜面,z 取自水平面)。联合平差通过最小化多波束测深点到激光平面的点面距离,一次估计全部六个参数及其协方差。角度遵循 setup.json:R&lt;sub&gt;m&lt;/sub&gt; = Rz(艏摇)·Ry(纵摇)·Rx(横摇);杆臂在载体坐标系中(x 向前,y 右舷,z 向下)。</translation>
         </message>
         <message>
             <source>Min points per face</source>
@@ -372,6 +748,10 @@
             <translation>动态对准 σ</translation>
         </message>
         <message>
+            <source>Multibeam pings dropped (INS gaps)</source>
+            <translation>舍弃的多波束 ping(惯导间断)</translation>
+        </message>
+        <message>
             <source>NHC σ</source>
             <translation>非完整约束 σ</translation>
         </message>
@@ -392,8 +772,16 @@
             <translation>项目中没有导入文件的记录(其原始数据由模拟器或旧版 HydroSync 写入)。</translation>
         </message>
         <message>
+            <source>Noise model (what the σ are computed from)</source>
+            <translation>噪声模型(σ 的计算依据)</translation>
+        </message>
+        <message>
             <source>Non-holonomic constraint</source>
             <translation>非完整约束</translation>
+        </message>
+        <message>
+            <source>Normal angle</source>
+            <translation>法向夹角</translation>
         </message>
         <message>
             <source>Notes</source>
@@ -404,12 +792,44 @@
             <translation>已过期</translation>
         </message>
         <message>
+            <source>Outage</source>
+            <translation>中断</translation>
+        </message>
+        <message>
+            <source>Outcome</source>
+            <translation>结果</translation>
+        </message>
+        <message>
             <source>Outlier limit</source>
             <translation>粗差限值</translation>
         </message>
         <message>
             <source>Parameter</source>
             <translation>参数</translation>
+        </message>
+        <message>
+            <source>Patent method</source>
+            <translation>专利方法</translation>
+        </message>
+        <message>
+            <source>Patent method: angle iterations</source>
+            <translation>专利方法:角度迭代</translation>
+        </message>
+        <message>
+            <source>Per-line results (as tables 1 and 2 of Qi et al. 2010): maximum correlation R&lt;sub&gt;max&lt;/sub&gt;, the latency at the peak Δt with its uncertainty σΔt (from the peak curvature), and the standard error σ&lt;sub&gt;0&lt;/sub&gt; of height minus total heave (eqs. 5–6) before (Δt = 0) and after synchronisation with the final Δt. Lines not used are greyed.</source>
+            <translation>各测线结果(同 Qi 等 2010 表 1 和表 2):最大相关系数 R&lt;sub&gt;max&lt;/sub&gt;,峰值处的时间延迟 Δt 及其不确定度 σΔt(由峰值曲率求得),以及高程减总升沉的中误差 σ&lt;sub&gt;0&lt;/sub&gt;(式 5–6),分别为同步前(Δt = 0)和用最终 Δt 同步后。未采用的测线以灰色显示。</translation>
+        </message>
+        <message>
+            <source>Pitch</source>
+            <translation>纵摇</translation>
+        </message>
+        <message>
+            <source>Pitch formal 1σ, RMS (least squares)</source>
+            <translation>纵摇形式 1σ,RMS(最小二乘)</translation>
+        </message>
+        <message>
+            <source>Plan view of the segmented clouds in the target frame (ENU): laser points coloured by the role of their face, multibeam soundings on faces georeferenced with the final values (black), design face outlines in grey. The vertical scale is stretched (axes not to the same scale) to separate the faces.</source>
+            <translation>标靶坐标系(ENU)中分割点云的平面图:激光点按所在面的作用着色,面上的多波束测深点用最终值进行地理参考(黑色),设计面轮廓为灰色。垂直比例经拉伸(两轴比例不同)以区分各面。</translation>
         </message>
         <message>
             <source>Points kept for views</source>
@@ -420,8 +840,32 @@
             <translation>水池检校</translation>
         </message>
         <message>
+            <source>Pool calibration of multibeam boresight and lever arm</source>
+            <translation>多波束安装偏角与杆臂的水池检校</translation>
+        </message>
+        <message>
+            <source>Pool calibration: processing parameters.</source>
+            <translation>水池检校:处理参数。</translation>
+        </message>
+        <message>
+            <source>Pool calibration: solution statistics.</source>
+            <translation>水池检校:解的统计量。</translation>
+        </message>
+        <message>
+            <source>Position error against the reference (solution − reference, m), forward and smoothed; dashed: ±1σ of each solution; shaded: simulated GNSS outages.</source>
+            <translation>相对参考的位置误差(解 − 参考,m),前向滤波和平滑后;虚线:各解的 ±1σ;阴影:模拟的 GNSS 中断。</translation>
+        </message>
+        <message>
             <source>Prepared by</source>
             <translation>编制</translation>
+        </message>
+        <message>
+            <source>Processing summary.</source>
+            <translation>处理概要。</translation>
+        </message>
+        <message>
+            <source>Profiles across faces: distance of each point from the laser plane of the face against height. Multibeam soundings with the coarse setup (grey) lean or sit off the plane; with the final values (colour) they continue the laser points (light blue) below the water line.</source>
+            <translation>横跨各面的剖面:各点到该面激光平面的距离随高度的变化。采用粗值(灰色)时多波束测深点倾斜或偏离平面;采用最终值(彩色)时它们在水线以下延续激光点(浅蓝色)。</translation>
         </message>
         <message>
             <source>Project</source>
@@ -452,12 +896,20 @@
             <translation>R 阈值</translation>
         </message>
         <message>
+            <source>R&lt;sub&gt;max&lt;/sub&gt;</source>
+            <translation>R&lt;sub&gt;max&lt;/sub&gt;</translation>
+        </message>
+        <message>
             <source>RANSAC threshold (laser)</source>
             <translation>RANSAC 阈值(激光)</translation>
         </message>
         <message>
             <source>RANSAC threshold (multibeam)</source>
             <translation>RANSAC 阈值(多波束)</translation>
+        </message>
+        <message>
+            <source>RMS error against the reference (epochs with GNSS).</source>
+            <translation>相对参考的 RMS 误差(有 GNSS 的历元)。</translation>
         </message>
         <message>
             <source>RTS smoothing</source>
@@ -476,6 +928,18 @@
             <translation>记录数</translation>
         </message>
         <message>
+            <source>Reference (laser)</source>
+            <translation>参考(激光)</translation>
+        </message>
+        <message>
+            <source>Reference plane of each face the multibeam sees: a face that crosses the water is compared with its own laser plane; a below-water face with the laser plane of its above-water twin (same shape and orientation, from the design) moved by the design translation Δ (known to the build tolerance, propagated into σ). 'Carries': parameters whose σ grows by more than 10 % without the face.</source>
+            <translation>多波束所见各面的参考平面:跨越水面的面与其自身的激光平面比较;水下面与其水上对应面(设计上形状和朝向相同)的激光平面平移设计平移量 Δ 后比较(Δ 精确到建造容差,并传播到 σ 中)。“所含内容”:去掉该面后 σ 增大超过 10 % 的参数。</translation>
+        </message>
+        <message>
+            <source>Reference planes</source>
+            <translation>参考平面</translation>
+        </message>
+        <message>
             <source>Rejection floor</source>
             <translation>剔除下限</translation>
         </message>
@@ -492,6 +956,34 @@
             <translation>报告方法</translation>
         </message>
         <message>
+            <source>Role</source>
+            <translation>作用</translation>
+        </message>
+        <message>
+            <source>Roll</source>
+            <translation>横摇</translation>
+        </message>
+        <message>
+            <source>Roll formal 1σ, RMS (least squares)</source>
+            <translation>横摇形式 1σ,RMS(最小二乘)</translation>
+        </message>
+        <message>
+            <source>Round</source>
+            <translation>轮次</translation>
+        </message>
+        <message>
+            <source>SGD</source>
+            <translation>SGD</translation>
+        </message>
+        <message>
+            <source>SGD iterates</source>
+            <translation>SGD 迭代过程</translation>
+        </message>
+        <message>
+            <source>SVD (Wahba)</source>
+            <translation>SVD(Wahba 法)</translation>
+        </message>
+        <message>
             <source>Scale-factor states</source>
             <translation>比例因子状态</translation>
         </message>
@@ -502,6 +994,10 @@
         <message>
             <source>Segmentation</source>
             <translation>分割</translation>
+        </message>
+        <message>
+            <source>Segmented point clouds</source>
+            <translation>分割后的点云</translation>
         </message>
         <message>
             <source>Sensor</source>
@@ -532,16 +1028,44 @@
             <translation>测线起始跳过</translation>
         </message>
         <message>
+            <source>Smoothed horizontal RMS / yaw RMS vs reference</source>
+            <translation>平滑后相对参考的水平 RMS / 艏摇 RMS</translation>
+        </message>
+        <message>
+            <source>Smoothed outage drift (max horizontal)</source>
+            <translation>平滑后中断漂移(最大水平)</translation>
+        </message>
+        <message>
             <source>Smoother node interval</source>
             <translation>平滑节点间隔</translation>
+        </message>
+        <message>
+            <source>Smoother nodes</source>
+            <translation>平滑节点</translation>
         </message>
         <message>
             <source>Software</source>
             <translation>软件</translation>
         </message>
         <message>
+            <source>Solution</source>
+            <translation>解</translation>
+        </message>
+        <message>
+            <source>Soundings (data)</source>
+            <translation>测深点(数据)</translation>
+        </message>
+        <message>
             <source>Source</source>
             <translation>来源</translation>
+        </message>
+        <message>
+            <source>Standard deviation of the angles over no static interval (the measured scatter of a moving platform is its motion, so only the prediction is given; set a static interval (static_start_s/static_end_s) on a period when it stood still) and the precision predicted from the position covariance (degrees). Liu et al. report 0.066°/0.168°/0.268° (4 antennas, least squares) and 0.092°/0.216°/0.297° (3 antennas, direct) on a static car.</source>
+            <translation>未设静态区间时角度的标准差(运动平台实测的离散即其运动本身,故只给出预测值;请在平台静止的时段设置静态区间 static_start_s/static_end_s)以及由位置协方差预测的精度(度)。Liu 等在静止车辆上得到 0.066°/0.168°/0.268°(4 天线,最小二乘)和 0.092°/0.216°/0.297°(3 天线,直接法)。</translation>
+        </message>
+        <message>
+            <source>Standard deviations, forward and smoothed (the smoother reduces them everywhere, most across GNSS outages).</source>
+            <translation>前向滤波和平滑后的标准差(平滑处处减小标准差,在 GNSS 中断处减小最多)。</translation>
         </message>
         <message>
             <source>Standstill accel std</source>
@@ -572,6 +1096,10 @@
             <translation>静态区间开始</translation>
         </message>
         <message>
+            <source>Status</source>
+            <translation>状态</translation>
+        </message>
+        <message>
             <source>Step</source>
             <translation>步长</translation>
         </message>
@@ -592,12 +1120,44 @@
             <translation>测线(raw/lines)及其开始和结束时间。</translation>
         </message>
         <message>
+            <source>Target faces</source>
+            <translation>标靶面</translation>
+        </message>
+        <message>
+            <source>The pole is swung for a few seconds with its tip on the point. Li et al. level the IMU (Mahony filter), form observation vectors between GNSS epochs and solve the heading misalignment by gradient descent (mini-batch after screening the vectors by their own heading; batch; stochastic with the longest vector) or SVD; the tip is the antenna corrected by the rotated pole (eq. 18). HydroSync adds the closed-form heading-only least squares and a joint batch least squares over the whole swing (initial attitude, tip, gyro and accelerometer biases from accelerometers, gyros and GNSS), the reported method by default. Tips in ENU (m); σ 1σ.</source>
+            <translation>杆尖置于待测点上,将对中杆摆动几秒钟。Li 等先调平 IMU(Mahony 滤波),在 GNSS 历元间构成观测矢量,用梯度下降(按矢量自身航向筛选后的小批量;批量;用最长矢量的随机梯度)或 SVD 求解航向失准角;杆尖为天线位置经旋转后的对中杆改正所得(式 18)。HydroSync 另加仅航向的闭合形式最小二乘,以及覆盖整个摆动过程的联合批量最小二乘(由加速度计、陀螺和 GNSS 求初始姿态、杆尖、陀螺和加速度计零偏),默认报告后者。杆尖为 ENU 坐标(m);σ 为 1σ。</translation>
+        </message>
+        <message>
             <source>The project holds no vessel offset sheet.</source>
             <translation>项目中没有船体偏移量表。</translation>
         </message>
         <message>
+            <source>The swing: antenna path on its sphere about the tip (plan and side views, from the mean antenna position).</source>
+            <translation>摆动:天线在以杆尖为中心的球面上的轨迹(平面图和侧视图,相对天线平均位置)。</translation>
+        </message>
+        <message>
             <source>Tilt Alignment</source>
             <translation>倾斜测量初始对准</translation>
+        </message>
+        <message>
+            <source>Tilt alignment: processing parameters.</source>
+            <translation>倾斜测量初始对准:处理参数。</translation>
+        </message>
+        <message>
+            <source>Tilt pole heading misalignment</source>
+            <translation>倾斜测量对中杆航向失准角</translation>
+        </message>
+        <message>
+            <source>Tilt pole tip E, N, U [m] (joint batch LSQ)</source>
+            <translation>对中杆杆尖 E, N, U [m](联合批量最小二乘)</translation>
+        </message>
+        <message>
+            <source>Tilt pole tip σ E/N/U</source>
+            <translation>对中杆杆尖 σ E/N/U</translation>
+        </message>
+        <message>
+            <source>Tilt-pole heading alignment and tip</source>
+            <translation>倾斜测量对中杆的航向对准与杆尖</translation>
         </message>
         <message>
             <source>Time span</source>
@@ -612,12 +1172,36 @@
             <translation>杆尖容差</translation>
         </message>
         <message>
+            <source>Total σ</source>
+            <translation>总 σ</translation>
+        </message>
+        <message>
+            <source>Trajectory: GNSS antenna fixes, forward and smoothed IMU positions (local east/north from the start).</source>
+            <translation>轨迹:GNSS 天线定位、前向滤波和平滑后的 IMU 位置(以起点为原点的当地东/北坐标)。</translation>
+        </message>
+        <message>
+            <source>Uncertainty model</source>
+            <translation>不确定度模型</translation>
+        </message>
+        <message>
             <source>Untitled project</source>
             <translation>未命名项目</translation>
         </message>
         <message>
+            <source>Used</source>
+            <translation>采用</translation>
+        </message>
+        <message>
+            <source>Used for</source>
+            <translation>用于</translation>
+        </message>
+        <message>
             <source>Value</source>
             <translation>值</translation>
+        </message>
+        <message>
+            <source>Velocity error against the reference (solution − reference, m/s), forward and smoothed; dashed: ±1σ of each solution; shaded: simulated GNSS outages.</source>
+            <translation>相对参考的速度误差(解 − 参考,m/s),前向滤波和平滑后;虚线:各解的 ±1σ;阴影:模拟的 GNSS 中断。</translation>
         </message>
         <message>
             <source>Vessel</source>
@@ -632,6 +1216,10 @@
             <translation>船体偏移量</translation>
         </message>
         <message>
+            <source>Wahba (closed form)</source>
+            <translation>Wahba(闭合形式)</translation>
+        </message>
+        <message>
             <source>Warn above |correlation|</source>
             <translation>|相关系数| 超过此值则警告</translation>
         </message>
@@ -640,12 +1228,24 @@
             <translation>警告:</translation>
         </message>
         <message>
+            <source>Water</source>
+            <translation>水</translation>
+        </message>
+        <message>
             <source>Water-line margin</source>
             <translation>水线余量</translation>
         </message>
         <message>
+            <source>Weighted mean</source>
+            <translation>加权平均</translation>
+        </message>
+        <message>
             <source>Weights</source>
             <translation>权</translation>
+        </message>
+        <message>
+            <source>Yaw</source>
+            <translation>艏摇</translation>
         </message>
         <message>
             <source>ZUPT speed limit</source>
@@ -680,6 +1280,10 @@
             <translation>天线高程的先验 1σ</translation>
         </message>
         <message>
+            <source>above</source>
+            <translation>水上</translation>
+        </message>
+        <message>
             <source>an angle whose σ exceeds this is flagged as poorly determined (default: half an accuracy target of 0.02°, so an unflagged angle meets it at about 2σ)</source>
             <translation>σ 超过此值的角度标记为确定性差(默认:0.02° 精度目标的一半,未标记的角度约在 2σ 水平满足目标)</translation>
         </message>
@@ -704,20 +1308,80 @@
             <translation>每轮最多角度迭代次数</translation>
         </message>
         <message>
+            <source>antenna</source>
+            <translation>天线</translation>
+        </message>
+        <message>
             <source>antenna positions used: fixed = RTK fixed only (Q=1), float = fixed or float (Q&lt;=2), any = every solution</source>
             <translation>采用的天线位置:fixed = 仅 RTK 固定解(Q=1),float = 固定解或浮点解(Q&lt;=2),any = 全部解</translation>
+        </message>
+        <message>
+            <source>auto</source>
+            <translation>自动</translation>
         </message>
         <message>
             <source>auto: check the file's GNSS σ against the data (forward innovations normalised by their predicted std: RMS 0.8-1.25, autocorrelation at 1 s below 0.3) and, if they disagree, re-estimate — white σ scaled to the residual scatter, the rest as a time-correlated (Gauss-Markov) GNSS error with τ by maximum likelihood — reported with the result; file: the file's σ (× the scale) as white noise</source>
             <translation>auto:用数据检验文件中的 GNSS σ(前向新息除以其预测标准差:RMS 0.8-1.25,1 s 处自相关低于 0.3),不符时重新估计——白噪声 σ 按残差离散缩放,其余作为时间相关(高斯-马尔可夫)GNSS 误差,τ 用最大似然估计——随结果一并报告;file:文件中的 σ(× 比例因子)作为白噪声</translation>
         </message>
         <message>
+            <source>below</source>
+            <translation>水下</translation>
+        </message>
+        <message>
+            <source>best</source>
+            <translation>最好</translation>
+        </message>
+        <message>
+            <source>closed form</source>
+            <translation>闭合形式</translation>
+        </message>
+        <message>
+            <source>coarse</source>
+            <translation>粗值</translation>
+        </message>
+        <message>
+            <source>correlation R</source>
+            <translation>相关系数 R</translation>
+        </message>
+        <message>
             <source>crop tolerance around the faces once the first solution is known</source>
             <translation>得到首次解后标靶面周围的裁剪容差</translation>
         </message>
         <message>
+            <source>crossing</source>
+            <translation>跨水线</translation>
+        </message>
+        <message>
             <source>degree of the polynomial (tide, squat) removed from each line's heights</source>
             <translation>从每条测线高程中去除的多项式(潮位、下坐)阶数</translation>
+        </message>
+        <message>
+            <source>determined</source>
+            <translation>已确定</translation>
+        </message>
+        <message>
+            <source>direct</source>
+            <translation>直接法</translation>
+        </message>
+        <message>
+            <source>direct (3 antennas)</source>
+            <translation>直接法(3 天线)</translation>
+        </message>
+        <message>
+            <source>distance from the laser plane of wall</source>
+            <translation>到墙面激光平面的距离</translation>
+        </message>
+        <message>
+            <source>down error</source>
+            <translation>天向误差</translation>
+        </message>
+        <message>
+            <source>east</source>
+            <translation>东</translation>
+        </message>
+        <message>
+            <source>east error</source>
+            <translation>东向误差</translation>
         </message>
         <message>
             <source>end (time of week) of the statistics interval</source>
@@ -740,12 +1404,40 @@
             <translation>GNSS 文件标准差的乘数</translation>
         </message>
         <message>
+            <source>fewer retained vectors than this: undetermined</source>
+            <translation>保留的矢量少于此数:无法确定</translation>
+        </message>
+        <message>
+            <source>file</source>
+            <translation>文件</translation>
+        </message>
+        <message>
+            <source>final</source>
+            <translation>最终值</translation>
+        </message>
+        <message>
             <source>final values from the joint least-squares adjustment (with σ) or from the patent's iteration</source>
             <translation>最终值取自联合最小二乘平差(带 σ)或专利的迭代法</translation>
         </message>
         <message>
             <source>first epoch</source>
             <translation>首历元</translation>
+        </message>
+        <message>
+            <source>fixed</source>
+            <translation>固定解</translation>
+        </message>
+        <message>
+            <source>forward</source>
+            <translation>前向滤波</translation>
+        </message>
+        <message>
+            <source>given</source>
+            <translation>给定</translation>
+        </message>
+        <message>
+            <source>gnss</source>
+            <translation>gnss</translation>
         </message>
         <message>
             <source>gradient descent stops when its step |L| is below this</source>
@@ -760,8 +1452,40 @@
             <translation>归一化 J(ψ) 上的梯度下降步长因子(其曲率约为 2:0.5 即牛顿步,大于 1 发散)</translation>
         </message>
         <message>
+            <source>heading</source>
+            <translation>航向</translation>
+        </message>
+        <message>
+            <source>heading error</source>
+            <translation>航向误差</translation>
+        </message>
+        <message>
+            <source>heading predicted</source>
+            <translation>航向预测</translation>
+        </message>
+        <message>
+            <source>heading simulated</source>
+            <translation>航向模拟</translation>
+        </message>
+        <message>
             <source>heading-only methods: the tip is the mean of the tilt-compensated epochs of the last seconds of the record (the pole held on the point after the swing)</source>
             <translation>仅航向的方法:杆尖取记录最后若干秒倾斜补偿后历元的平均(摆动后对中杆停在点上)</translation>
+        </message>
+        <message>
+            <source>height change</source>
+            <translation>高程变化</translation>
+        </message>
+        <message>
+            <source>horizontal</source>
+            <translation>水平</translation>
+        </message>
+        <message>
+            <source>horizontal (laser)</source>
+            <translation>水平面(激光)</translation>
+        </message>
+        <message>
+            <source>horizontal (multibeam)</source>
+            <translation>水平面(多波束)</translation>
         </message>
         <message>
             <source>how far from the design faces laser points are kept</source>
@@ -784,8 +1508,36 @@
             <translation>动态对准的初始横摇/纵摇/航向标准差</translation>
         </message>
         <message>
+            <source>ins</source>
+            <translation>ins</translation>
+        </message>
+        <message>
             <source>integral gain of the Mahony levelling filter (gyro-bias estimate)</source>
             <translation>Mahony 调平滤波器的积分增益(陀螺零偏估计)</translation>
+        </message>
+        <message>
+            <source>iter.</source>
+            <translation>迭代</translation>
+        </message>
+        <message>
+            <source>iteration</source>
+            <translation>迭代</translation>
+        </message>
+        <message>
+            <source>joint</source>
+            <translation>联合</translation>
+        </message>
+        <message>
+            <source>joint adjustment, converged</source>
+            <translation>联合平差,已收敛</translation>
+        </message>
+        <message>
+            <source>joint batch LSQ</source>
+            <translation>联合批量最小二乘</translation>
+        </message>
+        <message>
+            <source>joint batch LSQ *</source>
+            <translation>联合批量最小二乘 *</translation>
         </message>
         <message>
             <source>joint method: a-priori 1σ of the accelerometer bias; a swing in one plane cannot tell it from the tilt out of that plane, so this bound matters</source>
@@ -804,12 +1556,20 @@
             <translation>陆地车辆:车体坐标系中横向和垂向速度为零(Wang 等);船舶有横荡和升沉,应关闭</translation>
         </message>
         <message>
+            <source>largest angle between multibeam and laser normals</source>
+            <translation>多波束与激光平面法向间的最大夹角</translation>
+        </message>
+        <message>
             <source>largest mean angular-rate magnitude over the window</source>
             <translation>窗口内平均角速率幅值的上限</translation>
         </message>
         <message>
             <source>largest specific-force standard deviation (any axis) over the window</source>
             <translation>窗口内比力标准差(任一轴)的上限</translation>
+        </message>
+        <message>
+            <source>laser</source>
+            <translation>激光</translation>
         </message>
         <message>
             <source>laser clouds with more points are voxel down-sampled</source>
@@ -824,8 +1584,20 @@
             <translation>末历元</translation>
         </message>
         <message>
+            <source>least squares</source>
+            <translation>最小二乘</translation>
+        </message>
+        <message>
             <source>least-squares iterations per epoch before it is flagged not converged</source>
             <translation>每历元最小二乘迭代次数,超过则标记为未收敛</translation>
+        </message>
+        <message>
+            <source>length residual</source>
+            <translation>长度残差</translation>
+        </message>
+        <message>
+            <source>line used</source>
+            <translation>采用的测线</translation>
         </message>
         <message>
             <source>lines whose best correlation R_max is above this are used (Qi et al. 2010: 0.85)</source>
@@ -840,16 +1612,48 @@
             <translation>GNSS 历元数少于此值的测线不予采用</translation>
         </message>
         <message>
+            <source>longest baseline</source>
+            <translation>最长基线</translation>
+        </message>
+        <message>
             <source>longest time between stored smoother nodes (the smoothed correction is interpolated between nodes)</source>
             <translation>保存的平滑节点之间的最长时间(节点之间对平滑改正进行插值)</translation>
+        </message>
+        <message>
+            <source>lsq</source>
+            <translation>lsq</translation>
         </message>
         <message>
             <source>magnitude of gravity at the point</source>
             <translation>该点的重力大小</translation>
         </message>
         <message>
+            <source>max horizontal m</source>
+            <translation>最大水平 m</translation>
+        </message>
+        <message>
+            <source>max vertical m</source>
+            <translation>最大垂直 m</translation>
+        </message>
+        <message>
+            <source>max. normal angle</source>
+            <translation>最大法向夹角</translation>
+        </message>
+        <message>
             <source>model the GNSS error as white plus a Gauss-Markov error of this correlation time (white part scaled from the residuals, the rest of the file's σ correlated); 0 = chosen by the auto check</source>
             <translation>将 GNSS 误差建模为白噪声加上此相关时间的高斯-马尔可夫误差(白噪声部分按残差缩放,文件 σ 的其余部分为相关误差);0 = 由 auto 检验选定</translation>
+        </message>
+        <message>
+            <source>motion</source>
+            <translation>姿态传感器</translation>
+        </message>
+        <message>
+            <source>multibeam</source>
+            <translation>多波束</translation>
+        </message>
+        <message>
+            <source>multibeam, final values</source>
+            <translation>多波束,最终值</translation>
         </message>
         <message>
             <source>never (the project exists only in memory)</source>
@@ -868,6 +1672,14 @@
             <translation>该纬度的正常重力(大地坐标输入),否则为 9.80665</translation>
         </message>
         <message>
+            <source>north</source>
+            <translation>北</translation>
+        </message>
+        <message>
+            <source>north error</source>
+            <translation>北向误差</translation>
+        </message>
+        <message>
             <source>not run (inputs present)</source>
             <translation>未运行(输入已具备)</translation>
         </message>
@@ -880,6 +1692,22 @@
             <translation>未设置</translation>
         </message>
         <message>
+            <source>note: coarse values (installation drawing)</source>
+            <translation>注:粗值(安装图)</translation>
+        </message>
+        <message>
+            <source>oblique</source>
+            <translation>斜面</translation>
+        </message>
+        <message>
+            <source>oblique (laser)</source>
+            <translation>斜面(激光)</translation>
+        </message>
+        <message>
+            <source>oblique (multibeam)</source>
+            <translation>斜面(多波束)</translation>
+        </message>
+        <message>
             <source>observation vectors (antenna displacements between two epochs) shorter than this horizontally are not used: their heading is dominated by noise</source>
             <translation>水平长度短于此值的观测矢量(两历元间的天线位移)不予采用:其航向主要由噪声决定</translation>
         </message>
@@ -888,8 +1716,16 @@
             <translation>已过期</translation>
         </message>
         <message>
+            <source>own laser plane (crosses the water)</source>
+            <translation>自身激光平面(跨越水面)</translation>
+        </message>
+        <message>
             <source>pairs of parameters more correlated than this are flagged</source>
             <translation>相关性高于此值的参数对予以标记</translation>
+        </message>
+        <message>
+            <source>peak of a used line</source>
+            <translation>采用测线的峰值</translation>
         </message>
         <message>
             <source>per-antenna horizontal position noise (1σ) for the precision prediction and for weights = apriori (Liu et al.: about 0.6 cm)</source>
@@ -900,12 +1736,40 @@
             <translation>每个天线的垂直位置噪声(1σ),用于精度预测以及 weights = apriori</translation>
         </message>
         <message>
+            <source>perpendicular</source>
+            <translation>垂直面</translation>
+        </message>
+        <message>
+            <source>perpendicular (laser)</source>
+            <translation>垂直面(激光)</translation>
+        </message>
+        <message>
             <source>ping-time block of the cluster-robust check that inflates σ when residuals of neighbouring soundings are correlated</source>
             <translation>聚类稳健检验的 ping 时间分块:相邻测深点残差相关时放大 σ</translation>
         </message>
         <message>
+            <source>pitch</source>
+            <translation>纵摇</translation>
+        </message>
+        <message>
             <source>pitch [°]</source>
             <translation>纵摇 [°]</translation>
+        </message>
+        <message>
+            <source>pitch error</source>
+            <translation>纵摇误差</translation>
+        </message>
+        <message>
+            <source>pitch predicted</source>
+            <translation>纵摇预测</translation>
+        </message>
+        <message>
+            <source>pitch simulated</source>
+            <translation>纵摇模拟</translation>
+        </message>
+        <message>
+            <source>pitch °</source>
+            <translation>纵摇 °</translation>
         </message>
         <message>
             <source>plane inlier distance of the tight re-crop</source>
@@ -936,6 +1800,10 @@
             <translation>各天线的位置协方差:file = .pos 文件中的标准差列(缺失时用先验 σ),apriori = 上方的先验 σ</translation>
         </message>
         <message>
+            <source>pred.</source>
+            <translation>预测</translation>
+        </message>
+        <message>
             <source>proportional gain of the Mahony levelling filter</source>
             <translation>Mahony 调平滤波器的比例增益</translation>
         </message>
@@ -960,8 +1828,28 @@
             <translation>结果已保存</translation>
         </message>
         <message>
+            <source>roll</source>
+            <translation>横摇</translation>
+        </message>
+        <message>
             <source>roll [°]</source>
             <translation>横摇 [°]</translation>
+        </message>
+        <message>
+            <source>roll error</source>
+            <translation>横摇误差</translation>
+        </message>
+        <message>
+            <source>roll predicted</source>
+            <translation>横摇预测</translation>
+        </message>
+        <message>
+            <source>roll simulated</source>
+            <translation>横摇模拟</translation>
+        </message>
+        <message>
+            <source>roll °</source>
+            <translation>横摇 °</translation>
         </message>
         <message>
             <source>roll, pitch, yaw of the IMU body frame relative to the vehicle frame: C(vehicle ← IMU) = Rz(yaw)·Ry(pitch)·Rx(roll), e.g. yaw 90 when the IMU's x axis points to the vehicle's starboard (the NHC applies in the vehicle frame)</source>
@@ -974,6 +1862,10 @@
         <message>
             <source>run the Rauch-Tung-Striebel backward pass after the forward filter</source>
             <translation>前向滤波之后进行 Rauch-Tung-Striebel 反向平滑</translation>
+        </message>
+        <message>
+            <source>runs</source>
+            <translation>次数</translation>
         </message>
         <message>
             <source>scan step of the delay (Qi et al. 2010: 0.005 s); refined below the step</source>
@@ -990,6 +1882,10 @@
         <message>
             <source>simulated swings like this one (pole, rate, tilt, noise) solved by every method for the error histogram and tip scatter; 0 = none</source>
             <translation>与本次相同(对中杆、速率、倾斜、噪声)的模拟摆动,用每种方法解算,得到误差直方图和杆尖离散;0 = 不做</translation>
+        </message>
+        <message>
+            <source>smoothed</source>
+            <translation>平滑后</translation>
         </message>
         <message>
             <source>solution written to attitude.csv and summarised: lsq = iterative weighted least squares (Liu et al.), direct = three-antenna direct method (Liu et al.), wahba = closed-form optimal rotation; all three are always computed</source>
@@ -1032,32 +1928,96 @@
             <translation>直接法的三个天线名 'A1,A2,A3'(A1→A2 为第一条基线);空 = 可用天线中最大的三角形</translation>
         </message>
         <message>
+            <source>tilt</source>
+            <translation>倾斜</translation>
+        </message>
+        <message>
+            <source>time</source>
+            <translation>时间</translation>
+        </message>
+        <message>
             <source>time between NHC/ZUPT updates (also sets the smoother's node density)</source>
             <translation>非完整约束/零速修正更新的时间间隔(也决定平滑节点密度)</translation>
+        </message>
+        <message>
+            <source>time since line start</source>
+            <translation>自测线起点的时间</translation>
         </message>
         <message>
             <source>times of the antenna files are rounded to this before epochs are matched</source>
             <translation>历元匹配前将天线文件的时间取整到此值</translation>
         </message>
         <message>
-            <source>vectors within this of the median heading are always kept</source>
-            <translation>航向与中值相差在此值以内的矢量总是保留</translation>
+            <source>tip</source>
+            <translation>杆尖</translation>
         </message>
         <message>
-            <source>vessel sheet</source>
-            <translation>船舶参数表</translation>
+            <source>tip error east</source>
+            <translation>杆尖东向误差</translation>
+        </message>
+        <message>
+            <source>tip error north</source>
+            <translation>杆尖北向误差</translation>
+        </message>
+        <message>
+            <source>tip per epoch</source>
+            <translation>各历元杆尖</translation>
+        </message>
+        <message>
+            <source>total heave before (Δt = 0)</source>
+            <translation>同步前总升沉(Δt = 0)</translation>
+        </message>
+        <message>
+            <source>vd error</source>
+            <translation>vd 误差</translation>
+        </message>
+        <message>
+            <source>ve error</source>
+            <translation>ve 误差</translation>
+        </message>
+        <message>
+            <source>vectors</source>
+            <translation>矢量</translation>
+        </message>
+        <message>
+            <source>vectors within this of the median heading are always kept</source>
+            <translation>航向与中值相差在此值以内的矢量总是保留</translation>
         </message>
         <message>
             <source>vessel sheet (gnss − motion)</source>
             <translation>船舶参数表(gnss − 姿态传感器)</translation>
         </message>
         <message>
+            <source>vn error</source>
+            <translation>vn 误差</translation>
+        </message>
+        <message>
             <source>voxel down-sampling of very large laser clouds (0: off)</source>
             <translation>超大激光点云的体素降采样(0:关闭)</translation>
         </message>
         <message>
+            <source>wall</source>
+            <translation>墙面</translation>
+        </message>
+        <message>
+            <source>wall (laser)</source>
+            <translation>墙面(激光)</translation>
+        </message>
+        <message>
+            <source>wall (multibeam)</source>
+            <translation>墙面(多波束)</translation>
+        </message>
+        <message>
             <source>warn when the horizontal circle holding the tip with 99 % probability is wider than this (a swing nearly in one plane leaves the accelerometer bias along the swing axis mixed with the tilt out of the plane)</source>
             <translation>以 99 % 概率包含杆尖的水平圆宽于此值时警告(近乎单平面的摆动会使沿摆动轴的加速度计零偏与平面外倾斜混叠)</translation>
+        </message>
+        <message>
+            <source>water level</source>
+            <translation>水面</translation>
+        </message>
+        <message>
+            <source>weighted — coherence-weighted cross-correlation (maximum likelihood)</source>
+            <translation>weighted — 相干加权互相关(最大似然)</translation>
         </message>
         <message>
             <source>weights of the line mean: r = R_max of each line (Qi et al. 2010), inverse_variance = 1/uncertainty²</source>
@@ -1080,6 +2040,10 @@
             <translation>配置中无初始姿态时:用于调平和陀螺寻北的平稳起始段长度</translation>
         </message>
         <message>
+            <source>worst</source>
+            <translation>最差</translation>
+        </message>
+        <message>
             <source>x fwd [m]</source>
             <translation>x 向前 [m]</translation>
         </message>
@@ -1088,8 +2052,24 @@
             <translation>y 右舷 [m]</translation>
         </message>
         <message>
+            <source>yaw</source>
+            <translation>艏摇</translation>
+        </message>
+        <message>
             <source>yaw [°]</source>
             <translation>艏摇 [°]</translation>
+        </message>
+        <message>
+            <source>yaw error</source>
+            <translation>艏摇误差</translation>
+        </message>
+        <message>
+            <source>yaw °</source>
+            <translation>艏摇 °</translation>
+        </message>
+        <message>
+            <source>yes</source>
+            <translation>是</translation>
         </message>
         <message>
             <source>z down [m]</source>
@@ -1108,12 +2088,88 @@
             <translation>粗杆臂的 ± 精度;数据确定精度不优于此值的分量视为无法确定,保留其粗值</translation>
         </message>
         <message>
+            <source>Δt, GNSS tags late relative to attitude</source>
+            <translation>Δt,GNSS 时间标签相对姿态滞后</translation>
+        </message>
+        <message>
+            <source>δpitch</source>
+            <translation>δ纵摇</translation>
+        </message>
+        <message>
+            <source>δroll</source>
+            <translation>δ横摇</translation>
+        </message>
+        <message>
+            <source>δyaw</source>
+            <translation>δ艏摇</translation>
+        </message>
+        <message>
+            <source>σ above threshold</source>
+            <translation>σ 超过阈值</translation>
+        </message>
+        <message>
+            <source>σ budget of the joint adjustment: the 1σ each source alone gives each parameter (their squares add up to the total; the largest in bold). Soundings: more passes, slower, at other ranges; build tolerance: survey the as-built below-water blocks; laser planes: a denser scan of the above-water faces; INS: a more accurate INS; held parameters: the coarse error of undetermined ones.</source>
+            <translation>联合平差的 σ 预算:各误差源单独对各参数产生的 1σ(其平方和为总量;最大者加粗)。测深点:更多测次、更慢航速、不同距离;建造容差:实测水下块体的竣工尺寸;激光平面:对水上面进行更密的扫描;惯导:更高精度的惯导;固定参数:无法确定参数的粗值误差。</translation>
+        </message>
+        <message>
+            <source>σ down</source>
+            <translation>σ 天向</translation>
+        </message>
+        <message>
+            <source>σ heading</source>
+            <translation>σ 航向</translation>
+        </message>
+        <message>
+            <source>σ north</source>
+            <translation>σ 北向</translation>
+        </message>
+        <message>
             <source>σ ping block</source>
             <translation>σ ping 分块</translation>
+        </message>
+        <message>
+            <source>σ pitch</source>
+            <translation>σ 纵摇</translation>
+        </message>
+        <message>
+            <source>σ roll</source>
+            <translation>σ 横摇</translation>
+        </message>
+        <message>
+            <source>σ yaw</source>
+            <translation>σ 艏摇</translation>
+        </message>
+        <message>
+            <source>σ&lt;sub&gt;0&lt;/sub&gt; after</source>
+            <translation>同步后 σ&lt;sub&gt;0&lt;/sub&gt;</translation>
+        </message>
+        <message>
+            <source>σ&lt;sub&gt;0&lt;/sub&gt; before</source>
+            <translation>同步前 σ&lt;sub&gt;0&lt;/sub&gt;</translation>
+        </message>
+        <message>
+            <source>σ₀ before → after (median of used lines)</source>
+            <translation>σ₀ 同步前 → 后(采用测线的中值)</translation>
+        </message>
+        <message>
+            <source>ψ RMS</source>
+            <translation>ψ RMS</translation>
         </message>
     </context>
     <context>
         <name>hydrosync-patterns</name>
+        <message>
+            <source>Antenna {0}: present / not accepted (Q) / length rejected / used</source>
+            <translation>天线 {0}:存在 / 未接受(Q)/ 长度剔除 / 采用</translation>
+        </message>
+        <message>
+            <source>Estimator: &lt;b&gt;{0}&lt;/b&gt;, beyond the publication: the high-rate total heave is low-passed to the GNSS band (zero-phase) before eq. 3. The published estimator stays available (parameter &lt;i&gt;estimator&lt;/i&gt; = qi2010).</source>
+            <translation>估计方法:&lt;b&gt;{0}&lt;/b&gt;,超出论文的部分:在式 3 之前先将高频总升沉低通滤波(零相位)到 GNSS 频带。论文方法仍可使用(参数 &lt;i&gt;estimator&lt;/i&gt; = qi2010)。</translation>
+        </message>
+        <message>
+            <source>Every method on this record (* reported). Vectors used {0}, rejected {1}; tilt up to {2}, {3} at the shot.</source>
+            <translation>本记录上的各种方法(* 为报告方法)。采用矢量 {0} 个,剔除 {1} 个;最大倾斜 {2},观测时 {3}。</translation>
+        </message>
         <message>
             <source>Figure {0}.</source>
             <translation>图 {0}.</translation>
@@ -1123,12 +2179,40 @@
             <translation>HydroSync 报告 — {0}</translation>
         </message>
         <message>
+            <source>Least-squares precision versus baseline length for this layout scaled, with σ = {0} mm horizontal and {1} mm vertical per antenna (cf. Liu et al., fig. 15).</source>
+            <translation>按本布设缩放时最小二乘精度随基线长度的变化,每个天线水平 σ = {0} mm、垂直 {1} mm(参见 Liu 等,图 15)。</translation>
+        </message>
+        <message>
+            <source>Line {0}, the {1} used line (R&lt;sub&gt;max&lt;/sub&gt; = {2}): σ&lt;sub&gt;0&lt;/sub&gt; {3} m before, {4} m after synchronisation over the whole line; a {5}-s excerpt from its middle (as fig. 4 of Qi et al. 2010).</source>
+            <translation>测线 {0},采用测线中{1}的一条(R&lt;sub&gt;max&lt;/sub&gt; = {2}):全测线同步前 σ&lt;sub&gt;0&lt;/sub&gt; {3} m,同步后 {4} m;截取其中间 {5} s(同 Qi 等 2010 图 4)。</translation>
+        </message>
+        <message>
+            <source>Loosely coupled GNSS/INS integration after Wang et al.: strapdown mechanisation in the local-level frame (earth rate, transport rate, normal gravity, coning and sculling), an error-state Kalman filter with {0} states, GNSS position updates with the antenna lever arm, optional non-holonomic and zero-velocity constraints, closed-loop feedback, and a Rauch-Tung-Striebel smoother on the total state. Angles in degrees, NED metres.</source>
+            <translation>按 Wang 等的 GNSS/INS 松组合:当地水平坐标系中的捷联力学编排(地球自转角速率、位移角速率、正常重力、圆锥和划船误差补偿),{0} 维状态的误差状态卡尔曼滤波,带天线杆臂的 GNSS 位置更新,可选的非完整约束和零速约束,闭环反馈,以及对全状态的 Rauch-Tung-Striebel 反向平滑。角度单位为度,NED 坐标单位为米。</translation>
+        </message>
+        <message>
+            <source>Measured minus known antenna distances; antennas beyond ±{0} mm are dropped.</source>
+            <translation>实测减已知的天线间距离;超出 ±{0} mm 的天线被舍弃。</translation>
+        </message>
+        <message>
+            <source>Method: correlative approximation (Qi et al. 2010). Per survey line the GNSS antenna heights are detrended (eq. 1), the total heave at the antenna is formed from heave, roll and pitch with the lever arm (eq. 2) and interpolated at the corrected GNSS times (eq. 3), and the correlation R (eq. 4) is scanned over Δt. Lines with R&lt;sub&gt;max&lt;/sub&gt; above the threshold are combined by a weighted mean. Δt is how late the GNSS time tags are relative to the attitude time tags: synchronised heights use &lt;i&gt;tag − Δt&lt;/i&gt;.{0}</source>
+            <translation>方法:相关逼近法(Qi 等 2010)。对每条测线,先对 GNSS 天线高程去趋势(式 1),由升沉、横摇、纵摇和杆臂求出天线处的总升沉(式 2),并内插到改正后的 GNSS 时刻(式 3),在 Δt 上搜索相关系数 R(式 4)。R&lt;sub&gt;max&lt;/sub&gt; 高于阈值的测线按加权平均合并。Δt 表示 GNSS 时间标签相对姿态时间标签滞后的量:同步后的高程使用 &lt;i&gt;标签 − Δt&lt;/i&gt;。{0}</translation>
+        </message>
+        <message>
             <source>Modules not run (their sections are omitted): {0}.</source>
             <translation>未运行的模块(其章节从略):{0}。</translation>
         </message>
         <message>
             <source>OUT OF DATE: these results no longer match the project — {0}. Run the analysis again before signing.</source>
             <translation>已过期:这些结果与项目不再一致 — {0}。签署前请重新运行分析。</translation>
+        </message>
+        <message>
+            <source>Objective J(ψ) (normalised) over the screened vectors and the gradient-descent iterates (learning rate {0}, ε {1}°; cf. Li et al., fig. 11).</source>
+            <translation>筛选后矢量上的目标函数 J(ψ)(归一化)及梯度下降迭代过程(学习率 {0},ε {1}°;参见 Li 等,图 11)。</translation>
+        </message>
+        <message>
+            <source>Patent iteration, last iteration of each round: the accumulated angles and the largest remaining normal angle. A new round starts after the lever arm has been re-estimated; all {0} iterations are listed in the appendix.</source>
+            <translation>专利迭代,每轮的最后一次迭代:累计角度及剩余的最大法向夹角。杆臂重新估计后开始新的一轮;全部 {0} 次迭代列于附录。</translation>
         </message>
         <message>
             <source>Table {0}.</source>
@@ -1147,6 +2231,10 @@
             <translation>此模块不提供报告章节。其结果保存在项目的 &lt;b&gt;/{0}&lt;/b&gt; 下:{1}。</translation>
         </message>
         <message>
+            <source>final Δt = {0}</source>
+            <translation>最终 Δt = {0}</translation>
+        </message>
+        <message>
             <source>not run: inputs missing ({0})</source>
             <translation>未运行:缺少输入({0})</translation>
         </message>
@@ -1155,12 +2243,56 @@
             <translation>第 {0} 页,共 {1} 页</translation>
         </message>
         <message>
+            <source>raw {0} … {1} ({2}; not Unix time)</source>
+            <translation>原始 {0} … {1}({2};非 Unix 时间)</translation>
+        </message>
+        <message>
+            <source>seed: {0} angle iterations in {1} rounds (converged); final = {2}</source>
+            <translation>专利方法:{1} 轮共 {0} 次角度迭代(已收敛);最终值 = {2}</translation>
+        </message>
+        <message>
+            <source>total heave after (Δt = {0})</source>
+            <translation>同步后总升沉(Δt = {0})</translation>
+        </message>
+        <message>
             <source>{0} (the project has unsaved changes)</source>
             <translation>{0}(项目有未保存的修改)</translation>
         </message>
         <message>
+            <source>{0} UTC with HydroSync {1}</source>
+            <translation>{0} UTC 由 HydroSync {1} 计算</translation>
+        </message>
+        <message>
+            <source>{0} angle iterations, converged</source>
+            <translation>{0} 次角度迭代,已收敛</translation>
+        </message>
+        <message>
+            <source>{0} iterations, converged, {1} soundings, σ₀ = {2} mm</source>
+            <translation>{0} 次迭代,已收敛,{1} 个测深点,σ₀ = {2} mm</translation>
+        </message>
+        <message>
+            <source>{0} of {1} (R_max &amp;gt; {2})</source>
+            <translation>{0} / {1} 条(R_max &amp;gt; {2})</translation>
+        </message>
+        <message>
+            <source>{0} of {1} (R_max &gt; {2})</source>
+            <translation>{0} / {1} 条(R_max &gt; {2})</translation>
+        </message>
+        <message>
+            <source>{0} of {1} lines used ({2} weights, {3} estimator); auto: {4} (σ {5}; qi2010 {6}, Δt {7})</source>
+            <translation>采用 {0} / {1} 条测线({2} 权,{3} 估计方法);自动:{4}(σ {5};qi2010 {6},Δt {7})</translation>
+        </message>
+        <message>
+            <source>{0} of {1}, weights: peak correlation R</source>
+            <translation>{0} / {1},权:峰值相关系数 R</translation>
+        </message>
+        <message>
             <source>{0} results are out of date: {1}. They were computed from other inputs than the project now holds; run the analysis again before signing.</source>
             <translation>{0} 的结果已过期:{1}。其计算所用输入与项目现有输入不同;签署前请重新运行分析。</translation>
+        </message>
+        <message>
+            <source>{0} simulated swings like this record (same pole, GNSS rate and σ; random shape, IMU grade and biases, hand wobble, GNSS gap): heading error and horizontal tip error (Li et al.'s table 2 form).</source>
+            <translation>{0} 次与本记录类似的模拟摆动(相同的对中杆、GNSS 频率和 σ;随机的摆动形状、IMU 等级和零偏、手部抖动、GNSS 中断):航向误差和杆尖水平误差(Li 等表 2 的形式)。</translation>
         </message>
     </context>
 </TS>

@@ -37,6 +37,8 @@ from pathlib import Path
 #: Language codes HydroSync offers, with their names in their own language.
 LANGUAGES: dict[str, str] = {"en": "English", "zh_CN": "简体中文"}
 DEFAULT = "en"
+#: The ``.ts`` context of HydroSync's texts (the one Qt's ``translate`` is asked in).
+EXACT_CONTEXT = "hydrosync"
 CATALOGUE_DIR = Path(__file__).resolve().parents[1] / "resources" / "i18n"
 
 _language: ContextVar[str] = ContextVar("hydrosync_language", default=DEFAULT)
@@ -78,6 +80,9 @@ class Catalogue:
 
     exact: dict[str, str] = field(default_factory=dict)
     patterns: list[tuple[re.Pattern, str]] = field(default_factory=list)
+    #: Entries of other ``.ts`` contexts: one English word, two meanings (``signoff``:
+    #: "Name" of a person, not of a file).
+    by_context: dict[str, dict[str, str]] = field(default_factory=dict)
 
     @classmethod
     def read(cls, path: Path) -> Catalogue:
@@ -87,20 +92,27 @@ class Catalogue:
             return cat
         root = ET.parse(path).getroot()
         pattern_entries = []
-        for message in root.iter("message"):
-            source = message.findtext("source") or ""
-            node = message.find("translation")
-            if node is None or not (node.text or "") or node.get("type") in (
-                    "unfinished", "obsolete", "vanished"):
-                continue
-            if _PLACEHOLDER.search(source):
-                pattern_entries.append((source, node.text))
-            else:
-                cat.exact[source] = node.text
+        for context in root.iter("context"):
+            name = context.findtext("name") or ""
+            for message in context.iter("message"):
+                cat._add(name, message, pattern_entries)
         # Longest literal first: the most specific pattern wins.
         pattern_entries.sort(key=lambda e: -len(_PLACEHOLDER.sub("", e[0])))
         cat.patterns = [(_compile(src), dst) for src, dst in pattern_entries]
         return cat
+
+    def _add(self, context: str, message: ET.Element, pattern_entries: list) -> None:
+        source = message.findtext("source") or ""
+        node = message.find("translation")
+        if node is None or not (node.text or "") or node.get("type") in (
+                "unfinished", "obsolete", "vanished"):
+            return
+        if _PLACEHOLDER.search(source):
+            pattern_entries.append((source, node.text))
+        elif context in (EXACT_CONTEXT, ""):
+            self.exact[source] = node.text
+        else:
+            self.by_context.setdefault(context, {})[source] = node.text
 
     def sources(self) -> list[str]:
         return list(self.exact) + [p.pattern for p, _ in self.patterns]
@@ -135,14 +147,21 @@ def using(lang: str | None) -> Iterator[str]:
         _language.reset(token)
 
 
-def tr(text: str, lang: str | None = None) -> str:
-    """*text* in *lang* (default: the current language); unchanged where not translated."""
+def tr(text: str, lang: str | None = None, context: str | None = None) -> str:
+    """*text* in *lang* (default: the current language); unchanged where not translated.
+
+    *context* names a ``.ts`` context whose entry, if any, wins (a word with two meanings).
+    """
     lang = lang or _language.get()
     if lang == DEFAULT or not isinstance(text, str) or not text.strip():
         return text
     collector = _collector.get()
     if collector is not None:
         collector.add(text)
+    if context:
+        found = catalogue(lang).by_context.get(context, {}).get(text)
+        if found is not None:
+            return found
     return _lookup(text, lang, 0)
 
 

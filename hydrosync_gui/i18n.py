@@ -29,6 +29,7 @@ import subprocess
 import tempfile
 from pathlib import Path
 
+import pyqtgraph as pg
 from PySide6.QtCore import (
     QCoreApplication,
     QEvent,
@@ -47,8 +48,10 @@ from PySide6.QtWidgets import (
     QLabel,
     QLineEdit,
     QMenu,
+    QPlainTextEdit,
     QTabBar,
     QTableWidget,
+    QTextEdit,
     QTreeWidget,
     QWidget,
 )
@@ -164,7 +167,10 @@ def set_language(lang: str, settings: QSettings | None = None) -> str:
         app.installEventFilter(_state["relabeler"])
     if settings is not None:
         settings.setValue(SETTINGS_KEY, lang)
-    relabel_all()
+    relabel_all()  # back to English: every remembered source is restored here
+    if lang == core.DEFAULT:
+        app.removeEventFilter(_state["relabeler"])  # English needs no filter at all
+        _state["relabeler"] = None
     return lang
 
 
@@ -239,8 +245,6 @@ def _item_headers(view) -> None:
 
 def _plot_texts(widget: QWidget) -> None:
     """Axis titles, plot titles and legend entries of a pyqtgraph view."""
-    import pyqtgraph as pg
-
     scene = widget.scene() if isinstance(widget, pg.GraphicsView) else None
     if scene is None:
         return
@@ -262,7 +266,7 @@ def relabel_widget(widget: QWidget) -> None:
         _sync(widget, "text", widget.title(), widget.setTitle)
     elif isinstance(widget, QTabBar):
         _tabs(widget)
-    elif isinstance(widget, QLineEdit):
+    elif isinstance(widget, QLineEdit | QTextEdit | QPlainTextEdit):
         _sync(widget, "placeholder", widget.placeholderText(), widget.setPlaceholderText)
     elif isinstance(widget, QTableWidget | QTreeWidget):
         _item_headers(widget)
@@ -270,7 +274,7 @@ def relabel_widget(widget: QWidget) -> None:
         _sync(widget.menuAction(), "text", widget.title(), widget.setTitle)
     if widget.actions():
         _actions(widget)
-    if type(widget).__module__.startswith("pyqtgraph"):
+    if isinstance(widget, pg.GraphicsView):
         _plot_texts(widget)
 
 
@@ -292,7 +296,7 @@ class Relabeler(QObject):
             else:
                 relabel_widget(obj)
                 parent = obj.parentWidget()
-                if parent is not None and type(parent).__module__.startswith("pyqtgraph"):
+                if isinstance(parent, pg.GraphicsView):
                     _plot_texts(parent)  # the plot's viewport is painted, not the plot
         elif kind == QEvent.Type.ToolTip and isinstance(obj, QWidget) and obj.toolTip():
             _sync(obj, "tooltip", obj.toolTip(), obj.setToolTip)

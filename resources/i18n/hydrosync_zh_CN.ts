@@ -4,6 +4,62 @@
     <context>
         <name>hydrosync</name>
         <message>
+            <source>&amp;About HydroSync</source>
+            <translation>关于 HydroSync(&amp;A)</translation>
+        </message>
+        <message>
+            <source>&amp;Edit</source>
+            <translation>编辑(&amp;E)</translation>
+        </message>
+        <message>
+            <source>&amp;Export report…</source>
+            <translation>导出报告(&amp;E)…</translation>
+        </message>
+        <message>
+            <source>&amp;File</source>
+            <translation>文件(&amp;F)</translation>
+        </message>
+        <message>
+            <source>&amp;Help</source>
+            <translation>帮助(&amp;H)</translation>
+        </message>
+        <message>
+            <source>&amp;Import…</source>
+            <translation>导入(&amp;I)…</translation>
+        </message>
+        <message>
+            <source>&amp;Language</source>
+            <translation>语言(&amp;L)</translation>
+        </message>
+        <message>
+            <source>&amp;New</source>
+            <translation>新建(&amp;N)</translation>
+        </message>
+        <message>
+            <source>&amp;Open…</source>
+            <translation>打开(&amp;O)…</translation>
+        </message>
+        <message>
+            <source>&amp;Plugins…</source>
+            <translation>插件(&amp;P)…</translation>
+        </message>
+        <message>
+            <source>&amp;Quit</source>
+            <translation>退出(&amp;Q)</translation>
+        </message>
+        <message>
+            <source>&amp;Save</source>
+            <translation>保存(&amp;S)</translation>
+        </message>
+        <message>
+            <source>&amp;Vessel offsets…</source>
+            <translation>船体偏移量(&amp;V)…</translation>
+        </message>
+        <message>
+            <source>&amp;View</source>
+            <translation>视图(&amp;V)</translation>
+        </message>
+        <message>
             <source>(not saved)</source>
             <translation>(未保存)</translation>
         </message>
@@ -28,6 +84,10 @@
             <translation>Δt 的 95 % 区间</translation>
         </message>
         <message>
+            <source>&lt;span style='color:#d62728'&gt;━&lt;/span&gt;&amp;nbsp;Δ roll&amp;nbsp;&amp;nbsp; &lt;span style='color:#1f77b4'&gt;━&lt;/span&gt;&amp;nbsp;Δ pitch&amp;nbsp;&amp;nbsp; &lt;span style='color:#2ca02c'&gt;━&lt;/span&gt;&amp;nbsp;Δ yaw&amp;nbsp;&amp;nbsp; &lt;span style='color:#6e6e6e'&gt;╌&lt;/span&gt;&amp;nbsp;tolerance&amp;nbsp;&amp;nbsp; &lt;span style='color:#aaa'&gt;┆&lt;/span&gt;&amp;nbsp;new round</source>
+            <translation>&lt;span style='color:#d62728'&gt;━&lt;/span&gt;&amp;nbsp;Δ 横摇&amp;nbsp;&amp;nbsp; &lt;span style='color:#1f77b4'&gt;━&lt;/span&gt;&amp;nbsp;Δ 纵摇&amp;nbsp;&amp;nbsp; &lt;span style='color:#2ca02c'&gt;━&lt;/span&gt;&amp;nbsp;Δ 艏摇&amp;nbsp;&amp;nbsp; &lt;span style='color:#6e6e6e'&gt;╌&lt;/span&gt;&amp;nbsp;收敛阈值&amp;nbsp;&amp;nbsp; &lt;span style='color:#aaa'&gt;┆&lt;/span&gt;&amp;nbsp;新一轮</translation>
+        </message>
+        <message>
             <source>A-priori σ horizontal</source>
             <translation>水平先验 σ</translation>
         </message>
@@ -48,8 +108,20 @@
             <translation>采用的解</translation>
         </message>
         <message>
+            <source>Advanced</source>
+            <translation>高级</translation>
+        </message>
+        <message>
+            <source>After (final values)</source>
+            <translation>之后(最终值)</translation>
+        </message>
+        <message>
             <source>Alignment</source>
             <translation>对准</translation>
+        </message>
+        <message>
+            <source>Alpha</source>
+            <translation>透明度</translation>
         </message>
         <message>
             <source>Angle tolerance</source>
@@ -72,6 +144,10 @@
             <translation>附录:水池检校,专利方法的每次迭代</translation>
         </message>
         <message>
+            <source>Apply to vessel sheet…</source>
+            <translation>应用到船舶参数表…</translation>
+        </message>
+        <message>
             <source>Approved by</source>
             <translation>审批</translation>
         </message>
@@ -82,6 +158,18 @@
         <message>
             <source>Attitude from a GNSS antenna array</source>
             <translation>GNSS 天线阵列定姿</translation>
+        </message>
+        <message>
+            <source>Auto</source>
+            <translation>自动</translation>
+        </message>
+        <message>
+            <source>Auto Pan Only</source>
+            <translation>仅自动平移</translation>
+        </message>
+        <message>
+            <source>Average</source>
+            <translation>平均</translation>
         </message>
         <message>
             <source>BGD</source>
@@ -98,6 +186,18 @@
         <message>
             <source>Baseline length tolerance</source>
             <translation>基线长度容差</translation>
+        </message>
+        <message>
+            <source>Baseline residuals</source>
+            <translation>基线残差</translation>
+        </message>
+        <message>
+            <source>Before (coarse setup)</source>
+            <translation>之前(粗标定)</translation>
+        </message>
+        <message>
+            <source>Boresight and lever arm (body FRD)</source>
+            <translation>安装偏角与杆臂(载体坐标系 FRD)</translation>
         </message>
         <message>
             <source>Boresight angles and lever arm: the coarse values of the installation drawing, the patent method's and the joint adjustment's solutions, and the final values to enter in the acquisition software. An undetermined parameter keeps its coarse value (no σ); a parameter whose σ exceeds the warning threshold is flagged.</source>
@@ -144,6 +244,14 @@
             <translation>建造容差(位置)</translation>
         </message>
         <message>
+            <source>Cancel</source>
+            <translation>取消</translation>
+        </message>
+        <message>
+            <source>Cancel the running task</source>
+            <translation>取消正在运行的任务</translation>
+        </message>
+        <message>
             <source>Carries</source>
             <translation>所含内容</translation>
         </message>
@@ -156,12 +264,20 @@
             <translation>校核</translation>
         </message>
         <message>
+            <source>Clip to View</source>
+            <translation>裁剪到视图</translation>
+        </message>
+        <message>
             <source>Cluster distance (laser)</source>
             <translation>聚类距离(激光)</translation>
         </message>
         <message>
             <source>Cluster distance (multibeam)</source>
             <translation>聚类距离(多波束)</translation>
+        </message>
+        <message>
+            <source>Coarse</source>
+            <translation>粗值</translation>
         </message>
         <message>
             <source>Coarse (setup)</source>
@@ -190,6 +306,10 @@
         <message>
             <source>Contents</source>
             <translation>目录</translation>
+        </message>
+        <message>
+            <source>Convergence of the patent's angle iteration</source>
+            <translation>专利角度迭代的收敛过程</translation>
         </message>
         <message>
             <source>Convergence of the patent's iteration (steps 3.1–3.6): the largest angle between corresponding plane normals after each boresight update.</source>
@@ -228,8 +348,20 @@
             <translation>测深点面聚类的 DBSCAN 邻域</translation>
         </message>
         <message>
+            <source>Data ready. &lt;b&gt;Segment&lt;/b&gt; to check the faces found with the coarse setup, or &lt;b&gt;Run all&lt;/b&gt; to calibrate.</source>
+            <translation>数据已就绪。按&lt;b&gt;分割&lt;/b&gt;检查用粗标定找到的各面,或按&lt;b&gt;全部运行&lt;/b&gt;进行检校。</translation>
+        </message>
+        <message>
+            <source>Data ready. Check the lever arm and press Run.</source>
+            <translation>数据已就绪。请检查杆臂后按“运行”。</translation>
+        </message>
+        <message>
             <source>Date</source>
             <translation>日期</translation>
+        </message>
+        <message>
+            <source>Delay of the GNSS time tags relative to the attitude/heave time tags, by correlating detrended RTK heights with total heave (Qi et al. 2010).</source>
+            <translation>GNSS 时间标签相对姿态/升沉时间标签的时间延迟,由去趋势 RTK 高程与总升沉的相关求得(Qi 等 2010)。</translation>
         </message>
         <message>
             <source>Detail of the correlation peaks: each dot is one line's (Δt, R&lt;sub&gt;max&lt;/sub&gt;), the vertical line the weighted mean and the band its 95 % interval.</source>
@@ -248,8 +380,16 @@
             <translation>超过此点数则降采样</translation>
         </message>
         <message>
+            <source>Downsample</source>
+            <translation>降采样</translation>
+        </message>
+        <message>
             <source>Drift across simulated GNSS outages.</source>
             <translation>模拟 GNSS 中断期间的漂移。</translation>
+        </message>
+        <message>
+            <source>East</source>
+            <translation>东</translation>
         </message>
         <message>
             <source>Elevation of the target seen from the vessel (north against up): laser points above the water line and multibeam soundings below it, georeferenced with the final values and coloured by the role of their face; design outlines in grey.</source>
@@ -284,6 +424,10 @@
             <translation>可用天线少于 3 个的历元数</translation>
         </message>
         <message>
+            <source>Errors vs reference (±σ)</source>
+            <translation>相对参考的误差(±σ)</translation>
+        </message>
+        <message>
             <source>Estimator</source>
             <translation>估计方法</translation>
         </message>
@@ -294,6 +438,10 @@
         <message>
             <source>Estimator: the published one (raw series), as in Qi et al. (2010).</source>
             <translation>估计方法:论文方法(原始序列),同 Qi 等(2010)。</translation>
+        </message>
+        <message>
+            <source>Every</source>
+            <translation>每隔</translation>
         </message>
         <message>
             <source>Face</source>
@@ -308,6 +456,10 @@
             <translation>面边缘余量</translation>
         </message>
         <message>
+            <source>Faces</source>
+            <translation>面</translation>
+        </message>
+        <message>
             <source>Faces of the target design, their role inferred from geometry, points segmented in each cloud, plane-fit RMS, the angle between the laser and the final multibeam plane normals, and the parameters each face determines.</source>
             <translation>标靶设计中的各面、由几何推断的作用、各点云中分割出的点数、平面拟合 RMS、激光与最终多波束平面法向的夹角,以及各面所确定的参数。</translation>
         </message>
@@ -318,6 +470,10 @@
         <message>
             <source>File</source>
             <translation>文件</translation>
+        </message>
+        <message>
+            <source>Final</source>
+            <translation>最终值</translation>
         </message>
         <message>
             <source>Final (joint)</source>
@@ -342,6 +498,10 @@
         <message>
             <source>Flag above σ (lever arm)</source>
             <translation>σ 超过此值则标记(杆臂)</translation>
+        </message>
+        <message>
+            <source>Forget hidden traces</source>
+            <translation>忽略隐藏曲线</translation>
         </message>
         <message>
             <source>Forward horizontal RMS / yaw RMS vs reference</source>
@@ -374,6 +534,10 @@
         <message>
             <source>GNSS fixes in span / used</source>
             <translation>时段内 / 采用的 GNSS 定位数</translation>
+        </message>
+        <message>
+            <source>GNSS height</source>
+            <translation>GNSS 高程</translation>
         </message>
         <message>
             <source>GNSS height, detrended</source>
@@ -428,6 +592,10 @@
             <translation>重力</translation>
         </message>
         <message>
+            <source>Grid</source>
+            <translation>网格</translation>
+        </message>
+        <message>
             <source>Gyro bias σ</source>
             <translation>陀螺零偏 σ</translation>
         </message>
@@ -440,12 +608,24 @@
             <translation>航向</translation>
         </message>
         <message>
+            <source>Heading / pitch / roll</source>
+            <translation>航向 / 纵摇 / 横摇</translation>
+        </message>
+        <message>
+            <source>Heading errors (Monte Carlo)</source>
+            <translation>航向误差(蒙特卡洛)</translation>
+        </message>
+        <message>
             <source>Heading formal 1σ, RMS (least squares)</source>
             <translation>航向形式 1σ,RMS(最小二乘)</translation>
         </message>
         <message>
             <source>Heading, pitch and roll from the baselines between the antennas, rotated from ECEF to the local level frame at the array position: the three-antenna direct method and the iterative weighted least squares of Liu et al., and the optimal closed-form (Wahba) rotation as a cross-check. Angles in degrees; heading clockwise from north, pitch bow up, roll starboard down.</source>
             <translation>由天线间基线求得的航向、纵摇和横摇,从 ECEF 旋转到天线阵列处的当地水平坐标系:Liu 等的三天线直接法和迭代加权最小二乘,并以闭合形式最优旋转(Wahba)作为交叉检核。角度单位为度;航向自北顺时针,纵摇艏抬升为正,横摇右舷下沉为正。</translation>
+        </message>
+        <message>
+            <source>Heading, pitch and roll from three or more GNSS antennas: direct method and iterative least squares (Liu et al.), closed-form Wahba cross-check, precision prediction.</source>
+            <translation>由三个或更多 GNSS 天线求航向、纵摇和横摇:直接法和迭代最小二乘(Liu 等),闭合形式 Wahba 交叉检核,精度预测。</translation>
         </message>
         <message>
             <source>Heading, pitch and roll: direct method (three antennas) and least squares overlaid (time from the first epoch).</source>
@@ -508,12 +688,24 @@
             <translation>惯导横摇、纵摇和航向的标称精度,传播到结果的 σ 中(0:视惯导为无误差,σ 为下限)</translation>
         </message>
         <message>
+            <source>Import a data file into the project</source>
+            <translation>将数据文件导入项目</translation>
+        </message>
+        <message>
             <source>Import warning</source>
             <translation>导入警告</translation>
         </message>
         <message>
+            <source>Invert Axis</source>
+            <translation>反转坐标轴</translation>
+        </message>
+        <message>
             <source>Item</source>
             <translation>项目</translation>
+        </message>
+        <message>
+            <source>Iterate</source>
+            <translation>迭代</translation>
         </message>
         <message>
             <source>Iteration</source>
@@ -522,6 +714,14 @@
         <message>
             <source>Iteration and adjustment</source>
             <translation>迭代与平差</translation>
+        </message>
+        <message>
+            <source>Iterations</source>
+            <translation>迭代</translation>
+        </message>
+        <message>
+            <source>J(ψ) and iterations</source>
+            <translation>J(ψ) 与迭代过程</translation>
         </message>
         <message>
             <source>Joint adjustment</source>
@@ -546,6 +746,10 @@
         <message>
             <source>Key results of every module. Values are the final, corrected values; uncertainties are one standard deviation unless stated.</source>
             <translation>各模块的主要结果。数值为最终改正后的值;除另有说明外,不确定度均为一倍标准差。</translation>
+        </message>
+        <message>
+            <source>Kind / shape</source>
+            <translation>类型 / 形状</translation>
         </message>
         <message>
             <source>LSQ</source>
@@ -660,8 +864,32 @@
             <translation>采用的测线</translation>
         </message>
         <message>
+            <source>Link Axis:</source>
+            <translation>关联坐标轴:</translation>
+        </message>
+        <message>
+            <source>Loaded and failed plugins</source>
+            <translation>已加载和加载失败的插件</translation>
+        </message>
+        <message>
+            <source>Log</source>
+            <translation>日志</translation>
+        </message>
+        <message>
+            <source>Log X</source>
+            <translation>X 对数</translation>
+        </message>
+        <message>
+            <source>Log Y</source>
+            <translation>Y 对数</translation>
+        </message>
+        <message>
             <source>Log records</source>
             <translation>日志记录</translation>
+        </message>
+        <message>
+            <source>Loosely coupled GNSS/INS EKF (15 or 21 states) with NHC/ZUPT and RTS smoothing (Wang et al.); errors against a reference, GNSS outage simulation.</source>
+            <translation>GNSS/INS 松组合 EKF(15 或 21 维状态),带非完整约束/零速修正和 RTS 反向平滑(Wang 等);相对参考的误差,GNSS 中断模拟。</translation>
         </message>
         <message>
             <source>MBES RMS</source>
@@ -684,8 +912,28 @@
             <translation>Mahony Ki</translation>
         </message>
         <message>
+            <source>Mahony Ki:</source>
+            <translation>Mahony Ki:</translation>
+        </message>
+        <message>
             <source>Mahony Kp</source>
             <translation>Mahony Kp</translation>
+        </message>
+        <message>
+            <source>Mahony Kp:</source>
+            <translation>Mahony Kp:</translation>
+        </message>
+        <message>
+            <source>Manual</source>
+            <translation>手动</translation>
+        </message>
+        <message>
+            <source>Map</source>
+            <translation>地图</translation>
+        </message>
+        <message>
+            <source>Max Traces:</source>
+            <translation>最多曲线数:</translation>
         </message>
         <message>
             <source>Max iterations / round</source>
@@ -706,6 +954,10 @@
         <message>
             <source>Maximum iterations</source>
             <translation>最大迭代次数</translation>
+        </message>
+        <message>
+            <source>Mean</source>
+            <translation>均值</translation>
         </message>
         <message>
             <source>Method</source>
@@ -740,12 +992,28 @@
             <translation>运动约束</translation>
         </message>
         <message>
+            <source>Mouse Enabled</source>
+            <translation>启用鼠标</translation>
+        </message>
+        <message>
+            <source>Mouse Mode</source>
+            <translation>鼠标模式</translation>
+        </message>
+        <message>
             <source>Moving alignment speed</source>
             <translation>动态对准速度</translation>
         </message>
         <message>
             <source>Moving alignment σ</source>
             <translation>动态对准 σ</translation>
+        </message>
+        <message>
+            <source>Multibeam boresight angles and lever arm from a pool target seen by a calibrated laser scanner (patent CN 105425246 B) plus a joint least-squares adjustment.</source>
+            <translation>由已检校激光扫描仪观测的水池标靶求多波束安装偏角和杆臂(专利 CN 105425246 B),并进行联合最小二乘平差。</translation>
+        </message>
+        <message>
+            <source>Multibeam georeferenced:</source>
+            <translation>多波束地理参考:</translation>
         </message>
         <message>
             <source>Multibeam pings dropped (INS gaps)</source>
@@ -757,11 +1025,15 @@
         </message>
         <message>
             <source>Name</source>
-            <translation>姓名</translation>
+            <translation>名称</translation>
         </message>
         <message>
             <source>Name (--param)</source>
             <translation>名称(--param)</translation>
+        </message>
+        <message>
+            <source>Needs data: /raw/gnss, /raw/attitude, /raw/lines. Import GNSS, attitude and lines files (or create demo data).</source>
+            <translation>需要数据:/raw/gnss、/raw/attitude、/raw/lines。请导入 GNSS、姿态和测线文件(或创建演示数据)。</translation>
         </message>
         <message>
             <source>No analysis module is installed.</source>
@@ -784,6 +1056,14 @@
             <translation>法向夹角</translation>
         </message>
         <message>
+            <source>Normal Δ</source>
+            <translation>法向 Δ</translation>
+        </message>
+        <message>
+            <source>North</source>
+            <translation>北</translation>
+        </message>
+        <message>
             <source>Notes</source>
             <translation>备注</translation>
         </message>
@@ -792,8 +1072,24 @@
             <translation>已过期</translation>
         </message>
         <message>
+            <source>Opacity</source>
+            <translation>不透明度</translation>
+        </message>
+        <message>
+            <source>Open &amp;Recent</source>
+            <translation>最近打开(&amp;R)</translation>
+        </message>
+        <message>
+            <source>Open a project</source>
+            <translation>打开项目</translation>
+        </message>
+        <message>
             <source>Outage</source>
             <translation>中断</translation>
+        </message>
+        <message>
+            <source>Outage length</source>
+            <translation>中断长度</translation>
         </message>
         <message>
             <source>Outcome</source>
@@ -808,12 +1104,24 @@
             <translation>参数</translation>
         </message>
         <message>
+            <source>Parameters</source>
+            <translation>参数</translation>
+        </message>
+        <message>
+            <source>Patent</source>
+            <translation>专利方法</translation>
+        </message>
+        <message>
             <source>Patent method</source>
             <translation>专利方法</translation>
         </message>
         <message>
             <source>Patent method: angle iterations</source>
             <translation>专利方法:角度迭代</translation>
+        </message>
+        <message>
+            <source>Peak</source>
+            <translation>峰值</translation>
         </message>
         <message>
             <source>Per-line results (as tables 1 and 2 of Qi et al. 2010): maximum correlation R&lt;sub&gt;max&lt;/sub&gt;, the latency at the peak Δt with its uncertainty σΔt (from the peak curvature), and the standard error σ&lt;sub&gt;0&lt;/sub&gt; of height minus total heave (eqs. 5–6) before (Δt = 0) and after synchronisation with the final Δt. Lines not used are greyed.</source>
@@ -828,8 +1136,20 @@
             <translation>纵摇形式 1σ,RMS(最小二乘)</translation>
         </message>
         <message>
+            <source>Plan view (axes not to scale)</source>
+            <translation>平面图(两轴比例不同)</translation>
+        </message>
+        <message>
             <source>Plan view of the segmented clouds in the target frame (ENU): laser points coloured by the role of their face, multibeam soundings on faces georeferenced with the final values (black), design face outlines in grey. The vertical scale is stretched (axes not to the same scale) to separate the faces.</source>
             <translation>标靶坐标系(ENU)中分割点云的平面图:激光点按所在面的作用着色,面上的多波束测深点用最终值进行地理参考(黑色),设计面轮廓为灰色。垂直比例经拉伸(两轴比例不同)以区分各面。</translation>
+        </message>
+        <message>
+            <source>Plot Options</source>
+            <translation>绘图选项</translation>
+        </message>
+        <message>
+            <source>Points</source>
+            <translation>点</translation>
         </message>
         <message>
             <source>Points kept for views</source>
@@ -852,12 +1172,28 @@
             <translation>水池检校:解的统计量。</translation>
         </message>
         <message>
+            <source>Position / velocity / attitude</source>
+            <translation>位置 / 速度 / 姿态</translation>
+        </message>
+        <message>
             <source>Position error against the reference (solution − reference, m), forward and smoothed; dashed: ±1σ of each solution; shaded: simulated GNSS outages.</source>
             <translation>相对参考的位置误差(解 − 参考,m),前向滤波和平滑后;虚线:各解的 ±1σ;阴影:模拟的 GNSS 中断。</translation>
         </message>
         <message>
+            <source>Power Spectrum (FFT)</source>
+            <translation>功率谱(FFT)</translation>
+        </message>
+        <message>
+            <source>Precision vs baseline</source>
+            <translation>精度与基线长度</translation>
+        </message>
+        <message>
             <source>Prepared by</source>
             <translation>编制</translation>
+        </message>
+        <message>
+            <source>Press Run.</source>
+            <translation>请按“运行”。</translation>
         </message>
         <message>
             <source>Processing summary.</source>
@@ -892,6 +1228,14 @@
             <translation>量</translation>
         </message>
         <message>
+            <source>Quit HydroSync</source>
+            <translation>退出 HydroSync</translation>
+        </message>
+        <message>
+            <source>R max</source>
+            <translation>R max</translation>
+        </message>
+        <message>
             <source>R threshold</source>
             <translation>R 阈值</translation>
         </message>
@@ -908,8 +1252,16 @@
             <translation>RANSAC 阈值(多波束)</translation>
         </message>
         <message>
+            <source>RMS MBES</source>
+            <translation>多波束 RMS</translation>
+        </message>
+        <message>
             <source>RMS error against the reference (epochs with GNSS).</source>
             <translation>相对参考的 RMS 误差(有 GNSS 的历元)。</translation>
+        </message>
+        <message>
+            <source>RMS laser</source>
+            <translation>激光 RMS</translation>
         </message>
         <message>
             <source>RTS smoothing</source>
@@ -926,6 +1278,10 @@
         <message>
             <source>Records</source>
             <translation>记录数</translation>
+        </message>
+        <message>
+            <source>Reference</source>
+            <translation>参考</translation>
         </message>
         <message>
             <source>Reference (laser)</source>
@@ -972,6 +1328,22 @@
             <translation>轮次</translation>
         </message>
         <message>
+            <source>Run</source>
+            <translation>运行</translation>
+        </message>
+        <message>
+            <source>Run &amp;campaign…</source>
+            <translation>运行批处理(&amp;C)…</translation>
+        </message>
+        <message>
+            <source>Run a campaign file (many projects x analyses) on Dask</source>
+            <translation>在 Dask 上运行批处理文件(多个项目 × 多项分析)</translation>
+        </message>
+        <message>
+            <source>Run all</source>
+            <translation>全部运行</translation>
+        </message>
+        <message>
             <source>SGD</source>
             <translation>SGD</translation>
         </message>
@@ -984,12 +1356,32 @@
             <translation>SVD(Wahba 法)</translation>
         </message>
         <message>
+            <source>Save &amp;As…</source>
+            <translation>另存为(&amp;A)…</translation>
+        </message>
+        <message>
+            <source>Save the project</source>
+            <translation>保存项目</translation>
+        </message>
+        <message>
+            <source>Save the project under a new name</source>
+            <translation>以新名称保存项目</translation>
+        </message>
+        <message>
             <source>Scale-factor states</source>
             <translation>比例因子状态</translation>
         </message>
         <message>
             <source>Scan range</source>
             <translation>搜索范围</translation>
+        </message>
+        <message>
+            <source>Section (looking along east)</source>
+            <translation>剖面(沿东向看)</translation>
+        </message>
+        <message>
+            <source>Segment</source>
+            <translation>分割</translation>
         </message>
         <message>
             <source>Segmentation</source>
@@ -1000,6 +1392,10 @@
             <translation>分割后的点云</translation>
         </message>
         <message>
+            <source>Select a node to see its attributes.</source>
+            <translation>选择一个节点以查看其属性。</translation>
+        </message>
+        <message>
             <source>Sensor</source>
             <translation>传感器</translation>
         </message>
@@ -1008,8 +1404,16 @@
             <translation>传感器检校报告</translation>
         </message>
         <message>
+            <source>Sensor positions and mounting angles of the vessel</source>
+            <translation>船上各传感器的位置和安装角</translation>
+        </message>
+        <message>
             <source>Set aside</source>
             <translation>剔除</translation>
+        </message>
+        <message>
+            <source>Set outages</source>
+            <translation>设置中断</translation>
         </message>
         <message>
             <source>Shortest vector</source>
@@ -1020,8 +1424,20 @@
             <translation>观测窗口</translation>
         </message>
         <message>
+            <source>Show X Grid</source>
+            <translation>显示 X 网格</translation>
+        </message>
+        <message>
+            <source>Show Y Grid</source>
+            <translation>显示 Y 网格</translation>
+        </message>
+        <message>
             <source>Signature</source>
             <translation>签名</translation>
+        </message>
+        <message>
+            <source>Size</source>
+            <translation>大小</translation>
         </message>
         <message>
             <source>Skip at line start</source>
@@ -1064,6 +1480,10 @@
             <translation>未设静态区间时角度的标准差(运动平台实测的离散即其运动本身,故只给出预测值;请在平台静止的时段设置静态区间 static_start_s/static_end_s)以及由位置协方差预测的精度(度)。Liu 等在静止车辆上得到 0.066°/0.168°/0.268°(4 天线,最小二乘)和 0.092°/0.216°/0.297°(3 天线,直接法)。</translation>
         </message>
         <message>
+            <source>Standard deviations</source>
+            <translation>标准差</translation>
+        </message>
+        <message>
             <source>Standard deviations, forward and smoothed (the smoother reduces them everywhere, most across GNSS outages).</source>
             <translation>前向滤波和平滑后的标准差(平滑处处减小标准差,在 GNSS 中断处减小最多)。</translation>
         </message>
@@ -1078,6 +1498,10 @@
         <message>
             <source>Standstill window</source>
             <translation>静止检测窗口</translation>
+        </message>
+        <message>
+            <source>Start an empty project</source>
+            <translation>新建空项目</translation>
         </message>
         <message>
             <source>Start – end</source>
@@ -1108,6 +1532,14 @@
             <translation>停止阈值 ε</translation>
         </message>
         <message>
+            <source>Subsample</source>
+            <translation>抽样</translation>
+        </message>
+        <message>
+            <source>Subtract Mean</source>
+            <translation>减去均值</translation>
+        </message>
+        <message>
             <source>Summary of results</source>
             <translation>结果汇总</translation>
         </message>
@@ -1120,8 +1552,16 @@
             <translation>测线(raw/lines)及其开始和结束时间。</translation>
         </message>
         <message>
+            <source>Swing</source>
+            <translation>摆动</translation>
+        </message>
+        <message>
             <source>Target faces</source>
             <translation>标靶面</translation>
+        </message>
+        <message>
+            <source>The laser and multibeam clouds are drawn here after &lt;b&gt;Segment&lt;/b&gt; or &lt;b&gt;Run all&lt;/b&gt;.</source>
+            <translation>执行&lt;b&gt;分割&lt;/b&gt;或&lt;b&gt;全部运行&lt;/b&gt;后,此处显示激光和多波束点云。</translation>
         </message>
         <message>
             <source>The pole is swung for a few seconds with its tip on the point. Li et al. level the IMU (Mahony filter), form observation vectors between GNSS epochs and solve the heading misalignment by gradient descent (mini-batch after screening the vectors by their own heading; batch; stochastic with the longest vector) or SVD; the tip is the antenna corrected by the rotated pole (eq. 18). HydroSync adds the closed-form heading-only least squares and a joint batch least squares over the whole swing (initial attitude, tip, gyro and accelerometer biases from accelerometers, gyros and GNSS), the reported method by default. Tips in ENU (m); σ 1σ.</source>
@@ -1168,6 +1608,10 @@
             <translation>时间标签</translation>
         </message>
         <message>
+            <source>Tip errors (Monte Carlo)</source>
+            <translation>杆尖误差(蒙特卡洛)</translation>
+        </message>
+        <message>
             <source>Tip tolerance</source>
             <translation>杆尖容差</translation>
         </message>
@@ -1180,12 +1624,32 @@
             <translation>轨迹:GNSS 天线定位、前向滤波和平滑后的 IMU 位置(以起点为原点的当地东/北坐标)。</translation>
         </message>
         <message>
+            <source>Transforms</source>
+            <translation>变换</translation>
+        </message>
+        <message>
+            <source>Twin ΔE</source>
+            <translation>对应块 ΔE</translation>
+        </message>
+        <message>
+            <source>Twin ΔN</source>
+            <translation>对应块 ΔN</translation>
+        </message>
+        <message>
+            <source>Twin ΔU</source>
+            <translation>对应块 ΔU</translation>
+        </message>
+        <message>
             <source>Uncertainty model</source>
             <translation>不确定度模型</translation>
         </message>
         <message>
             <source>Untitled project</source>
             <translation>未命名项目</translation>
+        </message>
+        <message>
+            <source>Up</source>
+            <translation>天</translation>
         </message>
         <message>
             <source>Used</source>
@@ -1216,6 +1680,18 @@
             <translation>船体偏移量</translation>
         </message>
         <message>
+            <source>View All</source>
+            <translation>显示全部</translation>
+        </message>
+        <message>
+            <source>ViewBox options</source>
+            <translation>视图框选项</translation>
+        </message>
+        <message>
+            <source>Visible Data Only</source>
+            <translation>仅可见数据</translation>
+        </message>
+        <message>
             <source>Wahba (closed form)</source>
             <translation>Wahba(闭合形式)</translation>
         </message>
@@ -1242,6 +1718,18 @@
         <message>
             <source>Weights</source>
             <translation>权</translation>
+        </message>
+        <message>
+            <source>Write the PDF report of the project</source>
+            <translation>生成项目的 PDF 报告</translation>
+        </message>
+        <message>
+            <source>X axis</source>
+            <translation>X 轴</translation>
+        </message>
+        <message>
+            <source>Y axis</source>
+            <translation>Y 轴</translation>
         </message>
         <message>
             <source>Yaw</source>
@@ -1420,6 +1908,10 @@
             <translation>最终值取自联合最小二乘平差(带 σ)或专利的迭代法</translation>
         </message>
         <message>
+            <source>find the faces in both clouds with the coarse setup (nothing is stored)</source>
+            <translation>用粗标定在两组点云中寻找各面(不保存任何结果)</translation>
+        </message>
+        <message>
             <source>first epoch</source>
             <translation>首历元</translation>
         </message>
@@ -1472,12 +1964,28 @@
             <translation>仅航向的方法:杆尖取记录最后若干秒倾斜补偿后历元的平均(摆动后对中杆停在点上)</translation>
         </message>
         <message>
+            <source>heave, synchronised</source>
+            <translation>升沉,同步后</translation>
+        </message>
+        <message>
+            <source>heave, Δt = 0</source>
+            <translation>升沉,Δt = 0</translation>
+        </message>
+        <message>
+            <source>height</source>
+            <translation>高程</translation>
+        </message>
+        <message>
+            <source>height / heave</source>
+            <translation>高程 / 升沉</translation>
+        </message>
+        <message>
             <source>height change</source>
             <translation>高程变化</translation>
         </message>
         <message>
             <source>horizontal</source>
-            <translation>水平</translation>
+            <translation>水平面</translation>
         </message>
         <message>
             <source>horizontal (laser)</source>
@@ -1520,7 +2028,15 @@
             <translation>迭代</translation>
         </message>
         <message>
+            <source>iterate and adjust on the faces found by Segment, then store the results</source>
+            <translation>在分割得到的面上迭代和平差,然后保存结果</translation>
+        </message>
+        <message>
             <source>iteration</source>
+            <translation>迭代</translation>
+        </message>
+        <message>
+            <source>iterations</source>
             <translation>迭代</translation>
         </message>
         <message>
@@ -1610,6 +2126,10 @@
         <message>
             <source>lines with fewer GNSS epochs are not used</source>
             <translation>GNSS 历元数少于此值的测线不予采用</translation>
+        </message>
+        <message>
+            <source>log |Δ|</source>
+            <translation>log |Δ|</translation>
         </message>
         <message>
             <source>longest baseline</source>
@@ -1804,6 +2324,18 @@
             <translation>预测</translation>
         </message>
         <message>
+            <source>predicted σ heading</source>
+            <translation>预测 σ 航向</translation>
+        </message>
+        <message>
+            <source>predicted σ pitch</source>
+            <translation>预测 σ 纵摇</translation>
+        </message>
+        <message>
+            <source>predicted σ roll</source>
+            <translation>预测 σ 横摇</translation>
+        </message>
+        <message>
             <source>proportional gain of the Mahony levelling filter</source>
             <translation>Mahony 调平滤波器的比例增益</translation>
         </message>
@@ -1816,8 +2348,16 @@
             <translation>试算的时间延迟范围;符号未知,故默认对称</translation>
         </message>
         <message>
+            <source>reading the raw GNSS and attitude data…</source>
+            <translation>正在读取原始 GNSS 和姿态数据…</translation>
+        </message>
+        <message>
             <source>reject a GNSS fix whose normalised innovation squared exceeds this (3 degrees of freedom: 16.3 = 99.9 %); 0 = accept all</source>
             <translation>归一化新息平方超过此值的 GNSS 定位予以剔除(3 个自由度:16.3 = 99.9 %);0 = 全部接受</translation>
+        </message>
+        <message>
+            <source>remove GNSS for the given length every given interval (length 0 clears the outages); applied at the next Run</source>
+            <translation>每隔给定间隔去除给定长度的 GNSS(长度为 0 时清除中断);在下次运行时生效</translation>
         </message>
         <message>
             <source>result written as tip and heading misalignment: joint = batch least squares over the whole swing (attitude, tip, IMU biases; best in the benchmark), mbgd/bgd/sgd = Li et al.'s gradient descent, svd = Wahba, closed_form = exact heading-only least squares; all are always computed</source>
@@ -1880,6 +2420,10 @@
             <translation>见相应章节</translation>
         </message>
         <message>
+            <source>segment, iterate, adjust and store the results</source>
+            <translation>分割、迭代、平差并保存结果</translation>
+        </message>
+        <message>
             <source>simulated swings like this one (pole, rate, tilt, noise) solved by every method for the error histogram and tip scatter; 0 = none</source>
             <translation>与本次相同(对中杆、速率、倾斜、噪声)的模拟摆动,用每种方法解算,得到误差直方图和杆尖离散;0 = 不做</translation>
         </message>
@@ -1890,6 +2434,10 @@
         <message>
             <source>solution written to attitude.csv and summarised: lsq = iterative weighted least squares (Liu et al.), direct = three-antenna direct method (Liu et al.), wahba = closed-form optimal rotation; all three are always computed</source>
             <translation>写入 attitude.csv 并汇总的解:lsq = 迭代加权最小二乘(Liu 等),direct = 三天线直接法(Liu 等),wahba = 闭合形式最优旋转;三种方法总会计算</translation>
+        </message>
+        <message>
+            <source>speed</source>
+            <translation>速度</translation>
         </message>
         <message>
             <source>standard deviation of the lateral and vertical vehicle-frame velocity</source>
@@ -1940,6 +2488,14 @@
             <translation>非完整约束/零速修正更新的时间间隔(也决定平滑节点密度)</translation>
         </message>
         <message>
+            <source>time from first epoch</source>
+            <translation>自首历元的时间</translation>
+        </message>
+        <message>
+            <source>time from start</source>
+            <translation>自起点的时间</translation>
+        </message>
+        <message>
             <source>time since line start</source>
             <translation>自测线起点的时间</translation>
         </message>
@@ -1966,6 +2522,10 @@
         <message>
             <source>total heave before (Δt = 0)</source>
             <translation>同步前总升沉(Δt = 0)</translation>
+        </message>
+        <message>
+            <source>up</source>
+            <translation>天</translation>
         </message>
         <message>
             <source>vd error</source>
@@ -2044,6 +2604,10 @@
             <translation>最差</translation>
         </message>
         <message>
+            <source>write the final boresight and lever arm into the vessel sheet's multibeam entry (recorded in the project history)</source>
+            <translation>将最终安装偏角和杆臂写入船舶参数表的多波束条目(记入项目历史)</translation>
+        </message>
+        <message>
             <source>x fwd [m]</source>
             <translation>x 向前 [m]</translation>
         </message>
@@ -2086,6 +2650,26 @@
         <message>
             <source>± accuracy of the coarse lever arm; a component the data determine no better than this is undetermined and keeps its coarse value</source>
             <translation>粗杆臂的 ± 精度;数据确定精度不优于此值的分量视为无法确定,保留其粗值</translation>
+        </message>
+        <message>
+            <source>Δ coarse</source>
+            <translation>Δ 粗值</translation>
+        </message>
+        <message>
+            <source>Δ pitch</source>
+            <translation>Δ 纵摇</translation>
+        </message>
+        <message>
+            <source>Δ roll</source>
+            <translation>Δ 横摇</translation>
+        </message>
+        <message>
+            <source>Δ yaw</source>
+            <translation>Δ 艏摇</translation>
+        </message>
+        <message>
+            <source>Δt (GNSS tag late by)</source>
+            <translation>Δt(GNSS 时间标签滞后)</translation>
         </message>
         <message>
             <source>Δt, GNSS tags late relative to attitude</source>
@@ -2140,6 +2724,14 @@
             <translation>σ 艏摇</translation>
         </message>
         <message>
+            <source>σ0 after</source>
+            <translation>同步后 σ0</translation>
+        </message>
+        <message>
+            <source>σ0 before</source>
+            <translation>同步前 σ0</translation>
+        </message>
+        <message>
             <source>σ&lt;sub&gt;0&lt;/sub&gt; after</source>
             <translation>同步后 σ&lt;sub&gt;0&lt;/sub&gt;</translation>
         </message>
@@ -2158,6 +2750,10 @@
     </context>
     <context>
         <name>hydrosync-patterns</name>
+        <message>
+            <source>&lt;h3&gt;{0}&lt;/h3&gt;&lt;p&gt;{1}&lt;/p&gt;&lt;p&gt;&lt;i&gt;Loading…&lt;/i&gt;&lt;/p&gt;</source>
+            <translation>&lt;h3&gt;{0}&lt;/h3&gt;&lt;p&gt;{1}&lt;/p&gt;&lt;p&gt;&lt;i&gt;正在加载…&lt;/i&gt;&lt;/p&gt;</translation>
+        </message>
         <message>
             <source>Antenna {0}: present / not accepted (Q) / length rejected / used</source>
             <translation>天线 {0}:存在 / 未接受(Q)/ 长度剔除 / 采用</translation>
@@ -2211,6 +2807,10 @@
             <translation>筛选后矢量上的目标函数 J(ψ)(归一化)及梯度下降迭代过程(学习率 {0},ε {1}°;参见 Li 等,图 11)。</translation>
         </message>
         <message>
+            <source>Opening {0}</source>
+            <translation>正在打开 {0}</translation>
+        </message>
+        <message>
             <source>Patent iteration, last iteration of each round: the accumulated angles and the largest remaining normal angle. A new round starts after the lever arm has been re-estimated; all {0} iterations are listed in the appendix.</source>
             <translation>专利迭代,每轮的最后一次迭代:累计角度及剩余的最大法向夹角。杆臂重新估计后开始新的一轮;全部 {0} 次迭代列于附录。</translation>
         </message>
@@ -2251,8 +2851,20 @@
             <translation>专利方法:{1} 轮共 {0} 次角度迭代(已收敛);最终值 = {2}</translation>
         </message>
         <message>
+            <source>tick to set; unticked: {0}</source>
+            <translation>勾选以设置;不勾选:{0}</translation>
+        </message>
+        <message>
             <source>total heave after (Δt = {0})</source>
             <translation>同步后总升沉(Δt = {0})</translation>
+        </message>
+        <message>
+            <source>{0}
+
+Default: {1}  (--param {2})</source>
+            <translation>{0}
+
+默认值:{1}  (--param {2})</translation>
         </message>
         <message>
             <source>{0} (the project has unsaved changes)</source>
@@ -2293,6 +2905,17 @@
         <message>
             <source>{0} simulated swings like this record (same pole, GNSS rate and σ; random shape, IMU grade and biases, hand wobble, GNSS gap): heading error and horizontal tip error (Li et al.'s table 2 form).</source>
             <translation>{0} 次与本记录类似的模拟摆动(相同的对中杆、GNSS 频率和 σ;随机的摆动形状、IMU 等级和零偏、手部抖动、GNSS 中断):航向误差和杆尖水平误差(Li 等表 2 的形式)。</translation>
+        </message>
+        <message>
+            <source>{0}&lt;br&gt;&lt;span style='color:#555'&gt;faint discs: laser (reference) · triangles: multibeam · grey dots: soundings on no face&lt;/span&gt;</source>
+            <translation>{0}&lt;br&gt;&lt;span style='color:#555'&gt;浅色圆点:激光(参考)· 三角形:多波束 · 灰点:不在任何面上的测深点&lt;/span&gt;</translation>
+        </message>
+    </context>
+    <context>
+        <name>signoff</name>
+        <message>
+            <source>Name</source>
+            <translation>姓名</translation>
         </message>
     </context>
 </TS>

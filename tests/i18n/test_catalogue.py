@@ -23,9 +23,15 @@ CJK = re.compile(r"[\u4e00-\u9fff]")
 
 
 def _code_strings() -> list[str]:
+    """String literals of HydroSync and of the pyqtgraph widgets it shows (whose plot
+    context menus are translated too)."""
+    import pyqtgraph
+
+    pg_root = Path(pyqtgraph.__file__).parent
+    folders = [ROOT / top for top in CODE] + [pg_root / "graphicsItems"]
     out: list[str] = []
-    for top in CODE:
-        for path in (ROOT / top).rglob("*.py"):
+    for folder in folders:
+        for path in folder.rglob("*.py"):
             if "tests" in path.parts:
                 continue
             for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):

@@ -65,8 +65,8 @@ def main() -> int:
                 app.processEvents()
                 time.sleep(0.05)
             app.processEvents()
-            panel = window.tabs.currentWidget()
-            name = getattr(getattr(panel, "spec", None), "id", f"tab{index}")
+            entry = window.tabs.entry_at(index)
+            name = entry.spec.id if entry is not None else f"tab{index}"
             image = window.grab()
             out = DOCS / f"zh_CN-{name}.png"
             image.save(str(out))

@@ -12,8 +12,9 @@ Two kinds of entries:
   text (``Table {0}.`` → ``表 {0}.``). What a placeholder captured is translated in turn
   (a module name inside a sentence), numbers pass through unchanged.
 
-A text with no entry is returned as it is, so an untranslated string shows in English
-rather than not at all. A trailing unit in brackets (``Roll [°]``) is kept and the label in
+A text of several lines (``\n`` or ``<br>``) without an entry of its own is translated line
+by line. A text with no entry is returned as it is, so an untranslated string shows in
+English rather than not at all. A trailing unit in brackets (``Roll [°]``) is kept and the label in
 front of it translated.
 
 Example
@@ -45,6 +46,8 @@ _language: ContextVar[str] = ContextVar("hydrosync_language", default=DEFAULT)
 _collector: ContextVar[set | None] = ContextVar("hydrosync_i18n_collector", default=None)
 _PLACEHOLDER = re.compile(r"\{(\d+)\}")
 _UNIT_TAIL = re.compile(r"^(?P<head>.*\S)(?P<tail> \[[^\[\]]*\]|:)$", re.S)
+_ONE_LINE = r"(?:(?!<br\s*/?>)[^\n])+?"
+_LINE_BREAK = re.compile(r"(\n|<br\s*/?>)")
 _NUMBERISH = re.compile(r"^[\s\d.,+\-−±%eE:/]*$")
 
 
@@ -122,8 +125,10 @@ def _compile(source: str) -> re.Pattern:
     parts = _PLACEHOLDER.split(source)
     regex = ""
     for i, part in enumerate(parts):
-        regex += re.escape(part) if i % 2 == 0 else f"(?P<p{part}>.+?)"
-    return re.compile(f"^{regex}$", re.S)
+        # A placeholder stays within one line: a status of several lines is matched
+        # line by line, never by one pattern swallowing the lines before.
+        regex += re.escape(part) if i % 2 == 0 else f"(?P<p{part}>{_ONE_LINE})"
+    return re.compile(f"^{regex}$")
 
 
 @functools.lru_cache(maxsize=8)
@@ -185,6 +190,10 @@ def _lookup(text: str, lang: str, depth: int) -> str:
     tail = _UNIT_TAIL.match(text)
     if tail and tail.group("head") in cat.exact:
         return cat.exact[tail.group("head")] + tail.group("tail")
+    parts = _LINE_BREAK.split(text)
+    if len(parts) > 1 and depth < 3:  # a status of several lines: line by line
+        return "".join(part if i % 2 else _lookup(part, lang, depth + 1)
+                       for i, part in enumerate(parts))
     return text
 
 

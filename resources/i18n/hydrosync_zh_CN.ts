@@ -84,6 +84,10 @@
             <translation>Δt 的 95 % 区间</translation>
         </message>
         <message>
+            <source>; INS attitude taken as exact (no INS accuracy given): σ are a lower bound</source>
+            <translation>;惯导姿态视为无误差(未给出惯导精度):σ 为下限</translation>
+        </message>
+        <message>
             <source>&lt;span style='color:#d62728'&gt;━&lt;/span&gt;&amp;nbsp;Δ roll&amp;nbsp;&amp;nbsp; &lt;span style='color:#1f77b4'&gt;━&lt;/span&gt;&amp;nbsp;Δ pitch&amp;nbsp;&amp;nbsp; &lt;span style='color:#2ca02c'&gt;━&lt;/span&gt;&amp;nbsp;Δ yaw&amp;nbsp;&amp;nbsp; &lt;span style='color:#6e6e6e'&gt;╌&lt;/span&gt;&amp;nbsp;tolerance&amp;nbsp;&amp;nbsp; &lt;span style='color:#aaa'&gt;┆&lt;/span&gt;&amp;nbsp;new round</source>
             <translation>&lt;span style='color:#d62728'&gt;━&lt;/span&gt;&amp;nbsp;Δ 横摇&amp;nbsp;&amp;nbsp; &lt;span style='color:#1f77b4'&gt;━&lt;/span&gt;&amp;nbsp;Δ 纵摇&amp;nbsp;&amp;nbsp; &lt;span style='color:#2ca02c'&gt;━&lt;/span&gt;&amp;nbsp;Δ 艏摇&amp;nbsp;&amp;nbsp; &lt;span style='color:#6e6e6e'&gt;╌&lt;/span&gt;&amp;nbsp;收敛阈值&amp;nbsp;&amp;nbsp; &lt;span style='color:#aaa'&gt;┆&lt;/span&gt;&amp;nbsp;新一轮</translation>
         </message>
@@ -1748,12 +1752,20 @@
             <translation>零速修正</translation>
         </message>
         <message>
+            <source>a denser laser scan of the above-water faces</source>
+            <translation>对水上面进行更密的激光扫描</translation>
+        </message>
+        <message>
             <source>a lever-arm component whose σ exceeds this is flagged as poorly determined (default: half an accuracy target of 2 mm)</source>
             <translation>σ 超过此值的杆臂分量标记为确定性差(默认:2 mm 精度目标的一半)</translation>
         </message>
         <message>
             <source>a line whose own uncertainty exceeds this, or 10x the median of the selected lines, is not used (its R peak is too flat to locate); a warning names it</source>
             <translation>自身不确定度超过此值或超过所选测线中值 10 倍的测线不予采用(其 R 峰过于平坦,无法定位);警告中列出该测线</translation>
+        </message>
+        <message>
+            <source>a more accurate INS</source>
+            <translation>更高精度的惯导</translation>
         </message>
         <message>
             <source>a vector is rejected when its own heading departs from the median by more than this many robust σ (or the floor below, whichever is larger)</source>
@@ -1820,6 +1832,10 @@
             <translation>最好</translation>
         </message>
         <message>
+            <source>build</source>
+            <translation>建造容差</translation>
+        </message>
+        <message>
             <source>closed form</source>
             <translation>闭合形式</translation>
         </message>
@@ -1838,6 +1854,10 @@
         <message>
             <source>crossing</source>
             <translation>跨水线</translation>
+        </message>
+        <message>
+            <source>data</source>
+            <translation>测深数据</translation>
         </message>
         <message>
             <source>degree of the polynomial (tide, squat) removed from each line's heights</source>
@@ -1982,6 +2002,10 @@
         <message>
             <source>height change</source>
             <translation>高程变化</translation>
+        </message>
+        <message>
+            <source>held</source>
+            <translation>固定参数</translation>
         </message>
         <message>
             <source>horizontal</source>
@@ -2164,6 +2188,10 @@
             <translation>将 GNSS 误差建模为白噪声加上此相关时间的高斯-马尔可夫误差(白噪声部分按残差缩放,文件 σ 的其余部分为相关误差);0 = 由 auto 检验选定</translation>
         </message>
         <message>
+            <source>more passes, slower, at other ranges</source>
+            <translation>更多测次、更慢航速、不同距离</translation>
+        </message>
+        <message>
             <source>motion</source>
             <translation>姿态传感器</translation>
         </message>
@@ -2242,6 +2270,10 @@
         <message>
             <source>pairs of parameters more correlated than this are flagged</source>
             <translation>相关性高于此值的参数对予以标记</translation>
+        </message>
+        <message>
+            <source>passes that determine the held parameters</source>
+            <translation>能确定固定参数的测次</translation>
         </message>
         <message>
             <source>peak of a used line</source>
@@ -2352,6 +2384,10 @@
             <translation>正在读取原始 GNSS 和姿态数据…</translation>
         </message>
         <message>
+            <source>reference</source>
+            <translation>参考平面</translation>
+        </message>
+        <message>
             <source>reject a GNSS fix whose normalised innovation squared exceeds this (3 degrees of freedom: 16.3 = 99.9 %); 0 = accept all</source>
             <translation>归一化新息平方超过此值的 GNSS 定位予以剔除(3 个自由度:16.3 = 99.9 %);0 = 全部接受</translation>
         </message>
@@ -2450,6 +2486,10 @@
         <message>
             <source>start (time of week) of the interval whose scatter gives the statistics table</source>
             <translation>统计表所用离散区间的开始时刻(周内秒)</translation>
+        </message>
+        <message>
+            <source>survey the as-built below-water blocks (smaller build tolerance)</source>
+            <translation>实测水下块体的竣工尺寸(减小建造容差)</translation>
         </message>
         <message>
             <source>symmetric band (in robust σ) around each face's own plane kept by the refit (0: off)</source>
@@ -2751,8 +2791,48 @@
     <context>
         <name>hydrosync-patterns</name>
         <message>
+            <source>95 % interval {0} … {1}</source>
+            <translation>95 % 区间 {0} … {1}</translation>
+        </message>
+        <message>
+            <source>; INS accuracy roll/pitch/heading {0}/{1}/{2}° (1σ) propagated</source>
+            <translation>;已传播惯导精度 横摇/纵摇/航向 {0}/{1}/{2}°(1σ)</translation>
+        </message>
+        <message>
+            <source>; ping-block variance factors 1.00–{0} (largest: {1}){2}</source>
+            <translation>;ping 分块方差因子 1.00–{0}(最大:{1}){2}</translation>
+        </message>
+        <message>
+            <source>&lt;b&gt;Joint solution&lt;/b&gt;, &lt;b&gt;NOT converged&lt;/b&gt;. {0}</source>
+            <translation>&lt;b&gt;联合平差解&lt;/b&gt;,&lt;b&gt;未收敛&lt;/b&gt;。{0}</translation>
+        </message>
+        <message>
+            <source>&lt;b&gt;Joint solution&lt;/b&gt;, converged. {0}</source>
+            <translation>&lt;b&gt;联合平差解&lt;/b&gt;,已收敛。{0}</translation>
+        </message>
+        <message>
+            <source>&lt;b&gt;No latency&lt;/b&gt;: {0}</source>
+            <translation>&lt;b&gt;无时间延迟结果&lt;/b&gt;:{0}</translation>
+        </message>
+        <message>
+            <source>&lt;b&gt;Patent method solution&lt;/b&gt;, &lt;b&gt;NOT converged&lt;/b&gt;. {0}</source>
+            <translation>&lt;b&gt;专利方法解&lt;/b&gt;,&lt;b&gt;未收敛&lt;/b&gt;。{0}</translation>
+        </message>
+        <message>
+            <source>&lt;b&gt;Patent method solution&lt;/b&gt;, converged. {0}</source>
+            <translation>&lt;b&gt;专利方法解&lt;/b&gt;,已收敛。{0}</translation>
+        </message>
+        <message>
             <source>&lt;h3&gt;{0}&lt;/h3&gt;&lt;p&gt;{1}&lt;/p&gt;&lt;p&gt;&lt;i&gt;Loading…&lt;/i&gt;&lt;/p&gt;</source>
             <translation>&lt;h3&gt;{0}&lt;/h3&gt;&lt;p&gt;{1}&lt;/p&gt;&lt;p&gt;&lt;i&gt;正在加载…&lt;/i&gt;&lt;/p&gt;</translation>
+        </message>
+        <message>
+            <source>&lt;span style='color:#666'&gt;run {0}&lt;/span&gt;</source>
+            <translation>&lt;span style='color:#666'&gt;运行于 {0}&lt;/span&gt;</translation>
+        </message>
+        <message>
+            <source>&lt;span style='color:#a05000'&gt;⚠ {0}</source>
+            <translation>&lt;span style='color:#a05000'&gt;⚠ {0}</translation>
         </message>
         <message>
             <source>Antenna {0}: present / not accepted (Q) / length rejected / used</source>
@@ -2763,12 +2843,20 @@
             <translation>估计方法:&lt;b&gt;{0}&lt;/b&gt;,超出论文的部分:在式 3 之前先将高频总升沉低通滤波(零相位)到 GNSS 频带。论文方法仍可使用(参数 &lt;i&gt;estimator&lt;/i&gt; = qi2010)。</translation>
         </message>
         <message>
+            <source>Estimator: {0}</source>
+            <translation>估计方法:{0}</translation>
+        </message>
+        <message>
             <source>Every method on this record (* reported). Vectors used {0}, rejected {1}; tilt up to {2}, {3} at the shot.</source>
             <translation>本记录上的各种方法(* 为报告方法)。采用矢量 {0} 个,剔除 {1} 个;最大倾斜 {2},观测时 {3}。</translation>
         </message>
         <message>
             <source>Figure {0}.</source>
             <translation>图 {0}.</translation>
+        </message>
+        <message>
+            <source>GNSS σ from the file (white), IMU noise from the configuration; normalised GNSS innovations RMS N/E/D {0}, autocorrelation at 1 s ≤ {1}</source>
+            <translation>GNSS σ 取自文件(白噪声),IMU 噪声取自配置;归一化 GNSS 新息 RMS N/E/D {0},1 s 处自相关 ≤ {1}</translation>
         </message>
         <message>
             <source>HydroSync report — {0}</source>
@@ -2831,8 +2919,24 @@
             <translation>此模块不提供报告章节。其结果保存在项目的 &lt;b&gt;/{0}&lt;/b&gt; 下:{1}。</translation>
         </message>
         <message>
+            <source>about {0}× the passes like these would bring it to {1}</source>
+            <translation>约需 {0} 倍于此的测次才能使其达到 {1}</translation>
+        </message>
+        <message>
             <source>final Δt = {0}</source>
             <translation>最终 Δt = {0}</translation>
+        </message>
+        <message>
+            <source>joint adjustment: {0} σ = {1} exceeds {2}: poorly determined</source>
+            <translation>联合平差:{0} σ = {1} 超过 {2}:确定性差</translation>
+        </message>
+        <message>
+            <source>joint adjustment: {0} σ = {1} exceeds {2}: poorly determined; {3}</source>
+            <translation>联合平差:{0} σ = {1} 超过 {2}:确定性差;{3}</translation>
+        </message>
+        <message>
+            <source>more passes cannot bring it to {0}: the {1} part alone gives {2}</source>
+            <translation>增加测次无法使其达到 {0}:仅{1}部分就有 {2}</translation>
         </message>
         <message>
             <source>not run: inputs missing ({0})</source>
@@ -2841,6 +2945,10 @@
         <message>
             <source>page {0} of {1}</source>
             <translation>第 {0} 页,共 {1} 页</translation>
+        </message>
+        <message>
+            <source>point-to-plane fit incl. laser-plane errors; build tolerance of the twins ±{0} mm / ±{1}° (rectangular, σ = tol/√3); coarse error of undetermined parameters{2}</source>
+            <translation>点到平面拟合(含激光平面误差);对应块体建造容差 ±{0} mm / ±{1}°(矩形分布,σ = tol/√3);无法确定参数的粗值误差{2}</translation>
         </message>
         <message>
             <source>raw {0} … {1} ({2}; not Unix time)</source>
@@ -2867,8 +2975,16 @@ Default: {1}  (--param {2})</source>
 默认值:{1}  (--param {2})</translation>
         </message>
         <message>
+            <source>{0} % of its variance from {1} (helps: {2}); {3}</source>
+            <translation>其方差的 {0} % 来自{1}(改进办法:{2});{3}</translation>
+        </message>
+        <message>
             <source>{0} (the project has unsaved changes)</source>
             <translation>{0}(项目有未保存的修改)</translation>
+        </message>
+        <message>
+            <source>{0} IMU epochs, {1} of {2} GNSS fixes used, {3} states.</source>
+            <translation>{0} 个 IMU 历元,采用 {1} / {2} 个 GNSS 定位,{3} 维状态。</translation>
         </message>
         <message>
             <source>{0} UTC with HydroSync {1}</source>
@@ -2891,6 +3007,14 @@ Default: {1}  (--param {2})</source>
             <translation>{0} / {1} 条(R_max &gt; {2})</translation>
         </message>
         <message>
+            <source>{0} of {1} epochs solved; {2} with fewer than 3 usable antennas, {3} with an antenna dropped by the length check, {4} gaps. Statistics: scatter and predicted 1σ (°) over the &lt;b&gt;whole record&lt;/b&gt;: on a moving platform the scatter is its motion, not the precision — drag the shaded region onto a period when the platform stood still.</source>
+            <translation>解算 {0} / {1} 个历元;{2} 个历元可用天线少于 3 个,{3} 个历元因长度检验舍弃了天线,{4} 处间断。统计量:&lt;b&gt;整个记录&lt;/b&gt;上的离散和预测 1σ(°):运动平台上的离散是其运动而非精度——请将阴影区拖到平台静止的时段。</translation>
+        </message>
+        <message>
+            <source>{0} of {1} epochs solved; {2} with fewer than 3 usable antennas, {3} with an antenna dropped by the length check, {4} gaps. Statistics: scatter and predicted 1σ (°) over the static interval.</source>
+            <translation>解算 {0} / {1} 个历元;{2} 个历元可用天线少于 3 个,{3} 个历元因长度检验舍弃了天线,{4} 处间断。统计量:静态区间上的离散和预测 1σ(°)。</translation>
+        </message>
+        <message>
             <source>{0} of {1} lines used ({2} weights, {3} estimator); auto: {4} (σ {5}; qi2010 {6}, Δt {7})</source>
             <translation>采用 {0} / {1} 条测线({2} 权,{3} 估计方法);自动:{4}(σ {5};qi2010 {6},Δt {7})</translation>
         </message>
@@ -2907,8 +3031,36 @@ Default: {1}  (--param {2})</source>
             <translation>{0} 次与本记录类似的模拟摆动(相同的对中杆、GNSS 频率和 σ;随机的摆动形状、IMU 等级和零偏、手部抖动、GNSS 中断):航向误差和杆尖水平误差(Li 等表 2 的形式)。</translation>
         </message>
         <message>
+            <source>{0}: horizontal RMS {1}, yaw RMS {2}</source>
+            <translation>{0}:水平 RMS {1},艏摇 RMS {2}</translation>
+        </message>
+        <message>
+            <source>{0}: horizontal RMS {1}, yaw RMS {2}, outage drift max {3}, within 1.96σ N/E/D {4}</source>
+            <translation>{0}:水平 RMS {1},艏摇 RMS {2},中断漂移最大 {3},1.96σ 以内 N/E/D {4}</translation>
+        </message>
+        <message>
+            <source>{0}: tip {1} (σ {2} mm), heading misalignment {3}°. Vectors used {4}, rejected {5}; tilt up to {6}°.</source>
+            <translation>{0}:杆尖 {1}(σ {2} mm),航向失准角 {3}°。采用矢量 {4} 个,剔除 {5} 个;最大倾斜 {6}°。</translation>
+        </message>
+        <message>
             <source>{0}&lt;br&gt;&lt;span style='color:#555'&gt;faint discs: laser (reference) · triangles: multibeam · grey dots: soundings on no face&lt;/span&gt;</source>
             <translation>{0}&lt;br&gt;&lt;span style='color:#555'&gt;浅色圆点:激光(参考)· 三角形:多波束 · 灰点:不在任何面上的测深点&lt;/span&gt;</translation>
+        </message>
+        <message>
+            <source>σ from: {0}</source>
+            <translation>σ 依据:{0}</translation>
+        </message>
+        <message>
+            <source>σ0 = {0} mm from {1} soundings</source>
+            <translation>σ0 = {0} mm,来自 {1} 个测深点</translation>
+        </message>
+        <message>
+            <source>⚠ {0}</source>
+            <translation>⚠ {0}</translation>
+        </message>
+        <message>
+            <source>⚠ {0}&lt;/span&gt;</source>
+            <translation>⚠ {0}&lt;/span&gt;</translation>
         </message>
     </context>
     <context>

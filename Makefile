@@ -33,7 +33,7 @@ test: $(STAMP)
 	if command -v xvfb-run >/dev/null; then \
 	  QT_QPA_PLATFORM=xcb xvfb-run -a $(BIN)/python -m pytest -q -m gl; \
 	fi
-	QT_QPA_PLATFORM=offscreen $(BIN)/python -m pytest -q
+	QT_QPA_PLATFORM=offscreen $(BIN)/python -m pytest -q -n auto --dist loadgroup
 
 bench: $(STAMP)
 	$(BIN)/python benchmarks/run_all.py

@@ -82,7 +82,7 @@ def run_row(name: str, hz: float, days: int) -> dict:
         for est in ESTIMATORS:
             results[est] = estimate_latency(day["gnss"], day["attitude"], day["lines"],
                                             cfg.lever_arm_m, {"estimator": est})
-        # estimator="auto" keeps the smaller-σ of qi2010 and weighted (same rule as api._auto)
+        # estimator="auto" keeps the smaller-σ of qi2010 and weighted (same rule as estimate._auto)
         results["auto"] = min((results["qi2010"], results["weighted"]), key=_sigma)
         for est, res in results.items():
             out[est].append((res.latency_s - TRUE, res.uncertainty_s,

@@ -30,6 +30,7 @@ from hydrosync_gui.i18n import current as current_language
 log = logging.getLogger("hydrosync_gui.file")
 
 PROJECT_FILTER = "HydroSync projects (*.h5 *.hdf5);;All files (*)"
+UNTITLED = "Untitled"  # the name of a new project until it is saved under a file name
 
 
 def open_for_gui(path: str) -> Project:
@@ -86,7 +87,7 @@ class FileActions:
 
     def new_project(self) -> None:
         """Replace the current project by an empty, unsaved one."""
-        project = Project.new("Untitled")
+        project = Project.new(UNTITLED)
         project.dirty = False  # nothing to lose yet
         self.set_project(project)
         log.info("new project")
@@ -163,6 +164,11 @@ class FileActions:
             target = Path(chosen)
             if not target.suffix:
                 target = target.with_suffix(".h5")
+        old_name = project.name
+        if old_name in ("", UNTITLED):
+            # The placeholder name would go on the window title and the report cover:
+            # a project saved as "harbour-2026-11.h5" is called "harbour-2026-11".
+            project.set_attrs("", name=Path(target).stem)
 
         def saved(path: Path) -> None:
             self.update_banner()
@@ -176,6 +182,8 @@ class FileActions:
                 then()
 
         def failed(message: str) -> None:
+            if project.name != old_name:
+                project.set_attrs("", name=old_name)
             self.update_title()
             self.show_error("Save failed", f"{message}\n\nThe project is still open and "
                             "unchanged in memory; save it somewhere else.")

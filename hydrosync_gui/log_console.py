@@ -28,6 +28,19 @@ class _Bridge(QObject):
     sig_record = Signal(str, int)  # formatted text, level number
 
 
+LIBRARY_CHATTER = ("OpenGL", "numba", "matplotlib", "PIL", "fontTools", "h5py", "asyncio",
+                   "distributed", "bokeh", "tornado")
+"""Loggers whose INFO lines mean nothing to a surveyor ("OpenGL_accelerate module loaded"
+at start-up): only their warnings and errors reach the console."""
+
+
+def _not_chatter(record: logging.LogRecord) -> bool:
+    if record.levelno >= logging.WARNING:
+        return True
+    root = record.name.partition(".")[0]
+    return root not in LIBRARY_CHATTER
+
+
 class QtLogHandler(logging.Handler):
     """A :class:`logging.Handler` that emits ``bridge.sig_record(text, levelno)``."""
 
@@ -36,6 +49,7 @@ class QtLogHandler(logging.Handler):
         self.bridge = _Bridge()
         self.setFormatter(logging.Formatter("%(asctime)s %(levelname)s %(name)s: %(message)s",
                                             "%H:%M:%S"))
+        self.addFilter(_not_chatter)
 
     def emit(self, record: logging.LogRecord) -> None:
         try:

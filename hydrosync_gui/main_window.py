@@ -35,7 +35,7 @@ from PySide6.QtWidgets import (
 from hydrosync_core import __version__
 from hydrosync_core.project import Project
 from hydrosync_gui.dialogs import PluginsDialog
-from hydrosync_gui.file_actions import FileActions
+from hydrosync_gui.file_actions import UNTITLED, FileActions
 from hydrosync_gui.i18n import add_language_menu
 from hydrosync_gui.log_console import LogConsole
 from hydrosync_gui.plugin_host import PluginHost
@@ -46,6 +46,7 @@ from hydrosync_gui.recent_files import RecentFiles
 from hydrosync_gui.resources import icon
 from hydrosync_gui.task_status import TaskStatus
 from hydrosync_gui.vessel_dialog import VesselDialog
+from hydrosync_gui.window_geometry import DOCK_WIDTH_WIDE, PREFERRED, dock_width, fit_window
 from hydrosync_gui.workers import Worker, start
 
 log = logging.getLogger("hydrosync_gui.main_window")
@@ -75,7 +76,7 @@ class MainWindow(QMainWindow, FileActions):
         self.shell_worker: Worker | None = None
         self._close_ok = False
         self.setWindowIcon(icon("app.svg"))
-        self.resize(1280, 800)
+        self.resize(PREFERRED)
 
         self.console = LogConsole()
         # The console shows debug lines only when the application logs them (-v).
@@ -110,12 +111,10 @@ class MainWindow(QMainWindow, FileActions):
         layout.addWidget(self.banner)
         layout.addWidget(self.tabs, 1)
         self.setCentralWidget(central)
-        self.resizeDocks([self.browser_dock], [420], Qt.Orientation.Horizontal)
-        self.resizeDocks([self.log_dock], [140], Qt.Orientation.Vertical)
         self._build_menus()
         self._restore_settings()
         if project is None:
-            project = Project.new("Untitled")
+            project = Project.new(UNTITLED)
             project.dirty = False  # an empty new project has nothing to lose
         self.set_project(project)
         self.tabs.ensure_current()  # the first tab's panel: it is shown from the start
@@ -341,12 +340,18 @@ class MainWindow(QMainWindow, FileActions):
         self.settings.setValue("paths/last_dir", str(Path(path).resolve().parent))
 
     def _restore_settings(self) -> None:
+        """Saved geometry and dock layout, fitted to this screen (a geometry saved on a
+        large monitor must not put the status bar below a laptop's screen)."""
         geometry = self.settings.value("window/geometry")
-        if geometry is not None:
-            self.restoreGeometry(geometry)
+        restored = geometry is not None and self.restoreGeometry(geometry)
         state = self.settings.value("window/state")
-        if state is not None:
-            self.restoreState(state)
+        if state is None or not self.restoreState(state):
+            screen = self.screen()
+            available = screen.availableGeometry() if screen is not None else None
+            width = dock_width(available) if available is not None else DOCK_WIDTH_WIDE
+            self.resizeDocks([self.browser_dock], [width], Qt.Orientation.Horizontal)
+            self.resizeDocks([self.log_dock], [140], Qt.Orientation.Vertical)
+        fit_window(self, restored)
 
     def _save_settings(self) -> None:
         self.settings.setValue("window/geometry", self.saveGeometry())

@@ -31,21 +31,28 @@ def cmd_import(args: argparse.Namespace) -> int:
     path = Path(args.project)
     project = _open_project(path) if path.exists() else Project.create(path)
     table = kinds()
-    chosen = [(kind, file) for kind in table for file in getattr(args, kind, None) or ()]
+    # Every file of a kind at once: device logs of one kind become one table in time order.
+    chosen = [(kind, files) for kind in table if (files := getattr(args, kind, None))]
     if not chosen:
         raise InputError(None, "nothing to import: give at least one --KIND FILE")
     # Read everything first so one bad file leaves the project untouched.
-    messages = [_import_one(project, table[kind], file, args) for kind, file in chosen]
+    messages = [_import_one(project, table[kind], files, args) for kind, files in chosen]
     project.save(path)
     for message in messages:
         print(message)
     return 0
 
 
-def _import_one(project: Project, kind: DataKind, file: str, args: argparse.Namespace) -> str:
-    """Import one file with the options of the command line that its kind accepts."""
+def _import_one(project: Project, kind: DataKind, files: list[str],
+                args: argparse.Namespace) -> str:
+    """Import the files of one kind with the options of the command line it accepts;
+    streamed readers (device logs) show their progress on stderr."""
+    from hydrosync_core.cli.terminal import TerminalProgress
+
     options = {name: getattr(args, name, None) for name in kind.options}
-    return import_file(project, kind.name, file, **options)
+    progress = TerminalProgress(f"import --{kind.name.replace('_', '-')}")
+    return import_file(project, kind.name, files if len(files) > 1 else files[0],
+                       progress=progress, **options)
 
 
 def _human(nbytes: int) -> str:
@@ -197,9 +204,9 @@ def register(sub: argparse._SubParsersAction) -> None:
     p.add_argument("project", help="project file (.h5)")
     for name, kind in kinds().items():
         flags = [f"--{name}"] + ([f"--{name.replace('_', '-')}"] if "_" in name else [])
+        more = f" (repeatable: {kind.repeatable})" if kind.repeatable else ""
         p.add_argument(*flags, dest=name, metavar="FILE", action="append",
-                       help=kind.description + " (repeatable where the kind collects several "
-                       "files, e.g. one .pos per antenna)")
+                       help=kind.description + more)
     p.add_argument(
         "--heave-positive", choices=("up", "down"), default=None,
         help="direction of positive heave in the --attitude CSV (formats.md: up) or the "

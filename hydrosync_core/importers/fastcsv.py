@@ -209,22 +209,19 @@ def _parse_py(buf, start, stop, ncols, slot, out, row0, lo, hi, pow10):  # pragm
     return row - row0, 0
 
 
-_kernels: list | None = None
+_kernels: tuple | None = None
 
 
 def _compiled():
-    """(count, parse) compiled by numba (cached on disk), or None without numba. Loaded on
+    """(count, parse) compiled by numba (cached on disk; numba is a dependency). Loaded on
     first use: numba costs about a second to import, which small files do not pay."""
     global _kernels
     if _kernels is None:
-        try:
-            from numba import njit
-        except ImportError:  # pragma: no cover - numba is a dependency
-            _kernels = [None, None]
-        else:
-            _kernels = [njit(cache=True, nogil=True)(_count_py),
-                        njit(cache=True, nogil=True)(_parse_py)]
-    return None if _kernels[0] is None else tuple(_kernels)
+        from numba import njit
+
+        _kernels = (njit(cache=True, nogil=True)(_count_py),
+                    njit(cache=True, nogil=True)(_parse_py))
+    return _kernels
 
 
 def _release(mm, start: int, stop: int) -> None:
@@ -390,8 +387,6 @@ def _read_compiled(path: Path, names: list[str], header_bytes: int, wanted: Sequ
 
     kernels = _compiled()  # loading numba first: the prescan goes on meanwhile
     plan = prescan.take() if prescan is not None else None
-    if kernels is None:
-        return None
     count_kernel, parse_kernel = kernels
     ncols = len(names)
     slot = np.full(ncols, SKIP, dtype=np.int64)

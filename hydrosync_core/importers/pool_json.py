@@ -114,7 +114,24 @@ def check_target(document, source="target.json") -> dict:
         name = face.get("name", f"face{i}")
         if not isinstance(name, str | int | float) or len(str(name)) > 200:
             raise InputError(str(source), "a face name is a short text", field=f"{where}.name")
-        clean.append({"name": str(name), "corners": points})
+        item = {"name": str(name), "corners": points}
+        if "twin" in face:  # an explicit twin declaration (formats.md), checked below
+            if not isinstance(face["twin"], str):
+                raise InputError(str(source), "a twin is the name of another face",
+                                 field=f"{where}.twin")
+            item["twin"] = face["twin"]
+        if "offset_m" in face:
+            item["offset_m"] = finite_number(source, face["offset_m"], f"{where}.offset_m",
+                                             plausible.HEIGHT)
+        clean.append(item)
+    names = {c["name"] for c in clean}
+    for i, item in enumerate(clean):
+        if "offset_m" in item and "twin" not in item:
+            raise InputError(str(source), "offset_m needs a twin", field=f"faces[{i}].offset_m")
+        if item.get("twin") is not None and (item["twin"] not in names
+                                             or item["twin"] == item["name"]):
+            raise InputError(str(source), f"twin '{item['twin']}' is not another face of the "
+                             "target", field=f"faces[{i}].twin")
     water = finite_number(source, document.get("water_level_m", 0.0), "water_level_m",
                           plausible.HEIGHT)
     frame = document.get("frame", "ENU")

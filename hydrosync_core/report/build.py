@@ -16,7 +16,7 @@ import os
 import re
 from pathlib import Path
 
-from reportlab.platypus import Flowable, PageBreak
+from reportlab.platypus import CondPageBreak, Flowable
 
 from hydrosync_core import __version__
 from hydrosync_core.atomic import atomic_path
@@ -35,7 +35,7 @@ from hydrosync_core.report.cover import (
 )
 from hydrosync_core.report.sources import section as sources_section
 from hydrosync_core.report.styles import language_fonts
-from hydrosync_core.report.template import NumberedCanvas, ReportDocTemplate
+from hydrosync_core.report.template import NumberedCanvas, PageLayout, ReportDocTemplate
 
 log = logging.getLogger(__name__)
 
@@ -94,9 +94,20 @@ def _status_problems(project, statuses: list[ModuleStatus]) -> list[str]:
     return out
 
 
+#: A section starts on a new page unless at least this fraction of the page is still free:
+#: a new page after every section left pages 60 % empty (#26).
+SECTION_ROOM = 0.5
+
+
+def section_break(doc) -> CondPageBreak:
+    """Before a section: a page break only if less than :data:`SECTION_ROOM` is left."""
+    return CondPageBreak(SECTION_ROOM * doc.height)
+
+
 def build_report(project, pdf_path: str | os.PathLike, progress=None, cancel=None, *,
                  specs: list[PluginSpec] | None = None,
-                 problems: list[str] | None = None, lang: str | None = None) -> Path:
+                 problems: list[str] | None = None,
+                 layout: PageLayout | None = None, lang: str | None = None) -> Path:
     """Write the PDF report of *project* to *pdf_path* atomically and return the path.
 
     Parameters
@@ -113,6 +124,9 @@ def build_report(project, pdf_path: str | os.PathLike, progress=None, cancel=Non
     problems : list of str, optional
         Receives one line per part of the report that could not be produced (a damaged
         project); those parts show "could not be produced: <reason>" in the PDF.
+    layout : PageLayout, optional
+        Receives how full each page is and where each section starts (benchmarks and
+        tests check that no page is left nearly empty).
     lang : str, optional
         Language of the text (``en``, ``zh_CN``; default: the current
         :func:`hydrosync_core.i18n.language`). Numbers, units and symbols are the same in
@@ -128,11 +142,11 @@ def build_report(project, pdf_path: str | os.PathLike, progress=None, cancel=Non
     except ValueError as exc:
         raise InputError("--lang", str(exc)) from None
     with using(lang), language_fonts(lang):
-        return _build(project, Path(pdf_path), progress, cancel, specs, problems)
+        return _build(project, Path(pdf_path), progress, cancel, specs, problems, layout)
 
 
 def _build(project, pdf_path: Path, progress, cancel, specs: list[PluginSpec] | None,
-           problems: list[str] | None) -> Path:
+           problems: list[str] | None, layout: PageLayout | None) -> Path:
     """:func:`build_report` in the current language."""
     if not pdf_path.parent.is_dir():
         raise InputError(str(pdf_path), "output folder does not exist")
@@ -156,7 +170,7 @@ def _build(project, pdf_path: Path, progress, cancel, specs: list[PluginSpec] | 
             check_cancel(cancel)
             report(progress, 0.1 + 0.6 * i / max(len(with_results), 1),
                    f"section {status.spec.name}")
-            story.append(PageBreak())
+            story.append(section_break(doc))
             section = _section(project, ctx, status, problems)
             if status.stale:
                 # Right under the heading, before any number of the section.
@@ -164,7 +178,7 @@ def _build(project, pdf_path: Path, progress, cancel, specs: list[PluginSpec] | 
                     "OUT OF DATE: these results no longer match the project \u2014 "
                     + "; ".join(status.stale) + ". Run the analysis again before signing.")]
             story += section
-        story.append(PageBreak())
+        story.append(section_break(doc))
         try:
             story += sources_section(project, ctx)
         except Exception as exc:  # a damaged raw group must not sink the report
@@ -190,5 +204,9 @@ def _build(project, pdf_path: Path, progress, cancel, specs: list[PluginSpec] | 
         })
         # Two passes at most: the contents needs the page numbers of the headings.
         doc.multiBuild(story, canvasmaker=canvas, maxPasses=4)
+    if layout is not None:
+        layout.fill[:] = doc.layout.fill
+        layout.section_starts.clear()
+        layout.section_starts.update(doc.layout.section_starts)
     report(progress, 1.0, f"report written to {pdf_path}")
     return pdf_path

@@ -26,7 +26,8 @@ from reportlab.platypus.flowables import HRFlowable
 
 from hydrosync_core.i18n import language, tr
 from hydrosync_core.report.charts import Chart
-from hydrosync_core.report.styles import FONT_BOLD, RULE, stylesheet, table_style
+from hydrosync_core.report.colwidths import cell_need, fit_widths, shrink_factor
+from hydrosync_core.report.styles import FONT, FONT_BOLD, RULE, stylesheet, table_style
 
 
 class Figure(Flowable):
@@ -191,16 +192,18 @@ class ReportContext:
         """
         n_cols = len(header)
         fractions = col_widths or [1.0 / n_cols] * n_cols
-        widths = [f * self.width for f in fractions]
-        head_style = self.styles["CellBold"]
-        if font_size != head_style.fontSize:
-            head_style = ParagraphStyle("CellBoldSmall", parent=head_style, fontSize=font_size,
-                                        leading=font_size + 2)
-        head_right = ParagraphStyle("CellBoldRight", parent=head_style, alignment=TA_RIGHT)
-        right = [i >= numeric_from and i not in left_columns for i in range(n_cols)]
-        head = [Paragraph(markup(tr(h)), head_right if right[i] else head_style)
-                for i, h in enumerate(header)]
-        data = [head] + [[_translated_cell(c) for c in r] for r in rows]
+        asked = [f * self.width for f in fractions]
+        cells = [[_translated_cell(c if isinstance(c, Flowable) else str(c)) for c in r]
+                 for r in rows]
+        head, needs = self._head_and_needs(header, cells, font_size, numeric_from,
+                                           left_columns, highlight_rows)
+        factor = shrink_factor(sum(asked), needs)
+        if factor < 1.0:  # too many words for the page: a smaller font, then fit again
+            font_size = math.floor(font_size * factor * 4) / 4
+            head, needs = self._head_and_needs(header, cells, font_size, numeric_from,
+                                               left_columns, highlight_rows)
+        widths = fit_widths(asked, needs)
+        data = [head] + cells
         style = table_style(len(data), numeric_from=numeric_from, zebra=zebra,
                             font_size=font_size)
         style += [("ALIGN", (c, 0), (c, -1), "LEFT") for c in left_columns]
@@ -220,6 +223,26 @@ class ReportContext:
         out.append(Spacer(1, 8))
         return out
 
+    def _head_and_needs(self, header, cells, font_size, numeric_from, left_columns,
+                        highlight_rows) -> tuple[list[Paragraph], list[float]]:
+        """Header paragraphs at *font_size*, and the width each column needs (points,
+        padding included) so that no header word breaks and no plain cell overflows."""
+        head_style = self.styles["CellBold"]
+        if font_size != head_style.fontSize:
+            head_style = ParagraphStyle("CellBoldSmall", parent=head_style, fontSize=font_size,
+                                        leading=font_size + 2)
+        head_right = ParagraphStyle("CellBoldRight", parent=head_style, alignment=TA_RIGHT)
+        head = [Paragraph(markup(tr(h)), head_right if i >= numeric_from and i not in left_columns
+                          else head_style) for i, h in enumerate(header)]
+        pad = 2 * (4 if font_size >= 8.5 else 2.5) + 1.0
+        bold = set(highlight_rows)
+        needs = []
+        for c, title in enumerate(head):
+            body = (cell_need(r[c], FONT_BOLD if i in bold else FONT, font_size)
+                    for i, r in enumerate(cells) if c < len(r))
+            needs.append(max(float(title.minWidth()), *body, 0.0) + pad)
+        return head, needs
+
     def key_values(self, pairs: Sequence[tuple[str, str]], caption: str | None = None,
                    key_width: float = 0.38) -> list[Flowable]:
         """A two-column table of labelled values (no numeric alignment)."""
@@ -228,16 +251,21 @@ class ReportContext:
         return self.table(["Item", "Value"], rows, col_widths=[key_width, 1 - key_width],
                           numeric_from=2, caption=caption)
 
-    def params_table(self, params, caption: str) -> list[Flowable]:
+    def params_table(self, params, caption: str,
+                     blank: dict[str, str] | None = None) -> list[Flowable]:
         """Every processing parameter of *params* (a ``Params`` instance) with its unit.
 
         Labels, units and the meaning of "not set" come from the analysis's parameter
-        schema, so the report lists exactly what the method was run with.
+        schema, so the report lists exactly what the method was run with. A value that
+        prints empty (an empty text parameter) shows ``blank[name]`` — what the analysis
+        did instead — or "(empty)": a blank cell reads as a fault.
         """
         from hydrosync_core.params import describe
 
+        blank = blank or {}
         rows = [[Paragraph(esc(tr(label)), self.styles["Cell"]),
-                 Paragraph(esc(tr(value)), self.styles["Cell"]),
+                 Paragraph(esc(tr(value) if value.strip() else tr(blank.get(name, "(empty)"))),
+                           self.styles["Cell"]),
                  Paragraph(f"<font face='Courier' size='7'>{esc(name)}</font>",
                            self.styles["Cell"])]
                 for label, value, name in describe(type(params), params.to_dict())]

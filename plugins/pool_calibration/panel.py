@@ -2,7 +2,8 @@
 convergence.
 
 A thin view over :mod:`hydrosync_core.methods.pool_calibration`: "Segment" runs
-:func:`~hydrosync_core.methods.pool_calibration.api.segment` in a worker and shows the faces found
+:func:`~hydrosync_core.methods.pool_calibration.estimator.segment` in a
+worker and shows the faces found
 with the coarse setup (kept in memory, nothing written); "Iterate" runs the angle
 iteration, lever-arm steps and joint adjustment on that segmentation
 (:func:`~hydrosync_core.methods.pool_calibration.project_run.solve_and_store`); "Run all" runs
@@ -30,7 +31,7 @@ from PySide6.QtWidgets import (
 )
 
 from hydrosync_core.errors import InputError
-from hydrosync_core.methods.pool_calibration import api, project_run
+from hydrosync_core.methods.pool_calibration import estimator, project_run
 from hydrosync_core.methods.pool_calibration.params import PoolParams
 from hydrosync_core.methods.pool_calibration.preview import segmentation_preview
 from hydrosync_core.methods.pool_calibration.project_run import RESULT
@@ -59,7 +60,7 @@ class PoolCalibrationPanel(PluginPanel):
 
             spec = SPEC
         super().__init__(spec, parent)
-        self.segmentation: api.Segmentation | None = None
+        self.segmentation: estimator.Segmentation | None = None
         self._preview: tuple[dict, dict] | None = None  # (faces, clouds) of a Segment
         self._bound_project = None
         self._storing: tuple | None = None  # (project, {"result": …}) of a storing task
@@ -273,11 +274,7 @@ class PoolCalibrationPanel(PluginPanel):
             return
 
         def task(progress, cancel):
-            seg = api.segment(np.asarray(project.get("raw/pool/lidar"), float),
-                              project.get_table("raw/pool/mbes"),
-                              project.get_table("raw/pool/ins"),
-                              project.get_json("raw/pool/setup"),
-                              project.get_json("raw/pool/target"), params, progress, cancel)
+            seg = project_run.segment_project(project, params, progress, cancel)
             return project, seg, segmentation_preview(seg, params.plan_points)
 
         self._enable(False)

@@ -6,14 +6,14 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from hydrosync_core.methods.latency import api, estimate_latency
+from hydrosync_core.methods.latency import estimate_latency, passes, weighted
 from hydrosync_core.methods.latency.lines import FLAT_R_SPAN, LineData, scan_line, scan_line_window
 from hydrosync_core.methods.latency.simulate import scenario, simulate_day
 
 DAY = dict(n_lines=6, line_s=90.0, turn_s=15.0, run_in_s=5.0, gnss_hz=5.0, attitude_hz=50.0)
 PARAMS = {"range_s": (-1.0, 1.0), "step_s": 0.002}
-FIRST_PASSES, WEIGHTED_PASS = api._first_passes, api._weighted_pass
-SCAN_WINDOWS = api._scan_windows
+FIRST_PASSES, WEIGHTED_PASS = passes.first_passes, weighted.weighted_pass
+SCAN_WINDOWS = passes.scan_windows
 
 
 def _run(day, cfg, monkeypatch, windowed: bool, estimator: str = "auto", shift=None):
@@ -42,11 +42,11 @@ def _run(day, cfg, monkeypatch, windowed: bool, estimator: str = "auto", shift=N
         out[shift] = (k0 + move, k1 + move)
         return out
 
-    monkeypatch.setattr(api, "WINDOWED_SCAN", windowed)
-    monkeypatch.setattr(api, "_first_passes", spy_first)
-    monkeypatch.setattr(api, "_weighted_pass", spy_weighted)
+    monkeypatch.setattr(passes, "WINDOWED_SCAN", windowed)
+    monkeypatch.setattr(passes, "first_passes", spy_first)
+    monkeypatch.setattr(weighted, "weighted_pass", spy_weighted)
     if shift is not None:
-        monkeypatch.setattr(api, "_scan_windows", shifted)
+        monkeypatch.setattr(passes, "scan_windows", shifted)
     res = estimate_latency(day["gnss"], day["attitude"], day["lines"], cfg.lever_arm_m,
                            {**PARAMS, "estimator": estimator})
     return res, modes
@@ -164,7 +164,7 @@ def test_weighted_pass_without_the_kept_bins_recomputes_the_spectrum(monkeypatch
     args = (day["gnss"], day["attitude"], day["lines"], cfg.lever_arm_m,
             {**PARAMS, "estimator": "weighted"})
     ref = estimate_latency(*args)
-    monkeypatch.setattr(api, "_band_bins", lambda size, a_int, g_int: 3)
+    monkeypatch.setattr(passes, "band_bins", lambda size, a_int, g_int: 3)
     _assert_same(estimate_latency(*args), ref, tol=0)
 
 
@@ -175,7 +175,7 @@ def test_weighted_without_a_weighting_is_the_antialiased_estimator(monkeypatch):
     day = simulate_day(cfg, seed=7)
     args = (day["gnss"], day["attitude"], day["lines"], cfg.lever_arm_m)
     ref = estimate_latency(*args, {**PARAMS, "estimator": "qi2010_antialias"})
-    monkeypatch.setattr(api, "_pooled_weighting", lambda *a, **k: None)
+    monkeypatch.setattr(weighted, "pooled_weighting", lambda *a, **k: None)
     res = estimate_latency(*args, {**PARAMS, "estimator": "weighted"})
     assert res.estimator == "weighted" and "coherence weighting not possible" in res.warnings[0]
     assert res.latency_s == ref.latency_s and res.uncertainty_s == ref.uncertainty_s

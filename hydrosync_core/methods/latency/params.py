@@ -30,6 +30,12 @@ WEIGHTINGS = ("r", "inverse_variance")
 ESTIMATORS = ("qi2010", "qi2010_antialias", "weighted")
 ESTIMATOR_CHOICES = ESTIMATORS + ("auto",)
 
+#: Which lines enter the mean: ``paper`` — the rule of Qi et al. (2010) alone (R_max above
+#: the threshold, for every line with data and a peak inside the scan range); ``extended``
+#: — also not the lines whose σ is not credible or that are outliers; ``auto`` — paper
+#: for ``qi2010`` (the published method stays exact), extended for the others.
+SCREENINGS = ("auto", "paper", "extended")
+
 ESTIMATOR_NAMES = {
     "qi2010": "correlation of raw series (Qi et al. 2010)",
     "qi2010_antialias": "correlation after anti-alias low-pass (Qi et al. 2010 + filter)",
@@ -96,6 +102,12 @@ class LatencyParams(Params):
         none_label="vessel sheet (gnss − motion)",
         help="GNSS antenna phase centre relative to the motion sensor, body frame "
              "x forward, y starboard, z down; default: from the vessel sheet")
+    screening: str = param(
+        "auto", label="Line screening", choices=SCREENINGS, advanced=True,
+        help="paper = only Qi et al. 2010's rule (R_max above the threshold); extended = "
+             "also drop lines whose σ is not credible or that are outliers; auto = paper "
+             "for qi2010, extended for the other estimators (a peak on the scan's edge is "
+             "never used)")
     max_line_sigma_s: float = param(
         0.2, label="Largest credible line σ", unit="s", minimum=0.0, min_exclusive=True,
         maximum=100.0, decimals=3, step=0.05, advanced=True,
@@ -116,6 +128,12 @@ class LatencyParams(Params):
         if version is not None and "estimator" not in (values or {}):
             values = {**(values or {}), "estimator": "qi2010"}
         return super().from_dict(values, version=version, strict=strict)
+
+    def paper_screening(self) -> bool:
+        """True when only the paper's line rule applies (:data:`SCREENINGS`)."""
+        if self.screening == "auto":
+            return self.estimator == "qi2010"
+        return self.screening == "paper"
 
     def validate(self) -> None:
         lo, hi = self.range_s

@@ -10,7 +10,7 @@ from __future__ import annotations
 import numpy as np
 
 from hydrosync_core.methods.pool_calibration import georef
-from hydrosync_core.methods.pool_calibration.api import Segmentation
+from hydrosync_core.methods.pool_calibration.estimator import Segmentation
 
 
 def segmentation_preview(seg: Segmentation, n_max: int = 20000,

@@ -632,10 +632,6 @@
             <translation>由三个或更多 GNSS 天线求航向、纵摇和横摇:直接法和迭代最小二乘(Liu 等),闭合形式 Wahba 交叉检核,精度预测。</translation>
         </message>
         <message>
-            <source>Heading, pitch and roll: direct method (three antennas) and least squares overlaid (time from the first epoch).</source>
-            <translation>航向、纵摇和横摇:直接法(三天线)与最小二乘叠加显示(时间自首历元起算)。</translation>
-        </message>
-        <message>
             <source>Heading-error histogram of the simulated swings (cf. Li et al., fig. 4).</source>
             <translation>模拟摆动的航向误差直方图(参见 Li 等,图 4)。</translation>
         </message>
@@ -698,6 +694,14 @@
         <message>
             <source>Import warning</source>
             <translation>导入警告</translation>
+        </message>
+        <message>
+            <source>Initial attitude</source>
+            <translation>初始姿态</translation>
+        </message>
+        <message>
+            <source>Initial heading</source>
+            <translation>初始航向</translation>
         </message>
         <message>
             <source>Invert Axis</source>
@@ -862,6 +866,10 @@
         <message>
             <source>Line</source>
             <translation>测线</translation>
+        </message>
+        <message>
+            <source>Line screening</source>
+            <translation>测线筛选</translation>
         </message>
         <message>
             <source>Lines used</source>
@@ -1292,14 +1300,6 @@
             <translation>参考(激光)</translation>
         </message>
         <message>
-            <source>Reference plane of each face the multibeam sees: a face that crosses the water is compared with its own laser plane; a below-water face with the laser plane of its above-water twin (same shape and orientation, from the design) moved by the design translation Δ (known to the build tolerance, propagated into σ). 'Carries': parameters whose σ grows by more than 10 % without the face.</source>
-            <translation>多波束所见各面的参考平面:跨越水面的面与其自身的激光平面比较;水下面与其水上对应面(设计上形状和朝向相同)的激光平面平移设计平移量 Δ 后比较(Δ 精确到建造容差,并传播到 σ 中)。“所含内容”:去掉该面后 σ 增大超过 10 % 的参数。</translation>
-        </message>
-        <message>
-            <source>Reference planes</source>
-            <translation>参考平面</translation>
-        </message>
-        <message>
             <source>Rejection floor</source>
             <translation>剔除下限</translation>
         </message>
@@ -1624,6 +1624,10 @@
             <translation>总 σ</translation>
         </message>
         <message>
+            <source>Track heading speed</source>
+            <translation>航迹定向速度</translation>
+        </message>
+        <message>
             <source>Trajectory: GNSS antenna fixes, forward and smoothed IMU positions (local east/north from the start).</source>
             <translation>轨迹:GNSS 天线定位、前向滤波和平滑后的 IMU 位置(以起点为原点的当地东/北坐标)。</translation>
         </message>
@@ -1944,6 +1948,10 @@
             <translation>前向滤波</translation>
         </message>
         <message>
+            <source>from the data</source>
+            <translation>由数据确定</translation>
+        </message>
+        <message>
             <source>given</source>
             <translation>给定</translation>
         </message>
@@ -2036,8 +2044,8 @@
             <translation>水下块体相对于其水上对应块体的位置精度(每轴 ±,半宽;σ = tol/√3):对应块体间的设计平移量仅精确到此值,并传播到结果的 σ 中</translation>
         </message>
         <message>
-            <source>initial roll/pitch/heading std of a moving alignment</source>
-            <translation>动态对准的初始横摇/纵摇/航向标准差</translation>
+            <source>initial roll/pitch/heading std of a moving alignment (and of a given attitude or heading)</source>
+            <translation>动态对准(以及给定姿态或航向)的初始横摇/纵摇/航向标准差</translation>
         </message>
         <message>
             <source>ins</source>
@@ -2160,6 +2168,10 @@
             <translation>最长基线</translation>
         </message>
         <message>
+            <source>longest part of the quiet start used for levelling and gyrocompassing (at least 2 s of rest are needed)</source>
+            <translation>用于调平和陀螺寻北的平稳起始段的最大长度(至少需要 2 s 静止)</translation>
+        </message>
+        <message>
             <source>longest time between stored smoother nodes (the smoothed correction is interpolated between nodes)</source>
             <translation>保存的平滑节点之间的最长时间(节点之间对平滑改正进行插值)</translation>
         </message>
@@ -2194,6 +2206,10 @@
         <message>
             <source>motion</source>
             <translation>姿态传感器</translation>
+        </message>
+        <message>
+            <source>moving alignment: the heading is the GNSS course at the first epoch faster than this</source>
+            <translation>动态对准:航向取首个速度超过此值历元的 GNSS 航迹向</translation>
         </message>
         <message>
             <source>multibeam</source>
@@ -2264,12 +2280,12 @@
             <translation>已过期</translation>
         </message>
         <message>
-            <source>own laser plane (crosses the water)</source>
-            <translation>自身激光平面(跨越水面)</translation>
-        </message>
-        <message>
             <source>pairs of parameters more correlated than this are flagged</source>
             <translation>相关性高于此值的参数对予以标记</translation>
+        </message>
+        <message>
+            <source>paper = only Qi et al. 2010's rule (R_max above the threshold); extended = also drop lines whose σ is not credible or that are outliers; auto = paper for qi2010, extended for the other estimators (a peak on the scan's edge is never used)</source>
+            <translation>paper = 仅用 Qi 等 2010 的规则(R_max 高于阈值);extended = 另外剔除 σ 不可信或为粗差的测线;auto = qi2010 用 paper,其他估计方法用 extended(峰值位于搜索范围边缘的测线一律不用)</translation>
         </message>
         <message>
             <source>passes that determine the held parameters</source>
@@ -2432,6 +2448,10 @@
             <translation>IMU 载体坐标系相对于车体坐标系的横摇、纵摇、艏摇:C(车体 ← IMU) = Rz(艏摇)·Ry(纵摇)·Rx(横摇),例如 IMU 的 x 轴指向车辆右舷时艏摇为 90(非完整约束作用于车体坐标系)</translation>
         </message>
         <message>
+            <source>roll, pitch, yaw of the body at the first GNSS epoch (C_b^n = Rz(yaw)·Ry(pitch)·Rx(roll)); used as given</source>
+            <translation>首个 GNSS 历元时载体的横摇、纵摇、艏摇(C_b^n = Rz(艏摇)·Ry(纵摇)·Rx(横摇));按给定值使用</translation>
+        </message>
+        <message>
             <source>rounds stop when the lever arm changes less than this</source>
             <translation>杆臂变化小于此值时停止迭代轮次</translation>
         </message>
@@ -2486,6 +2506,18 @@
         <message>
             <source>start (time of week) of the interval whose scatter gives the statistics table</source>
             <translation>统计表所用离散区间的开始时刻(周内秒)</translation>
+        </message>
+        <message>
+            <source>static alignment without gyrocompassing or a given heading: the heading is the GNSS course at the first epoch after the rest faster than this, carried back by the gyro</source>
+            <translation>无陀螺寻北且未给定航向的静态对准:航向取静止段之后首个速度超过此值历元的 GNSS 航迹向,再由陀螺回推</translation>
+        </message>
+        <message>
+            <source>static alignment: the body's heading at the end of the rest (roll and pitch still from levelling)</source>
+            <translation>静态对准:静止段结束时载体的航向(横摇和纵摇仍由调平求得)</translation>
+        </message>
+        <message>
+            <source>static: level at the rest at the start, heading by gyrocompassing (gyro better than 1 °/h), the given heading or the GNSS track once moving (walks, boats at the quay); moving: heading from the GNSS course above the alignment speed; given: the initial attitude given; auto: the configuration's or given attitude, gyrocompassing, moving, else static with the track's heading</source>
+            <translation>static:在起始静止段调平,航向由陀螺寻北(陀螺优于 1 °/h)、给定航向或开始运动后的 GNSS 航迹确定(步行、靠码头的船);moving:航向取超过对准速度时的 GNSS 航迹向;given:使用给定的初始姿态;auto:依次采用配置或给定的姿态、陀螺寻北、动态对准,否则用航迹航向的静态对准</translation>
         </message>
         <message>
             <source>survey the as-built below-water blocks (smaller build tolerance)</source>
@@ -2630,14 +2662,6 @@
         <message>
             <source>window of the IMU statistics that detect a standstill</source>
             <translation>检测静止的 IMU 统计窗口</translation>
-        </message>
-        <message>
-            <source>without an initial attitude and no usable static start: the heading is the GNSS course at the first epoch faster than this</source>
-            <translation>无初始姿态且无可用静止起始段时:航向取首个速度超过此值历元的 GNSS 航迹向</translation>
-        </message>
-        <message>
-            <source>without an initial attitude in the configuration: length of the quiet start used for levelling and gyrocompassing</source>
-            <translation>配置中无初始姿态时:用于调平和陀螺寻北的平稳起始段长度</translation>
         </message>
         <message>
             <source>worst</source>

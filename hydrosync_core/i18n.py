@@ -131,10 +131,40 @@ def _compile(source: str) -> re.Pattern:
     return re.compile(f"^{regex}$")
 
 
+def plugin_catalogues(lang: str) -> list[Path]:
+    """``<plugin package>/i18n/*_<lang>.ts`` of every installed plugin (third parties ship
+    their translations beside their code; see docs/plugins.md)."""
+    import importlib.util
+
+    from hydrosync_core.plugins.registry import _entry_points
+    from hydrosync_core.plugins.spec import ENTRY_POINT_GROUP
+
+    found: list[Path] = []
+    for ep in _entry_points(ENTRY_POINT_GROUP):
+        module = ep.value.split(":")[0]
+        try:
+            origin = importlib.util.find_spec(module).origin
+        except (ImportError, AttributeError, ValueError):
+            continue  # a broken plugin: its load error is reported by the registry
+        if origin:
+            found += sorted((Path(origin).parent / "i18n").glob(f"*_{lang}.ts"))
+    return found
+
+
 @functools.lru_cache(maxsize=8)
 def catalogue(lang: str) -> Catalogue:
-    """The catalogue of *lang* (empty for English), read once."""
-    return Catalogue() if lang == DEFAULT else Catalogue.read(catalogue_path(lang))
+    """The catalogue of *lang* (empty for English): HydroSync's, then the plugins' (which
+    may add entries, not change HydroSync's), read once."""
+    if lang == DEFAULT:
+        return Catalogue()
+    cat = Catalogue.read(catalogue_path(lang))
+    for path in plugin_catalogues(lang):
+        extra = Catalogue.read(path)
+        cat.exact = {**extra.exact, **cat.exact}
+        cat.patterns += extra.patterns
+        for name, entries in extra.by_context.items():
+            cat.by_context[name] = {**entries, **cat.by_context.get(name, {})}
+    return cat
 
 
 def language() -> str:

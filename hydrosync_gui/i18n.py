@@ -7,7 +7,7 @@ shell translates what the widgets show, at one place:
 * :func:`set_language` installs ``QTranslator`` s — HydroSync's catalogue
   (``resources/i18n/hydrosync_<lang>.qm``, compiled from the ``.ts`` by
   ``pyside6-lrelease``; :func:`compiled_catalogue` builds it if the install did not),
-  any ``<plugin package>/i18n/*_<lang>.qm`` a third-party plugin ships, and Qt's own
+  those a third-party plugin ships (``<package>/i18n/*_<lang>.ts``), and Qt's own
   ``qtbase_<lang>.qm`` (standard buttons and dialogs);
 * :class:`Relabeler`, an application event filter active while the language is not
   English, puts each label, button, group box, tab, dock and window title, menu entry,
@@ -110,25 +110,13 @@ def compiled_catalogue(ts: Path) -> Path | None:
     return target
 
 
-def _plugin_catalogues(lang: str) -> list[Path]:
-    """``<package>/i18n/*_<lang>.qm`` of every loaded plugin package (third parties)."""
-    import sys
-
-    found = []
-    for name, module in list(sys.modules.items()):
-        if "." in name or module is None or not getattr(module, "SPEC", None):
-            continue
-        folder = Path(getattr(module, "__file__", "") or ".").parent / "i18n"
-        found += sorted(folder.glob(f"*_{lang}.qm"))
-    return found
-
-
 def _translators(lang: str) -> list[QTranslator]:
     files: list[Path] = []
     ours = compiled_catalogue(core.catalogue_path(lang))
     if ours is not None:
         files.append(ours)
-    files += _plugin_catalogues(lang)
+    files += [qm for ts in core.plugin_catalogues(lang)
+              if (qm := compiled_catalogue(ts)) is not None]
     qt_dir = QLibraryInfo.path(QLibraryInfo.LibraryPath.TranslationsPath)
     files.append(Path(qt_dir) / f"qtbase_{lang}.qm")
     out = []

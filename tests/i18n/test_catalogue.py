@@ -136,3 +136,36 @@ def test_language_names():
     assert i18n.normalise("C") == "en"
     with pytest.raises(ValueError, match="not available"):
         i18n.normalise("fr_FR")
+
+
+def test_a_plugin_ships_its_own_catalogue(tmp_path, monkeypatch):
+    """A third party's ``<package>/i18n/*_zh_CN.ts`` is read beside HydroSync's."""
+    import sys
+    from types import SimpleNamespace
+
+    from hydrosync_core.plugins import registry
+
+    package = tmp_path / "heave_stats_plugin"
+    (package / "i18n").mkdir(parents=True)
+    (package / "__init__.py").write_text("SPEC = None\n")
+    (package / "i18n" / "heave_stats_zh_CN.ts").write_text(
+        '<?xml version="1.0" encoding="utf-8"?><TS version="2.1" language="zh_CN">'
+        "<context><name>hydrosync</name>"
+        "<message><source>Heave statistics</source><translation>升沉统计</translation>"
+        "</message><message><source>Pool Calibration</source><translation>不应覆盖</translation>"
+        "</message></context><context><name>hydrosync-patterns</name>"
+        "<message><source>{0} heave samples</source><translation>{0} 个升沉样本"
+        "</translation></message></context></TS>", encoding="utf-8")
+    monkeypatch.syspath_prepend(str(tmp_path))
+    fake = SimpleNamespace(value="heave_stats_plugin:SPEC", name="heave_stats")
+    monkeypatch.setattr(registry, "_entry_points", lambda group: (fake,))
+    i18n.reload()
+    try:
+        with i18n.using("zh_CN"):
+            assert i18n.tr("Heave statistics") == "升沉统计"
+            assert i18n.tr("1200 heave samples") == "1200 个升沉样本"
+            assert i18n.tr("Pool Calibration") == "水池检校"  # HydroSync's entry wins
+    finally:
+        monkeypatch.undo()
+        sys.modules.pop("heave_stats_plugin", None)
+        i18n.reload()

@@ -112,3 +112,23 @@ def test_report_action_follows_the_workbench_language(window):
     window.export_report("/dev/null", fake_build_report)
     assert window.wait_idle(30)
     assert seen == {"lang": "zh_CN"}
+
+
+def test_every_panel_fits_a_1366x768_screen_in_chinese(qtbot, window, settings, hydrosync_demo):
+    """The layout check of tests/gui in zh_CN, on the demo project with every result: the
+    Chinese texts (shorter, but in a wider font) leave the window's minimum size on a
+    laptop screen, and each panel shows its results in Chinese."""
+    from hydrosync_core.demo import DEMO_PROJECT
+    from hydrosync_core.project import Project
+
+    i18n.set_language("zh_CN", settings)
+    window.set_project(Project.open(hydrosync_demo / DEMO_PROJECT, readonly=True))
+    for index in range(window.tabs.count()):
+        window.tabs.setCurrentIndex(index)
+        window.tabs.ensure_current()
+        qtbot.waitUntil(lambda: not window.busy, timeout=60000)
+        qtbot.wait(10)
+        window.grab()
+        hint = window.minimumSizeHint()
+        assert hint.width() <= 1366 and hint.height() <= 700, (index, hint)
+        assert CJK.search(" ".join(_texts(window.tabs.currentWidget())))

@@ -24,6 +24,7 @@ at run time (``Table {0}.``). The choice is kept in ``QSettings`` under
 from __future__ import annotations
 
 import logging
+import os
 import shutil
 import subprocess
 import tempfile
@@ -64,6 +65,7 @@ SETTINGS_KEY = "ui/language"
 CONTEXT = "hydrosync"
 
 _state: dict = {"lang": core.DEFAULT, "translators": [], "relabeler": None}
+_compiled: dict[Path, Path] = {}  # .ts → .qm compiled by this process
 
 
 # --------------------------------------------------------------------------- lookup
@@ -101,12 +103,17 @@ def compiled_catalogue(ts: Path) -> Path | None:
     if tool is None:
         log.warning("pyside6-lrelease not found: %s is used through the Python catalogue", ts)
         return None
-    target = Path(tempfile.gettempdir()) / f"hydrosync-i18n-{ts.stem}.qm"
+    if ts in _compiled:
+        return _compiled[ts]
+    handle, name = tempfile.mkstemp(prefix=f"hydrosync-{ts.stem}-", suffix=".qm")
+    os.close(handle)  # a file of this process's own: no race with another HydroSync
+    target = Path(name)
     result = subprocess.run([tool, "-silent", str(ts), "-qm", str(target)],
                             capture_output=True, text=True, check=False)
     if result.returncode != 0 or not target.is_file():
         log.warning("could not compile %s: %s", ts, result.stderr.strip()[:200])
         return None
+    _compiled[ts] = target
     return target
 
 
@@ -150,13 +157,13 @@ def set_language(lang: str, settings: QSettings | None = None) -> str:
     _state["lang"] = lang
     for translator in _state["translators"]:
         app.installTranslator(translator)
-    if _state["relabeler"] is None:
-        _state["relabeler"] = Relabeler(app)
-        app.installEventFilter(_state["relabeler"])
     if settings is not None:
         settings.setValue(SETTINGS_KEY, lang)
+    if lang != core.DEFAULT and _state["relabeler"] is None:
+        _state["relabeler"] = Relabeler(app)
+        app.installEventFilter(_state["relabeler"])
     relabel_all()  # back to English: every remembered source is restored here
-    if lang == core.DEFAULT:
+    if lang == core.DEFAULT and _state["relabeler"] is not None:
         app.removeEventFilter(_state["relabeler"])  # English needs no filter at all
         _state["relabeler"] = None
     return lang

@@ -132,3 +132,34 @@ def test_every_panel_fits_a_1366x768_screen_in_chinese(qtbot, window, settings, 
         hint = window.minimumSizeHint()
         assert hint.width() <= 1366 and hint.height() <= 700, (index, hint)
         assert CJK.search(" ".join(_texts(window.tabs.currentWidget())))
+
+
+def test_catalogue_compiles_or_falls_back(qapp, tmp_path, monkeypatch):
+    """Without a built .qm the .ts is compiled with pyside6-lrelease; without lrelease the
+    Python reader of the same .ts still translates."""
+    import shutil as sh
+
+    from PySide6.QtCore import QTranslator
+
+    from hydrosync_core import i18n as core
+
+    ts = tmp_path / "hydrosync_zh_CN.ts"
+    sh.copy(core.catalogue_path("zh_CN"), ts)
+    qm = i18n.compiled_catalogue(ts)
+    if qm is None:
+        pytest.skip("pyside6-lrelease is not available")
+    translator = QTranslator()
+    assert translator.load(str(qm))
+    assert translator.translate(i18n.CONTEXT, "&File") == "文件(&F)"
+
+    monkeypatch.setattr(i18n, "_lrelease", lambda: None)
+    monkeypatch.setattr(i18n, "_compiled", {})
+    ts.touch()
+    assert i18n.compiled_catalogue(ts) is None
+    monkeypatch.setattr(core, "catalogue_path", lambda lang: ts)
+    try:
+        i18n.set_language("zh_CN")
+        assert i18n.tr("&File") == "文件(&F)"
+        assert i18n.tr("page 2 of 9") == "第 2 页,共 9 页"
+    finally:
+        i18n.set_language("en")

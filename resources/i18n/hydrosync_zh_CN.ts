@@ -88,6 +88,10 @@
             <translation>;惯导姿态视为无误差(未给出惯导精度):σ 为下限</translation>
         </message>
         <message>
+            <source>&lt;span style='color:#777'&gt;no iterations yet (Run all)&lt;/span&gt;</source>
+            <translation>&lt;span style='color:#777'&gt;尚无迭代(全部运行)&lt;/span&gt;</translation>
+        </message>
+        <message>
             <source>&lt;span style='color:#d62728'&gt;━&lt;/span&gt;&amp;nbsp;Δ roll&amp;nbsp;&amp;nbsp; &lt;span style='color:#1f77b4'&gt;━&lt;/span&gt;&amp;nbsp;Δ pitch&amp;nbsp;&amp;nbsp; &lt;span style='color:#2ca02c'&gt;━&lt;/span&gt;&amp;nbsp;Δ yaw&amp;nbsp;&amp;nbsp; &lt;span style='color:#6e6e6e'&gt;╌&lt;/span&gt;&amp;nbsp;tolerance&amp;nbsp;&amp;nbsp; &lt;span style='color:#aaa'&gt;┆&lt;/span&gt;&amp;nbsp;new round</source>
             <translation>&lt;span style='color:#d62728'&gt;━&lt;/span&gt;&amp;nbsp;Δ 横摇&amp;nbsp;&amp;nbsp; &lt;span style='color:#1f77b4'&gt;━&lt;/span&gt;&amp;nbsp;Δ 纵摇&amp;nbsp;&amp;nbsp; &lt;span style='color:#2ca02c'&gt;━&lt;/span&gt;&amp;nbsp;Δ 艏摇&amp;nbsp;&amp;nbsp; &lt;span style='color:#6e6e6e'&gt;╌&lt;/span&gt;&amp;nbsp;收敛阈值&amp;nbsp;&amp;nbsp; &lt;span style='color:#aaa'&gt;┆&lt;/span&gt;&amp;nbsp;新一轮</translation>
         </message>
@@ -460,6 +464,10 @@
             <translation>面边缘余量</translation>
         </message>
         <message>
+            <source>Face pairing and reference planes</source>
+            <translation>面的配对与参考平面</translation>
+        </message>
+        <message>
             <source>Faces</source>
             <translation>面</translation>
         </message>
@@ -704,6 +712,10 @@
             <translation>初始航向</translation>
         </message>
         <message>
+            <source>Initial heading of a tilt RTK pole's MEMS IMU from a swing with the tip on the point, and the tip: Li et al.'s gradient descent (BGD/SGD/MBGD) and SVD, the closed-form heading-only solution, and a joint batch least squares over the whole swing with σ.</source>
+            <translation>由杆尖置于点上的摆动求倾斜 RTK 对中杆 MEMS IMU 的初始航向及杆尖:Li 等的梯度下降(BGD/SGD/MBGD)和 SVD、仅航向的闭合形式解,以及覆盖整个摆动过程并给出 σ 的联合批量最小二乘。</translation>
+        </message>
+        <message>
             <source>Invert Axis</source>
             <translation>反转坐标轴</translation>
         </message>
@@ -894,6 +906,10 @@
         <message>
             <source>Log Y</source>
             <translation>Y 对数</translation>
+        </message>
+        <message>
+            <source>Log messages appear here.</source>
+            <translation>日志信息显示在此处。</translation>
         </message>
         <message>
             <source>Log records</source>
@@ -1112,6 +1128,14 @@
             <translation>粗差限值</translation>
         </message>
         <message>
+            <source>Pairing</source>
+            <translation>配对</translation>
+        </message>
+        <message>
+            <source>Pairing (rule, twin) or why none</source>
+            <translation>配对(规则,对应面)或未配对原因</translation>
+        </message>
+        <message>
             <source>Parameter</source>
             <translation>参数</translation>
         </message>
@@ -1298,6 +1322,10 @@
         <message>
             <source>Reference (laser)</source>
             <translation>参考(激光)</translation>
+        </message>
+        <message>
+            <source>Reference plane of each face the multibeam may see: a face that crosses the water is compared with its own laser plane; a below-water face with the laser plane of its above-water twin, found by plane (parallel outward normals, overlapping footprints in plan: coplanar, or a parallel offset such as the tops' design height difference) or declared in target.json, moved by the design translation Δ (known to the build tolerance, propagated into σ). Undersides and faces turned away from the vessel are never references. 'Carries': parameters whose σ grows by more than 10 % without the face.</source>
+            <translation>多波束可能看到的各面的参考平面:跨越水面的面与其自身的激光平面比较;水下面与其水上对应面的激光平面平移设计平移量 Δ 后比较(Δ 精确到建造容差,并传播到 σ 中),对应面按平面确定(外法向平行、平面投影重叠:共面,或如顶面设计高差那样的平行偏移)或在 target.json 中声明。底面和背向船的面从不作为参考。“所含内容”:去掉该面后 σ 增大超过 10 % 的参数。</translation>
         </message>
         <message>
             <source>Rejection floor</source>
@@ -1728,6 +1756,10 @@
             <translation>权</translation>
         </message>
         <message>
+            <source>What ran</source>
+            <translation>运行内容</translation>
+        </message>
+        <message>
             <source>Write the PDF report of the project</source>
             <translation>生成项目的 PDF 报告</translation>
         </message>
@@ -1788,6 +1820,10 @@
             <translation>水上</translation>
         </message>
         <message>
+            <source>above water (a reference for its twins)</source>
+            <translation>水上(作为其对应面的参考)</translation>
+        </message>
+        <message>
             <source>an angle whose σ exceeds this is flagged as poorly determined (default: half an accuracy target of 0.02°, so an unflagged angle meets it at about 2σ)</source>
             <translation>σ 超过此值的角度标记为确定性差(默认:0.02° 精度目标的一半,未标记的角度约在 2σ 水平满足目标)</translation>
         </message>
@@ -1802,6 +1838,14 @@
         <message>
             <source>an interval longer than this many median intervals is a data gap</source>
             <translation>间隔超过中值间隔的此倍数即为数据间断</translation>
+        </message>
+        <message>
+            <source>an underside</source>
+            <translation>底面</translation>
+        </message>
+        <message>
+            <source>an underside: no scanner sees it</source>
+            <translation>底面:扫描仪看不到</translation>
         </message>
         <message>
             <source>angle iteration + lever-arm step repeated at most this often</source>
@@ -1828,6 +1872,10 @@
             <translation>auto:用数据检验文件中的 GNSS σ(前向新息除以其预测标准差:RMS 0.8-1.25,1 s 处自相关低于 0.3),不符时重新估计——白噪声 σ 按残差离散缩放,其余作为时间相关(高斯-马尔可夫)GNSS 误差,τ 用最大似然估计——随结果一并报告;file:文件中的 σ(× 比例因子)作为白噪声</translation>
         </message>
         <message>
+            <source>automatic: the largest triangle of the antennas present at each epoch</source>
+            <translation>自动:每个历元可用天线中最大的三角形</translation>
+        </message>
+        <message>
             <source>below</source>
             <translation>水下</translation>
         </message>
@@ -1848,6 +1896,14 @@
             <translation>粗值</translation>
         </message>
         <message>
+            <source>congruent</source>
+            <translation>全等</translation>
+        </message>
+        <message>
+            <source>coplanar</source>
+            <translation>共面</translation>
+        </message>
+        <message>
             <source>correlation R</source>
             <translation>相关系数 R</translation>
         </message>
@@ -1862,6 +1918,10 @@
         <message>
             <source>data</source>
             <translation>测深数据</translation>
+        </message>
+        <message>
+            <source>declared</source>
+            <translation>声明</translation>
         </message>
         <message>
             <source>degree of the polynomial (tide, squat) removed from each line's heights</source>
@@ -1902,6 +1962,10 @@
         <message>
             <source>estimate gyro and accelerometer scale factors (21 states) besides the 15 states of Wang et al. (position, velocity, attitude, gyro and accelerometer biases)</source>
             <translation>在 Wang 等的 15 维状态(位置、速度、姿态、陀螺和加速度计零偏)之外估计陀螺和加速度计比例因子(21 维状态)</translation>
+        </message>
+        <message>
+            <source>extended</source>
+            <translation>扩展</translation>
         </message>
         <message>
             <source>faces with fewer points in either cloud are not used</source>
@@ -1948,12 +2012,24 @@
             <translation>前向滤波</translation>
         </message>
         <message>
+            <source>forward EKF and RTS smoother</source>
+            <translation>前向 EKF 和 RTS 反向平滑</translation>
+        </message>
+        <message>
+            <source>forward EKF only (no smoothing)</source>
+            <translation>仅前向 EKF(无平滑)</translation>
+        </message>
+        <message>
             <source>from the data</source>
             <translation>由数据确定</translation>
         </message>
         <message>
             <source>given</source>
             <translation>给定</translation>
+        </message>
+        <message>
+            <source>given (configuration)</source>
+            <translation>给定(配置)</translation>
         </message>
         <message>
             <source>gnss</source>
@@ -2196,6 +2272,10 @@
             <translation>最大法向夹角</translation>
         </message>
         <message>
+            <source>method</source>
+            <translation>方法</translation>
+        </message>
+        <message>
             <source>model the GNSS error as white plus a Gauss-Markov error of this correlation time (white part scaled from the residuals, the rest of the file's σ correlated); 0 = chosen by the auto check</source>
             <translation>将 GNSS 误差建模为白噪声加上此相关时间的高斯-马尔可夫误差(白噪声部分按残差缩放,文件 σ 的其余部分为相关误差);0 = 由 auto 检验选定</translation>
         </message>
@@ -2280,12 +2360,28 @@
             <translation>已过期</translation>
         </message>
         <message>
+            <source>own</source>
+            <translation>自身</translation>
+        </message>
+        <message>
+            <source>own laser plane</source>
+            <translation>自身激光平面</translation>
+        </message>
+        <message>
             <source>pairs of parameters more correlated than this are flagged</source>
             <translation>相关性高于此值的参数对予以标记</translation>
         </message>
         <message>
+            <source>paper</source>
+            <translation>论文</translation>
+        </message>
+        <message>
             <source>paper = only Qi et al. 2010's rule (R_max above the threshold); extended = also drop lines whose σ is not credible or that are outliers; auto = paper for qi2010, extended for the other estimators (a peak on the scan's edge is never used)</source>
             <translation>paper = 仅用 Qi 等 2010 的规则(R_max 高于阈值);extended = 另外剔除 σ 不可信或为粗差的测线;auto = qi2010 用 paper,其他估计方法用 extended(峰值位于搜索范围边缘的测线一律不用)</translation>
+        </message>
+        <message>
+            <source>parallel offset</source>
+            <translation>平行偏移</translation>
         </message>
         <message>
             <source>passes that determine the held parameters</source>
@@ -2596,6 +2692,22 @@
             <translation>同步前总升沉(Δt = 0)</translation>
         </message>
         <message>
+            <source>turned away from the vessel</source>
+            <translation>背向船</translation>
+        </message>
+        <message>
+            <source>turned away from the vessel: no scanner sees it</source>
+            <translation>背向船:扫描仪看不到</translation>
+        </message>
+        <message>
+            <source>twin</source>
+            <translation>对应面</translation>
+        </message>
+        <message>
+            <source>unpaired: no visible above-water face parallel to it</source>
+            <translation>未配对:没有与其平行的可见水上面</translation>
+        </message>
+        <message>
             <source>up</source>
             <translation>天</translation>
         </message>
@@ -2706,6 +2818,10 @@
         <message>
             <source>zero velocity when the IMU is quiet and the filter speed is below the ZUPT speed</source>
             <translation>IMU 平稳且滤波速度低于零速修正速度时视为零速</translation>
+        </message>
+        <message>
+            <source>|Δ angle|</source>
+            <translation>|Δ 角度|</translation>
         </message>
         <message>
             <source>± accuracy of the coarse boresight (installation drawing); an angle the data determine no better than this is undetermined and keeps its coarse value</source>
@@ -2883,6 +2999,10 @@
             <translation>GNSS σ 取自文件(白噪声),IMU 噪声取自配置;归一化 GNSS 新息 RMS N/E/D {0},1 s 处自相关 ≤ {1}</translation>
         </message>
         <message>
+            <source>Heading, pitch and roll: direct method (three antennas) and least squares overlaid (time from the first epoch). Where the record has more than {0} epochs, each 1/{1} of it is drawn as its median (line) and its range (band).</source>
+            <translation>航向、纵摇和横摇:直接法(三天线)与最小二乘叠加显示(时间自首历元起算)。记录超过 {0} 个历元时,每 1/{1} 段绘出其中值(线)和范围(带)。</translation>
+        </message>
+        <message>
             <source>HydroSync report — {0}</source>
             <translation>HydroSync 报告 — {0}</translation>
         </message>
@@ -2923,6 +3043,10 @@
             <translation>正在打开 {0}</translation>
         </message>
         <message>
+            <source>Passes adjusted jointly ({0})</source>
+            <translation>联合平差的测次({0})</translation>
+        </message>
+        <message>
             <source>Patent iteration, last iteration of each round: the accumulated angles and the largest remaining normal angle. A new round starts after the lever arm has been re-estimated; all {0} iterations are listed in the appendix.</source>
             <translation>专利迭代,每轮的最后一次迭代:累计角度及剩余的最大法向夹角。杆臂重新估计后开始新的一轮;全部 {0} 次迭代列于附录。</translation>
         </message>
@@ -2947,6 +3071,14 @@
             <translation>约需 {0} 倍于此的测次才能使其达到 {1}</translation>
         </message>
         <message>
+            <source>above water ({0})</source>
+            <translation>水上({0})</translation>
+        </message>
+        <message>
+            <source>crossing, but {0} laser points (&lt; {1})</source>
+            <translation>跨水线,但只有 {0} 个激光点(&lt; {1})</translation>
+        </message>
+        <message>
             <source>final Δt = {0}</source>
             <translation>最终 Δt = {0}</translation>
         </message>
@@ -2957,6 +3089,10 @@
         <message>
             <source>joint adjustment: {0} σ = {1} exceeds {2}: poorly determined; {3}</source>
             <translation>联合平差:{0} σ = {1} 超过 {2}:确定性差;{3}</translation>
+        </message>
+        <message>
+            <source>line {0}: before and after Δt = {1}</source>
+            <translation>测线 {0}:Δt = {1} 同步前后</translation>
         </message>
         <message>
             <source>more passes cannot bring it to {0}: the {1} part alone gives {2}</source>
@@ -2989,6 +3125,10 @@
         <message>
             <source>total heave after (Δt = {0})</source>
             <translation>同步后总升沉(Δt = {0})</translation>
+        </message>
+        <message>
+            <source>unpaired: {0}</source>
+            <translation>未配对:{0}</translation>
         </message>
         <message>
             <source>{0}
@@ -3043,6 +3183,14 @@ Default: {1}  (--param {2})</source>
             <translation>采用 {0} / {1} 条测线({2} 权,{3} 估计方法);自动:{4}(σ {5};qi2010 {6},Δt {7})</translation>
         </message>
         <message>
+            <source>{0} of {1} lines used ({2} weights, {3} estimator, {4} line screening)</source>
+            <translation>采用 {0} / {1} 条测线({2} 权,{3} 估计方法,{4} 测线筛选)</translation>
+        </message>
+        <message>
+            <source>{0} of {1} lines used ({2} weights, {3} estimator, {4} line screening); auto: {5} (σ {6}; qi2010 {7}, Δt {8})</source>
+            <translation>采用 {0} / {1} 条测线({2} 权,{3} 估计方法,{4} 测线筛选);自动:{5}(σ {6};qi2010 {7},Δt {8})</translation>
+        </message>
+        <message>
             <source>{0} of {1}, weights: peak correlation R</source>
             <translation>{0} / {1},权:峰值相关系数 R</translation>
         </message>
@@ -3055,6 +3203,18 @@ Default: {1}  (--param {2})</source>
             <translation>{0} 次与本记录类似的模拟摆动(相同的对中杆、GNSS 频率和 σ;随机的摆动形状、IMU 等级和零偏、手部抖动、GNSS 中断):航向误差和杆尖水平误差(Li 等表 2 的形式)。</translation>
         </message>
         <message>
+            <source>{0} with {1}</source>
+            <translation>{0},对应 {1}</translation>
+        </message>
+        <message>
+            <source>{0} with {1}, which has {2} laser points (&lt; {3}): no reference</source>
+            <translation>{0},对应 {1},其激光点只有 {2} 个(&lt; {3}):无参考</translation>
+        </message>
+        <message>
+            <source>{0} with {1}, {2}: no reference</source>
+            <translation>{0},对应 {1},{2}:无参考</translation>
+        </message>
+        <message>
             <source>{0}: horizontal RMS {1}, yaw RMS {2}</source>
             <translation>{0}:水平 RMS {1},艏摇 RMS {2}</translation>
         </message>
@@ -3065,6 +3225,14 @@ Default: {1}  (--param {2})</source>
         <message>
             <source>{0}: tip {1} (σ {2} mm), heading misalignment {3}°. Vectors used {4}, rejected {5}; tilt up to {6}°.</source>
             <translation>{0}:杆尖 {1}(σ {2} mm),航向失准角 {3}°。采用矢量 {4} 个,剔除 {5} 个;最大倾斜 {6}°。</translation>
+        </message>
+        <message>
+            <source>{0}: {1} pings, {2} soundings, {3} on referenced faces</source>
+            <translation>{0}:{1} 个 ping,{2} 个测深点,其中 {3} 个在有参考平面的面上</translation>
+        </message>
+        <message>
+            <source>{0}: {1} pings, {2} soundings, {3} on referenced faces; {4}</source>
+            <translation>{0}:{1} 个 ping,{2} 个测深点,其中 {3} 个在有参考平面的面上;{4}</translation>
         </message>
         <message>
             <source>{0}&lt;br&gt;&lt;span style='color:#555'&gt;faint discs: laser (reference) · triangles: multibeam · grey dots: soundings on no face&lt;/span&gt;</source>

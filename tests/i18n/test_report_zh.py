@@ -38,6 +38,9 @@ def _text(pdf: Path) -> str:
 
 
 def _decimals(text: str) -> collections.Counter:
+    """Decimal numbers of *text*, without the version in each page's footer (the two
+    languages need not break into the same number of pages)."""
+    text = re.sub(r"HydroSync \d+(\.\d+)+", "", text)
     return collections.Counter(re.findall(r"[-+−]?\d+\.\d+", text))
 
 

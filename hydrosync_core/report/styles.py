@@ -152,7 +152,8 @@ def language_fonts(lang: str) -> Iterator[None]:
 def stylesheet(cjk: bool = False) -> StyleSheet1:
     """Return the report's paragraph styles (``Title``, ``H1``, ``H2``, ``Body``, …).
 
-    *cjk*: break lines between any two Chinese characters (Chinese has no spaces).
+    *cjk*: break running text between any two Chinese characters (Chinese has no
+    spaces); table cells still break at spaces and split only words wider than the column.
     """
     ss = StyleSheet1()
     base = ParagraphStyle("Body", fontName=FONT, fontSize=9.5, leading=12.5,
@@ -173,7 +174,11 @@ def stylesheet(cjk: bool = False) -> StyleSheet1:
     ss.add(ParagraphStyle("H2", parent=base, fontName=FONT_BOLD, fontSize=11.5,
                           leading=15, textColor=ACCENT, spaceBefore=10, spaceAfter=4,
                           keepWithNext=1))
-    ss.add(ParagraphStyle("Cell", parent=base, fontSize=8.5, leading=10.5, spaceAfter=0))
+    # Table cells keep breaking at spaces (reportlab splits a word only when it is longer
+    # than the column): CJK breaking, good for running Chinese text, would also cut a
+    # unit or a name in a narrow column ("RM|S [mm]").
+    ss.add(ParagraphStyle("Cell", parent=base, fontSize=8.5, leading=10.5, spaceAfter=0,
+                          wordWrap=None))
     ss.add(ParagraphStyle("CellBold", parent=ss["Cell"], fontName=FONT_BOLD))
     ss.add(ParagraphStyle("CellCenter", parent=ss["Cell"], alignment=TA_CENTER))
     ss.add(ParagraphStyle("Warning", parent=base, backColor=WARN_FILL, borderPadding=4,

@@ -12,8 +12,9 @@ Two kinds of entries:
   text (``Table {0}.`` → ``表 {0}.``). What a placeholder captured is translated in turn
   (a module name inside a sentence), numbers pass through unchanged.
 
-A text with no entry is returned as it is, so an untranslated string shows in English
-rather than not at all. A trailing unit in brackets (``Roll [°]``) is kept and the label in
+A text of several lines (``\n`` or ``<br>``) without an entry of its own is translated line
+by line. A text with no entry is returned as it is, so an untranslated string shows in
+English rather than not at all. A trailing unit in brackets (``Roll [°]``) is kept and the label in
 front of it translated.
 
 Example
@@ -37,12 +38,16 @@ from pathlib import Path
 #: Language codes HydroSync offers, with their names in their own language.
 LANGUAGES: dict[str, str] = {"en": "English", "zh_CN": "简体中文"}
 DEFAULT = "en"
+#: The ``.ts`` context of HydroSync's texts (the one Qt's ``translate`` is asked in).
+EXACT_CONTEXT = "hydrosync"
 CATALOGUE_DIR = Path(__file__).resolve().parents[1] / "resources" / "i18n"
 
 _language: ContextVar[str] = ContextVar("hydrosync_language", default=DEFAULT)
 _collector: ContextVar[set | None] = ContextVar("hydrosync_i18n_collector", default=None)
 _PLACEHOLDER = re.compile(r"\{(\d+)\}")
 _UNIT_TAIL = re.compile(r"^(?P<head>.*\S)(?P<tail> \[[^\[\]]*\]|:)$", re.S)
+_ONE_LINE = r"(?:(?!<br\s*/?>)[^\n])+?"
+_LINE_BREAK = re.compile(r"(\n|<br\s*/?>)")
 _NUMBERISH = re.compile(r"^[\s\d.,+\-−±%eE:/]*$")
 
 
@@ -78,6 +83,9 @@ class Catalogue:
 
     exact: dict[str, str] = field(default_factory=dict)
     patterns: list[tuple[re.Pattern, str]] = field(default_factory=list)
+    #: Entries of other ``.ts`` contexts: one English word, two meanings (``signoff``:
+    #: "Name" of a person, not of a file).
+    by_context: dict[str, dict[str, str]] = field(default_factory=dict)
 
     @classmethod
     def read(cls, path: Path) -> Catalogue:
@@ -87,20 +95,27 @@ class Catalogue:
             return cat
         root = ET.parse(path).getroot()
         pattern_entries = []
-        for message in root.iter("message"):
-            source = message.findtext("source") or ""
-            node = message.find("translation")
-            if node is None or not (node.text or "") or node.get("type") in (
-                    "unfinished", "obsolete", "vanished"):
-                continue
-            if _PLACEHOLDER.search(source):
-                pattern_entries.append((source, node.text))
-            else:
-                cat.exact[source] = node.text
+        for context in root.iter("context"):
+            name = context.findtext("name") or ""
+            for message in context.iter("message"):
+                cat._add(name, message, pattern_entries)
         # Longest literal first: the most specific pattern wins.
         pattern_entries.sort(key=lambda e: -len(_PLACEHOLDER.sub("", e[0])))
         cat.patterns = [(_compile(src), dst) for src, dst in pattern_entries]
         return cat
+
+    def _add(self, context: str, message: ET.Element, pattern_entries: list) -> None:
+        source = message.findtext("source") or ""
+        node = message.find("translation")
+        if node is None or not (node.text or "") or node.get("type") in (
+                "unfinished", "obsolete", "vanished"):
+            return
+        if _PLACEHOLDER.search(source):
+            pattern_entries.append((source, node.text))
+        elif context in (EXACT_CONTEXT, ""):
+            self.exact[source] = node.text
+        else:
+            self.by_context.setdefault(context, {})[source] = node.text
 
     def sources(self) -> list[str]:
         return list(self.exact) + [p.pattern for p, _ in self.patterns]
@@ -110,14 +125,46 @@ def _compile(source: str) -> re.Pattern:
     parts = _PLACEHOLDER.split(source)
     regex = ""
     for i, part in enumerate(parts):
-        regex += re.escape(part) if i % 2 == 0 else f"(?P<p{part}>.+?)"
-    return re.compile(f"^{regex}$", re.S)
+        # A placeholder stays within one line: a status of several lines is matched
+        # line by line, never by one pattern swallowing the lines before.
+        regex += re.escape(part) if i % 2 == 0 else f"(?P<p{part}>{_ONE_LINE})"
+    return re.compile(f"^{regex}$")
+
+
+def plugin_catalogues(lang: str) -> list[Path]:
+    """``<plugin package>/i18n/*_<lang>.ts`` of every installed plugin (third parties ship
+    their translations beside their code; see docs/plugins.md)."""
+    import importlib.util
+
+    from hydrosync_core.plugins.registry import _entry_points
+    from hydrosync_core.plugins.spec import ENTRY_POINT_GROUP
+
+    found: list[Path] = []
+    for ep in _entry_points(ENTRY_POINT_GROUP):
+        module = ep.value.split(":")[0]
+        try:
+            origin = importlib.util.find_spec(module).origin
+        except (ImportError, AttributeError, ValueError):
+            continue  # a broken plugin: its load error is reported by the registry
+        if origin:
+            found += sorted((Path(origin).parent / "i18n").glob(f"*_{lang}.ts"))
+    return found
 
 
 @functools.lru_cache(maxsize=8)
 def catalogue(lang: str) -> Catalogue:
-    """The catalogue of *lang* (empty for English), read once."""
-    return Catalogue() if lang == DEFAULT else Catalogue.read(catalogue_path(lang))
+    """The catalogue of *lang* (empty for English): HydroSync's, then the plugins' (which
+    may add entries, not change HydroSync's), read once."""
+    if lang == DEFAULT:
+        return Catalogue()
+    cat = Catalogue.read(catalogue_path(lang))
+    for path in plugin_catalogues(lang):
+        extra = Catalogue.read(path)
+        cat.exact = {**extra.exact, **cat.exact}
+        cat.patterns += extra.patterns
+        for name, entries in extra.by_context.items():
+            cat.by_context[name] = {**entries, **cat.by_context.get(name, {})}
+    return cat
 
 
 def language() -> str:
@@ -135,14 +182,21 @@ def using(lang: str | None) -> Iterator[str]:
         _language.reset(token)
 
 
-def tr(text: str, lang: str | None = None) -> str:
-    """*text* in *lang* (default: the current language); unchanged where not translated."""
+def tr(text: str, lang: str | None = None, context: str | None = None) -> str:
+    """*text* in *lang* (default: the current language); unchanged where not translated.
+
+    *context* names a ``.ts`` context whose entry, if any, wins (a word with two meanings).
+    """
     lang = lang or _language.get()
     if lang == DEFAULT or not isinstance(text, str) or not text.strip():
         return text
     collector = _collector.get()
     if collector is not None:
         collector.add(text)
+    if context:
+        found = catalogue(lang).by_context.get(context, {}).get(text)
+        if found is not None:
+            return found
     return _lookup(text, lang, 0)
 
 
@@ -166,6 +220,10 @@ def _lookup(text: str, lang: str, depth: int) -> str:
     tail = _UNIT_TAIL.match(text)
     if tail and tail.group("head") in cat.exact:
         return cat.exact[tail.group("head")] + tail.group("tail")
+    parts = _LINE_BREAK.split(text)
+    if len(parts) > 1 and depth < 3:  # a status of several lines: line by line
+        return "".join(part if i % 2 else _lookup(part, lang, depth + 1)
+                       for i, part in enumerate(parts))
     return text
 
 
@@ -174,8 +232,10 @@ def _fill(target: str, values: dict[str, str]) -> str:
 
 
 def is_translated(text: str, lang: str) -> bool:
-    """Whether *text* has an entry (exact, pattern, or label + unit) in *lang*."""
-    return _lookup(text, normalise(lang), 0) != text
+    """Whether *text* has an entry (exact, pattern, or label + unit) in *lang*; an entry
+    that keeps the English (a name such as ``Mahony Kp``) counts."""
+    lang = normalise(lang)
+    return text.strip() in catalogue(lang).exact or _lookup(text, lang, 0) != text
 
 
 @contextlib.contextmanager

@@ -7,7 +7,7 @@ shell translates what the widgets show, at one place:
 * :func:`set_language` installs ``QTranslator`` s — HydroSync's catalogue
   (``resources/i18n/hydrosync_<lang>.qm``, compiled from the ``.ts`` by
   ``pyside6-lrelease``; :func:`compiled_catalogue` builds it if the install did not),
-  any ``<plugin package>/i18n/*_<lang>.qm`` a third-party plugin ships, and Qt's own
+  those a third-party plugin ships (``<package>/i18n/*_<lang>.ts``), and Qt's own
   ``qtbase_<lang>.qm`` (standard buttons and dialogs);
 * :class:`Relabeler`, an application event filter active while the language is not
   English, puts each label, button, group box, tab, dock and window title, menu entry,
@@ -24,11 +24,13 @@ at run time (``Table {0}.``). The choice is kept in ``QSettings`` under
 from __future__ import annotations
 
 import logging
+import os
 import shutil
 import subprocess
 import tempfile
 from pathlib import Path
 
+import pyqtgraph as pg
 from PySide6.QtCore import (
     QCoreApplication,
     QEvent,
@@ -47,8 +49,10 @@ from PySide6.QtWidgets import (
     QLabel,
     QLineEdit,
     QMenu,
+    QPlainTextEdit,
     QTabBar,
     QTableWidget,
+    QTextEdit,
     QTreeWidget,
     QWidget,
 )
@@ -61,6 +65,7 @@ SETTINGS_KEY = "ui/language"
 CONTEXT = "hydrosync"
 
 _state: dict = {"lang": core.DEFAULT, "translators": [], "relabeler": None}
+_compiled: dict[Path, Path] = {}  # .ts → .qm compiled by this process
 
 
 # --------------------------------------------------------------------------- lookup
@@ -98,26 +103,18 @@ def compiled_catalogue(ts: Path) -> Path | None:
     if tool is None:
         log.warning("pyside6-lrelease not found: %s is used through the Python catalogue", ts)
         return None
-    target = Path(tempfile.gettempdir()) / f"hydrosync-i18n-{ts.stem}.qm"
+    if ts in _compiled:
+        return _compiled[ts]
+    handle, name = tempfile.mkstemp(prefix=f"hydrosync-{ts.stem}-", suffix=".qm")
+    os.close(handle)  # a file of this process's own: no race with another HydroSync
+    target = Path(name)
     result = subprocess.run([tool, "-silent", str(ts), "-qm", str(target)],
                             capture_output=True, text=True, check=False)
     if result.returncode != 0 or not target.is_file():
         log.warning("could not compile %s: %s", ts, result.stderr.strip()[:200])
         return None
+    _compiled[ts] = target
     return target
-
-
-def _plugin_catalogues(lang: str) -> list[Path]:
-    """``<package>/i18n/*_<lang>.qm`` of every loaded plugin package (third parties)."""
-    import sys
-
-    found = []
-    for name, module in list(sys.modules.items()):
-        if "." in name or module is None or not getattr(module, "SPEC", None):
-            continue
-        folder = Path(getattr(module, "__file__", "") or ".").parent / "i18n"
-        found += sorted(folder.glob(f"*_{lang}.qm"))
-    return found
 
 
 def _translators(lang: str) -> list[QTranslator]:
@@ -125,7 +122,8 @@ def _translators(lang: str) -> list[QTranslator]:
     ours = compiled_catalogue(core.catalogue_path(lang))
     if ours is not None:
         files.append(ours)
-    files += _plugin_catalogues(lang)
+    files += [qm for ts in core.plugin_catalogues(lang)
+              if (qm := compiled_catalogue(ts)) is not None]
     qt_dir = QLibraryInfo.path(QLibraryInfo.LibraryPath.TranslationsPath)
     files.append(Path(qt_dir) / f"qtbase_{lang}.qm")
     out = []
@@ -159,12 +157,15 @@ def set_language(lang: str, settings: QSettings | None = None) -> str:
     _state["lang"] = lang
     for translator in _state["translators"]:
         app.installTranslator(translator)
-    if _state["relabeler"] is None:
-        _state["relabeler"] = Relabeler(app)
-        app.installEventFilter(_state["relabeler"])
     if settings is not None:
         settings.setValue(SETTINGS_KEY, lang)
-    relabel_all()
+    if lang != core.DEFAULT and _state["relabeler"] is None:
+        _state["relabeler"] = Relabeler(app)
+        app.installEventFilter(_state["relabeler"])
+    relabel_all()  # back to English: every remembered source is restored here
+    if lang == core.DEFAULT and _state["relabeler"] is not None:
+        app.removeEventFilter(_state["relabeler"])  # English needs no filter at all
+        _state["relabeler"] = None
     return lang
 
 
@@ -239,8 +240,6 @@ def _item_headers(view) -> None:
 
 def _plot_texts(widget: QWidget) -> None:
     """Axis titles, plot titles and legend entries of a pyqtgraph view."""
-    import pyqtgraph as pg
-
     scene = widget.scene() if isinstance(widget, pg.GraphicsView) else None
     if scene is None:
         return
@@ -262,7 +261,7 @@ def relabel_widget(widget: QWidget) -> None:
         _sync(widget, "text", widget.title(), widget.setTitle)
     elif isinstance(widget, QTabBar):
         _tabs(widget)
-    elif isinstance(widget, QLineEdit):
+    elif isinstance(widget, QLineEdit | QTextEdit | QPlainTextEdit):
         _sync(widget, "placeholder", widget.placeholderText(), widget.setPlaceholderText)
     elif isinstance(widget, QTableWidget | QTreeWidget):
         _item_headers(widget)
@@ -270,7 +269,7 @@ def relabel_widget(widget: QWidget) -> None:
         _sync(widget.menuAction(), "text", widget.title(), widget.setTitle)
     if widget.actions():
         _actions(widget)
-    if type(widget).__module__.startswith("pyqtgraph"):
+    if isinstance(widget, pg.GraphicsView):
         _plot_texts(widget)
 
 
@@ -292,7 +291,7 @@ class Relabeler(QObject):
             else:
                 relabel_widget(obj)
                 parent = obj.parentWidget()
-                if parent is not None and type(parent).__module__.startswith("pyqtgraph"):
+                if isinstance(parent, pg.GraphicsView):
                     _plot_texts(parent)  # the plot's viewport is painted, not the plot
         elif kind == QEvent.Type.ToolTip and isinstance(obj, QWidget) and obj.toolTip():
             _sync(obj, "tooltip", obj.toolTip(), obj.setToolTip)

@@ -151,7 +151,7 @@ def cover_page(project, ctx: ReportContext, statuses: list[ModuleStatus]) -> lis
 
 
 def _signoff(ctx: ReportContext) -> Table:
-    head = ["", tr("Name"), tr("Signature"), tr("Date")]
+    head = ["", tr("Name", context="signoff"), tr("Signature"), tr("Date")]
     rows = [head] + [[tr(role), "", "", ""]
                      for role in ("Prepared by", "Checked by", "Approved by")]
     table = Table(rows, colWidths=[0.2 * ctx.width, 0.3 * ctx.width, 0.3 * ctx.width,

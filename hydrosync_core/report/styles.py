@@ -97,11 +97,14 @@ def cjk_font_file() -> str:
                      "HYDROSYNC_CJK_FONT to a .ttf/.ttc file")
 
 
-def _cjk_font(name: str) -> TTFont:
+def _cjk_font(name: str, mono: bool = False) -> TTFont:
     # Only TrueType outlines: reportlab embeds (subsets) them, unlike its built-in CID
     # fonts, which each viewer substitutes differently. WenQuanYi Zen Hei carries Latin,
     # Greek (σ, Δ) and the signs ± ° → as well, so one face serves the whole page.
-    font = TTFont(name, cjk_font_file(), subfontIndex=0)
+    path = cjk_font_file()
+    # WenQuanYi Zen Hei's collection holds the proportional face first, the mono second.
+    index = 1 if mono and path.endswith("wqy-zenhei.ttc") else 0
+    font = TTFont(name, path, subfontIndex=index)
     glyphs, widths = font.face.charToGlyph, font.face.charWidths
     for missing, stand_in in _STAND_INS.items():
         if missing not in glyphs and stand_in in glyphs:  # a look-alike, not a tofu box
@@ -127,10 +130,12 @@ def language_fonts(lang: str) -> Iterator[None]:
         return
     if lang != "zh_CN":
         raise ValueError(f"no report fonts for language '{lang}'")
-    face = _cjk_font(FONT)  # one face for regular and bold: the font has no bold
-    # Helvetica too: it has no Chinese glyphs and is not embedded, and a section may name
-    # it directly (a bold table cell).
-    faces = dict.fromkeys((FONT, FONT_BOLD, "Helvetica", "Helvetica-Bold"), face)
+    face = _cjk_font(FONT)  # one face for every style: the font has no bold or italic
+    # Helvetica and Courier too: they have no Chinese glyphs and are not embedded, and a
+    # section may name them directly (a bold cell, parameter names in Courier).
+    faces = dict.fromkeys((FONT, FONT_BOLD, "DejaVuSans-Oblique", "DejaVuSans-BoldOblique",
+                           "Helvetica", "Helvetica-Bold", "Helvetica-Oblique"), face)
+    faces["Courier"] = _cjk_font("Courier", mono=True)
     with _FONT_SWAP:
         saved = {name: pdfmetrics._fonts.get(name) for name in faces}
         try:
@@ -147,7 +152,8 @@ def language_fonts(lang: str) -> Iterator[None]:
 def stylesheet(cjk: bool = False) -> StyleSheet1:
     """Return the report's paragraph styles (``Title``, ``H1``, ``H2``, ``Body``, …).
 
-    *cjk*: break lines between any two Chinese characters (Chinese has no spaces).
+    *cjk*: break running text between any two Chinese characters (Chinese has no
+    spaces); table cells still break at spaces and split only words wider than the column.
     """
     ss = StyleSheet1()
     base = ParagraphStyle("Body", fontName=FONT, fontSize=9.5, leading=12.5,
@@ -168,7 +174,11 @@ def stylesheet(cjk: bool = False) -> StyleSheet1:
     ss.add(ParagraphStyle("H2", parent=base, fontName=FONT_BOLD, fontSize=11.5,
                           leading=15, textColor=ACCENT, spaceBefore=10, spaceAfter=4,
                           keepWithNext=1))
-    ss.add(ParagraphStyle("Cell", parent=base, fontSize=8.5, leading=10.5, spaceAfter=0))
+    # Table cells keep breaking at spaces (reportlab splits a word only when it is longer
+    # than the column): CJK breaking, good for running Chinese text, would also cut a
+    # unit or a name in a narrow column ("RM|S [mm]").
+    ss.add(ParagraphStyle("Cell", parent=base, fontSize=8.5, leading=10.5, spaceAfter=0,
+                          wordWrap=None))
     ss.add(ParagraphStyle("CellBold", parent=ss["Cell"], fontName=FONT_BOLD))
     ss.add(ParagraphStyle("CellCenter", parent=ss["Cell"], alignment=TA_CENTER))
     ss.add(ParagraphStyle("Warning", parent=base, backColor=WARN_FILL, borderPadding=4,

@@ -108,7 +108,11 @@ class ColumnsTableModel(QAbstractTableModel):
         if isinstance(value, float | np.floating) and np.isnan(value):
             return self._missing[column]  # a missing value: blank unless stated
         pattern = self._formats[column]
-        return pattern.format(value) if pattern else _default_format(value)
+        if pattern:
+            return pattern.format(value)
+        text = _default_format(value)
+        # Words (a method, a role) in the workbench's language; numbers have no entry.
+        return tr(text) if self._columns[column].dtype.kind in "USO" else text
 
     def data(self, index: _Index, role: int = Qt.ItemDataRole.DisplayRole):
         if not index.isValid():

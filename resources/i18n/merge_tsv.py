@@ -6,7 +6,8 @@ For translators who prefer a spreadsheet to Qt Linguist::
 
 ``\\n`` in a cell is a line break. A source with ``{0}``, ``{1}``… is a pattern for text
 built at run time (see :mod:`hydrosync_core.i18n`) and goes to the ``hydrosync-patterns``
-context, which Qt's own lookup never consults. Existing entries are replaced; the file is
+context, which Qt's own lookup never consults; ``context|source`` puts an entry into
+that context (one English word, two meanings). Existing entries are replaced; the file is
 written sorted, so diffs stay small.
 """
 
@@ -61,7 +62,9 @@ def merge(tsv: Path, ts: Path) -> int:
             raise SystemExit(f"{tsv}:{number}: expected 'source<TAB>translation'")
         source, target = (cell.replace("\\n", "\n") for cell in line.split("\t"))
         context = PATTERNS if re.search(r"\{\d+\}", source) else EXACT
-        entries[context][source] = target
+        if "|" in source.split(" ")[0] and source.split("|", 1)[0].isidentifier():
+            context, source = source.split("|", 1)  # "signoff|Name": a context's entry
+        entries.setdefault(context, {})[source] = target
         count += 1
     lang = re.sub(r"^hydrosync_", "", ts.stem)
     write_ts(ts, entries, lang)

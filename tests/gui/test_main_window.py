@@ -317,6 +317,8 @@ def test_import_menu_passes_heave_sign_to_the_motion_log_reader(
         return "2 records"
 
     monkeypatch.setattr(log_import, "store_attitude_log", store)
+    # a real file: the import gate checks it before any reader runs
+    (tmp_path / "m.log").write_text("$PASHR,000000.00,0.0,T,0.0,0.0,0.0*00\n")
     monkeypatch.setattr(ImportDialog, "ask", classmethod(
         lambda cls, parent, kinds, start: ("attitude_log", str(tmp_path / "m.log"),
                                            {"heave_positive": "up"})))

@@ -33,7 +33,7 @@ def main() -> int:
     env = dict(os.environ, HYDROSYNC_FAULT_SCALE=str(args.scale), QT_QPA_PLATFORM="offscreen")
     start = time.perf_counter()
     done = subprocess.run([sys.executable, "-m", "pytest", "-q", "-p", "no:cacheprovider",
-                           "-rs", "tests/reliability"], cwd=ROOT, env=env,
+                           "-rsfE", "tests/reliability"], cwd=ROOT, env=env,
                           capture_output=True, text=True)
     wall = time.perf_counter() - start
     text = done.stdout
@@ -41,15 +41,17 @@ def main() -> int:
     lines = [line for line in table.splitlines()[1:] if line.strip()
              and not line.startswith(("=", "SKIPPED", "FAILED", "ERROR"))]
     summary = [line for line in text.splitlines() if re.search(r"\d+ (passed|failed)", line)]
-    skipped = [line for line in text.splitlines() if line.startswith("SKIPPED")]
+    skipped = [line for line in text.splitlines()
+               if line.startswith(("SKIPPED", "FAILED", "ERROR"))]
     print(f"fault table (HYDROSYNC_FAULT_SCALE={args.scale}), {wall:.0f} s wall:")
     for line in lines:
         print("  " + line)
     for line in skipped:
         print("  " + line)
     print("pytest: " + (summary[-1].strip("= ") if summary else f"exit {done.returncode}"))
-    if done.returncode:
-        print(text[-3000:])
+    if done.returncode:  # the first failure's report
+        start_at = text.find("= FAILURES =")
+        print(text[start_at:start_at + 4000] if start_at >= 0 else text[-3000:])
     return 1 if done.returncode else 0
 
 

@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import _thread
 import logging
+import signal
 import threading
 from pathlib import Path
 
@@ -52,7 +53,7 @@ class Recorder:
 def no_worker_client():
     from dask.distributed import Client, LocalCluster
 
-    cluster = LocalCluster(n_workers=0, processes=False, dashboard_address=None,
+    cluster = LocalCluster(n_workers=0, processes=False, dashboard_address=":0",
                            silence_logs=logging.CRITICAL)
     client = Client(cluster)
     yield client
@@ -121,7 +122,7 @@ def test_ctrl_c_cancels_pending_waits_for_running_and_reports_it(tmp_path, monke
     handler = _ReleaseWhenWaitedFor()
     engine.log.addHandler(handler)
     cluster = LocalCluster(n_workers=1, threads_per_worker=1, processes=False,
-                           dashboard_address=None, silence_logs=logging.CRITICAL)
+                           dashboard_address=":0", silence_logs=logging.CRITICAL)
     client = Client(cluster)
     listener = Recorder()
 
@@ -129,6 +130,9 @@ def test_ctrl_c_cancels_pending_waits_for_running_and_reports_it(tmp_path, monke
         if STARTED.wait(120):
             _thread.interrupt_main()  # Ctrl-C while step 'a' runs and 'b' waits
 
+    # an in-process CLI run earlier in the session may have left SIGINT ignored (the
+    # CLI ignores a second Ctrl-C while it reports the first): Ctrl-C as in a terminal
+    previous = signal.signal(signal.SIGINT, signal.default_int_handler)
     helper = threading.Thread(target=interrupt, daemon=True)
     helper.start()
     try:
@@ -137,6 +141,7 @@ def test_ctrl_c_cancels_pending_waits_for_running_and_reports_it(tmp_path, monke
                                 write_summary=False)
     finally:
         RELEASE.set()
+        signal.signal(signal.SIGINT, previous)
         engine.log.removeHandler(handler)
         client.close()
         cluster.close()

@@ -111,6 +111,16 @@ def _seconds(buf, i, e, pow10):
 
 
 @njit(cache=True, nogil=True)
+def _strip(buf, a, b):
+    """buf[a:b] without leading and trailing spaces: the new (a, b)."""
+    while a < b and buf[a] == 32:
+        a += 1
+    while b > a and buf[b - 1] == 32:
+        b -= 1
+    return a, b
+
+
+@njit(cache=True, nogil=True)
 def _parse_tag(buf, s, e, pow10):
     """Logger tag in buf[s:e] (spaces stripped): (Unix seconds, style) or (nan, -1)."""
     # ISO 8601: YYYY-MM-DD[T ]hh:mm:ss(.s*)Z?[ ,;]*
@@ -275,12 +285,7 @@ def _scan(buf, n_lines, pow10):
             body_end[k] = star
             cs[k] = 0 if x == h1 * 16 + h2 else 1
         # prefix: the logger tag
-        ps = s
-        pe = dollar
-        while ps < pe and buf[ps] == 32:
-            ps += 1
-        while pe > ps and buf[pe - 1] == 32:
-            pe -= 1
+        ps, pe = _strip(buf, s, dollar)
         if pe > ps:
             t, st = _parse_tag(buf, ps, pe, pow10)
             if st < 0:
@@ -343,12 +348,7 @@ def _field_span(buf, bs, be, k):
     fe = q
     while fe < be and buf[fe] != 44:
         fe += 1
-    fs = q
-    while fs < fe and buf[fs] == 32:
-        fs += 1
-    while fe > fs and buf[fe - 1] == 32:
-        fe -= 1
-    return fs, fe
+    return _strip(buf, q, fe)
 
 
 @njit(cache=True, nogil=True)
@@ -429,12 +429,7 @@ def _floats_many(buf, starts, ends, index, ks, pow10):
             while fe < be and buf[fe] != 44:
                 fe += 1
             if field == ks[j]:
-                fs = q
-                e = fe
-                while fs < e and buf[fs] == 32:
-                    fs += 1
-                while e > fs and buf[e - 1] == 32:
-                    e -= 1
+                fs, e = _strip(buf, q, fe)
                 if e > fs:
                     spans[j, r, 0] = fs
                     spans[j, r, 1] = e

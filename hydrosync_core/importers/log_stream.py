@@ -39,7 +39,9 @@ from hydrosync_core.progress import check_cancel, report
 
 BLOCK_BYTES = 16 << 20
 """Bytes read at a time (whole lines): ~0.2 M lines of a tagged log."""
-MAX_LOG_BYTES = 2_000_000_000
+MAX_LOG_BYTES = 16_000_000_000
+"""Streamed, a log's size no longer limits memory; this only stops a wrong pick (a disk
+image) from running for an hour."""
 GNSS_KINDS = ("GGA", "PTNL,GGK", "GST", "ZDA", "RMC")
 MOTION_KINDS = ("PASHR", "PSXN,23", "PSXN,20", "TSS1", "HDT", "ZDA", "RMC", "PTNL,GGK")
 GNSS_COLUMNS = ("time", "height", "lat", "lon", "quality", "sigma_h")
@@ -55,7 +57,7 @@ def check_file(path: Path) -> int:
     size = path.stat().st_size
     if size == 0:
         raise InputError(str(path), "file is empty")
-    if size > MAX_LOG_BYTES * 8:
+    if size > MAX_LOG_BYTES:
         raise InputError(str(path), f"file is {size} bytes; logs above 16 GB are not supported")
     return size
 

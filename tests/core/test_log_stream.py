@@ -319,3 +319,23 @@ def test_ctrl_c_mid_import_leaves_the_project_and_no_scratch(tmp_path, monkeypat
     project.close()
     assert path.read_bytes() == before
     assert not list(tmp_path.glob(".hydrosync-import-*"))
+
+
+def test_bad_file_names_are_one_line_errors_naming_them(tmp_path):
+    empty = tmp_path / "empty.log"
+    empty.write_bytes(b"")
+    good = tmp_path / "good.log"
+    good.write_bytes(awkward_log(10.0))
+    cases = {
+        str(tmp_path / "nothing-*.log"): "matches no file",
+        str(empty): "file is empty",
+        str(tmp_path / "missing.log"): "no such file",
+        str(tmp_path): "is a folder",
+    }
+    project = Project.new()
+    for name, why in cases.items():
+        with pytest.raises(InputError) as err:
+            import_file(project, "gnss_log", [str(good), name])
+        text = str(err.value)
+        assert why in text and Path(name).name in text and "\n" not in text
+    assert not project.exists("raw/gnss")

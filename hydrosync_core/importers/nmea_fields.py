@@ -70,16 +70,6 @@ def texts(log, index: np.ndarray, k: int, width: int = 4) -> np.ndarray:
     return nk.field_text(log.buf, log.start, log.end, index, k, width)
 
 
-def to_float(values: list[str]) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Convert strings to float64: (numbers, empty, bad) as :func:`floats` returns them."""
-    n = len(values)
-    empty = np.fromiter((v == "" for v in values), dtype=bool, count=n)
-    numbers = np.array([_float_or_nan(v) for v in values], dtype=np.float64)
-    bad = ~empty & ~np.isfinite(numbers)
-    numbers[bad] = np.nan
-    return numbers, empty, bad
-
-
 def _float_or_nan(value: str) -> float:
     try:
         return float(value) if value else float("nan")

@@ -129,12 +129,23 @@ def _store(project: Project, spec: DataKind, path: Path, data, given: dict) -> s
     raise ValueError(f"import kind '{spec.name}' has an unknown store '{spec.store}'")
 
 
+_DIGESTS: dict[tuple, str] = {}
+"""SHA-256 of files hashed in this process, by (path, size, modification time): one
+logger file imported as GNSS and as attitude is read once for it."""
+
+
 def file_sha256(path: Path) -> str:
-    digest = hashlib.sha256()
-    with open(path, "rb") as handle:
-        for block in iter(lambda: handle.read(1 << 20), b""):
-            digest.update(block)
-    return digest.hexdigest()
+    stat = path.stat()
+    key = (str(path.resolve()), stat.st_size, stat.st_mtime_ns)
+    if key not in _DIGESTS:
+        digest = hashlib.sha256()
+        with open(path, "rb") as handle:
+            for block in iter(lambda: handle.read(1 << 20), b""):
+                digest.update(block)
+        if len(_DIGESTS) >= 256:
+            _DIGESTS.clear()
+        _DIGESTS[key] = digest.hexdigest()
+    return _DIGESTS[key]
 
 
 def record_import(project: Project, target: str, path: Path, kind: str, options: dict) -> None:

@@ -40,7 +40,9 @@ from hydrosync_core.progress import check_cancel, report
 
 BLOCK_BYTES = 16 << 20
 """Bytes read at a time (whole lines): ~0.2 M lines of a tagged log."""
-MAX_LOG_BYTES = 2_000_000_000
+MAX_LOG_BYTES = 16_000_000_000
+"""Streamed, a log's size no longer limits memory; this only stops a wrong pick (a disk
+image) from running for an hour."""
 GNSS_KINDS = ("GGA", "PTNL,GGK", "GST", "ZDA", "RMC")
 MOTION_KINDS = ("PASHR", "PSXN,23", "PSXN,20", "TSS1", "HDT", "ZDA", "RMC", "PTNL,GGK")
 GNSS_COLUMNS = ("time", "height", "lat", "lon", "quality", "sigma_h")
@@ -57,21 +59,21 @@ def check_file(path: Path) -> int:
     size = path.stat().st_size
     if size == 0:
         raise InputError(str(path), "file is empty")
-    if size > MAX_LOG_BYTES * 8:
+    if size > MAX_LOG_BYTES:
         raise InputError(str(path), f"file is {size} bytes; logs above 16 GB are not supported")
     return size
 
 
 def blocks(path: Path, block_bytes: int | None = None):
-    """Yield ``(buf, first_line, bytes_done)``: blocks of whole lines of *path* (uint8).
+    """Yield ``(buf, bytes_done)``: blocks of whole lines of *path* (uint8).
 
     A block ends after its last ``\n`` and the next read starts right after it (the file
     is read again from there, nothing is copied), so a sentence, a CRLF pair or a binary
     run cut by a read is whole in one block. A line longer than a block doubles the read.
-    The last block may end without ``\n`` (a file cut mid-sentence).
+    The last block may end without ``\n`` (a file cut mid-sentence). The caller numbers
+    the lines (the scanner counts them).
     """
     size = block_bytes or BLOCK_BYTES
-    line = 1
     pos = 0
     with open(path, "rb") as handle:
         while True:
@@ -83,9 +85,8 @@ def blocks(path: Path, block_bytes: int | None = None):
             if cut == 0:
                 size *= 2
                 continue
-            yield np.frombuffer(chunk, np.uint8, count=cut), line, pos + cut
-            line += chunk.count(b"\n", 0, cut)
             pos += cut
+            yield np.frombuffer(chunk, np.uint8, count=cut), pos
             del chunk
 
 
@@ -159,9 +160,12 @@ def census(path: Path, progress=None, cancel=None, share: float = 0.3) -> Census
         return _CENSUS[key]
     size = max(stat.st_size, 1)
     out = Census()
-    for buf, first_line, done in blocks(path):
+    first_line = 1
+    for buf, done in blocks(path):
         check_cancel(cancel)
-        out.add(nl.scan_block(buf, first_line), str(path))
+        raw = nl.scan_block(buf, first_line)
+        first_line += raw.counts["lines"]
+        out.add(raw, str(path))
         report(progress, share * done / size, f"{path.name}: surveying {done >> 20} MiB")
     if len(_CENSUS) >= 64:
         _CENSUS.clear()
@@ -305,9 +309,11 @@ def stream_blocks(path: Path, state: FileState, on_block, progress, cancel,
     """Pass 2: split every block under the file's checksum policy and hand it on."""
     size = max(path.stat().st_size, 1)
     start = time.monotonic()
-    for buf, first_line, done in blocks(path):
+    first_line = 1
+    for buf, done in blocks(path):
         check_cancel(cancel)
         raw = nl.scan_block(buf, first_line)
+        first_line += raw.counts["lines"]
         state.odd_prefix += raw.odd_prefix
         block = nl.apply_policy(raw, state.census.no_checksums, str(path))
         kinds = ng.sentence_kinds(block)

@@ -49,19 +49,25 @@ def floats(log, index: np.ndarray, k: int, *, eht: bool = False
     return numbers, empty, bad
 
 
+def floats_many(log, index: np.ndarray, ks) -> dict[int, tuple[np.ndarray, ...]]:
+    """:func:`floats` of several fields *ks* of sentences *index*, in one pass."""
+    ks = sorted(ks)
+    values, state, spans = nk.field_floats_many(log.buf, log.start, log.end, index, ks)
+    out = {}
+    for j, k in enumerate(ks):
+        numbers, empty = values[j], state[j] == 1
+        for r in np.flatnonzero(state[j] == 2):
+            text = log.buf[spans[j, r, 0]:spans[j, r, 1]].tobytes().decode("latin-1")
+            numbers[r] = _float_or_nan(text)
+        bad = ~empty & ~np.isfinite(numbers)
+        numbers[bad] = np.nan
+        out[k] = (numbers, empty, bad)
+    return out
+
+
 def texts(log, index: np.ndarray, k: int, width: int = 4) -> np.ndarray:
     """Field *k* of sentences *index*, spaces stripped, as bytes ``S<width>`` (truncated)."""
     return nk.field_text(log.buf, log.start, log.end, index, k, width)
-
-
-def to_float(values: list[str]) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Convert strings to float64: (numbers, empty, bad) as :func:`floats` returns them."""
-    n = len(values)
-    empty = np.fromiter((v == "" for v in values), dtype=bool, count=n)
-    numbers = np.array([_float_or_nan(v) for v in values], dtype=np.float64)
-    bad = ~empty & ~np.isfinite(numbers)
-    numbers[bad] = np.nan
-    return numbers, empty, bad
 
 
 def _float_or_nan(value: str) -> float:
@@ -85,13 +91,15 @@ def tod_field(log, index: np.ndarray, k: int) -> np.ndarray:
     return time_of_day(floats(log, index, k)[0])
 
 
-def latlon(log, index: np.ndarray, k: int, negative: str) -> np.ndarray:
+def latlon(log, index: np.ndarray, k: int, negative: str,
+           values: np.ndarray | None = None) -> np.ndarray:
     """NMEA ``(d)ddmm.mmmm`` field *k* + hemisphere field *k+1* -> signed decimal degrees.
 
     *negative* is ``"S"`` or ``"W"``. A value written with its own minus sign and a
     hemisphere letter (seen in a Unicore GLL) is taken by magnitude, the letter decides.
+    *values*: field *k* already parsed.
     """
-    v = np.abs(floats(log, index, k)[0])
+    v = np.abs(floats(log, index, k)[0] if values is None else values)
     # ddmm.mmmm: degrees = floor(v/100), minutes = the rest.
     deg = np.floor(v / 100.0)
     minutes = v - 100.0 * deg

@@ -168,9 +168,10 @@ def parse_gga(
     log: LogLines, index: np.ndarray, *, empty_geoid: str = "zero", min_quality: int = 1
 ) -> GnssRecords:
     """Parse GGA sentences *index*: h = altitude (field 9) + geoid separation (field 11)."""
-    q, q_empty, q_bad = nf.floats(log, index, 6)
-    alt, alt_empty, alt_bad = nf.floats(log, index, 9)
-    sep, sep_empty, sep_bad = nf.floats(log, index, 11)
+    f = nf.floats_many(log, index, (1, 2, 4, 6, 9, 11))
+    q, q_empty, q_bad = f[6]
+    alt, alt_empty, alt_bad = f[9]
+    sep, sep_empty, sep_bad = f[11]
     skipped: dict[str, int] = {}
     warnings: list[str] = []
     keep = np.ones(index.size, dtype=bool)
@@ -186,10 +187,10 @@ def parse_gga(
         sep = np.where(sep_empty, 0.0, sep)
     # Ellipsoidal height h = H (altitude above geoid) + N (geoid separation).
     height = alt + sep
-    lat = nf.latlon(log, index, 2, "S")
-    lon = nf.latlon(log, index, 4, "W")
+    lat = nf.latlon(log, index, 2, "S", f[2][0])
+    lon = nf.latlon(log, index, 4, "W", f[4][0])
     return GnssRecords(
-        "GGA", index[keep], nf.tod_field(log, index, 1)[keep], height[keep],
+        "GGA", index[keep], nf.time_of_day(f[1][0])[keep], height[keep],
         lat[keep], lon[keep], q[keep], np.full(int(keep.sum()), np.nan), skipped, warnings,
     )
 

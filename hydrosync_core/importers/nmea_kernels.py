@@ -111,6 +111,16 @@ def _seconds(buf, i, e, pow10):
 
 
 @njit(cache=True, nogil=True)
+def _strip(buf, a, b):
+    """buf[a:b] without leading and trailing spaces: the new (a, b)."""
+    while a < b and buf[a] == 32:
+        a += 1
+    while b > a and buf[b - 1] == 32:
+        b -= 1
+    return a, b
+
+
+@njit(cache=True, nogil=True)
 def _parse_tag(buf, s, e, pow10):
     """Logger tag in buf[s:e] (spaces stripped): (Unix seconds, style) or (nan, -1)."""
     # ISO 8601: YYYY-MM-DD[T ]hh:mm:ss(.s*)Z?[ ,;]*
@@ -275,12 +285,7 @@ def _scan(buf, n_lines, pow10):
             body_end[k] = star
             cs[k] = 0 if x == h1 * 16 + h2 else 1
         # prefix: the logger tag
-        ps = s
-        pe = dollar
-        while ps < pe and buf[ps] == 32:
-            ps += 1
-        while pe > ps and buf[pe - 1] == 32:
-            pe -= 1
+        ps, pe = _strip(buf, s, dollar)
         if pe > ps:
             t, st = _parse_tag(buf, ps, pe, pow10)
             if st < 0:
@@ -343,12 +348,39 @@ def _field_span(buf, bs, be, k):
     fe = q
     while fe < be and buf[fe] != 44:
         fe += 1
-    fs = q
-    while fs < fe and buf[fs] == 32:
-        fs += 1
-    while fe > fs and buf[fe - 1] == 32:
-        fe -= 1
-    return fs, fe
+    return _strip(buf, q, fe)
+
+
+@njit(cache=True, nogil=True)
+def _number(buf, fs, fe, pow10):
+    """Plain decimal ``[+-]digits[.digits]`` in buf[fs:fe]: (value, ok)."""
+    q = fs
+    neg = False
+    if q < fe and (buf[q] == 45 or buf[q] == 43):
+        neg = buf[q] == 45
+        q += 1
+    mant = 0
+    nd = 0
+    frac = 0
+    while q < fe and 48 <= buf[q] <= 57:
+        mant = mant * 10 + (buf[q] - 48)
+        nd += 1
+        q += 1
+        if nd > 17:
+            break
+    if q < fe and buf[q] == 46:
+        q += 1
+        while q < fe and 48 <= buf[q] <= 57:
+            mant = mant * 10 + (buf[q] - 48)
+            nd += 1
+            frac += 1
+            q += 1
+            if nd > 17:
+                break
+    if q != fe or nd == 0 or mant > 9007199254740992 or frac > 22:
+        return np.nan, False
+    v = mant / pow10[frac]
+    return (-v if neg else v), True
 
 
 @njit(cache=True, nogil=True)
@@ -372,35 +404,49 @@ def _floats(buf, starts, ends, index, k, skip, pow10):
                 continue
         spans[r, 0] = fs
         spans[r, 1] = fe
-        q = fs
-        neg = False
-        if q < fe and (buf[q] == 45 or buf[q] == 43):
-            neg = buf[q] == 45
-            q += 1
-        mant = 0
-        nd = 0
-        frac = 0
-        while q < fe and 48 <= buf[q] <= 57:
-            mant = mant * 10 + (buf[q] - 48)
-            nd += 1
-            q += 1
-            if nd > 17:
-                break
-        if q < fe and buf[q] == 46:
-            q += 1
-            while q < fe and 48 <= buf[q] <= 57:
-                mant = mant * 10 + (buf[q] - 48)
-                nd += 1
-                frac += 1
-                q += 1
-                if nd > 17:
-                    break
-        if q != fe or nd == 0 or mant > 9007199254740992 or frac > 22:
+        out[r], ok = _number(buf, fs, fe, pow10)
+        if not ok:
             state[r] = 2
-            continue
-        v = mant / pow10[frac]
-        out[r] = -v if neg else v
     return out, state, spans
+
+
+@njit(cache=True, nogil=True)
+def _floats_many(buf, starts, ends, index, ks, pow10):
+    """Fields *ks* (ascending) of every sentence in one walk along each body."""
+    n = index.size
+    m = ks.size
+    out = np.full((m, n), np.nan)
+    state = np.ones((m, n), np.int8)
+    spans = np.full((m, n, 2), -1, np.int64)
+    for r in range(n):
+        i = index[r]
+        be = ends[i]
+        q = starts[i]
+        field = 0
+        j = 0
+        while j < m and q <= be:
+            fe = q
+            while fe < be and buf[fe] != 44:
+                fe += 1
+            if field == ks[j]:
+                fs, e = _strip(buf, q, fe)
+                if e > fs:
+                    spans[j, r, 0] = fs
+                    spans[j, r, 1] = e
+                    out[j, r], ok = _number(buf, fs, e, pow10)
+                    state[j, r] = 0 if ok else 2
+                j += 1
+            if fe >= be:
+                break
+            q = fe + 1
+            field += 1
+    return out, state, spans
+
+
+def field_floats_many(buf, starts, ends, index, ks):
+    """:func:`field_floats` of several fields *ks* at once: arrays of shape (len(ks), n)."""
+    return _floats_many(buf, starts, ends, np.asarray(index, np.int64),
+                        np.asarray(sorted(ks), np.int64), _POW10)
 
 
 def field_floats(buf, starts, ends, index, k: int, eht: bool = False):

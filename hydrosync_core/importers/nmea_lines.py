@@ -3,15 +3,20 @@
 Real logs are not clean NMEA: a logging computer may prefix every line with its own time
 tag, receivers interleave binary frames (UBX, RTCM) with text, serial-port collisions
 splice a truncated sentence onto the next one, some loggers write no checksums at all and
-others write lower-case hex. :func:`split_log` turns such a file into one record per
-usable sentence — ``(line_no, logger time tag or NaN, sentence body)`` — and counts
-everything it set aside, by reason, so the caller can report it.
+others write lower-case hex. :func:`scan_block` turns a block of such lines into one
+record per usable sentence — line number, logger time tag or NaN, the sentence body as a
+span of the block's bytes, its checksum state — and counts everything it set aside, by
+reason, so the caller can report it; :func:`apply_policy` then applies the file's
+checksum policy (below). :func:`split_log` does both on a whole (small) file;
+:mod:`log_stream` reads large ones block by block.
 
-Why a small regex splitter and not pynmeagps: pynmeagps parses a *stream* of well-formed
-sentences and rejects (or raises on) exactly the oddities this module must survive and
-count — logger prefixes, sentences without checksum, spliced fragments, a `$` inside
-binary. Here each line is matched with two compiled regular expressions (C speed) and the
-checksums of all sentences are verified at once with ``numpy.bitwise_xor.reduceat``.
+Why not pynmeagps: it parses a *stream* of well-formed sentences and rejects (or raises
+on) exactly the oddities this module must survive and count — logger prefixes, sentences
+without checksum, spliced fragments, a `$` inside binary — and builds a Python object per
+sentence. Here the compiled scanner of :mod:`nmea_kernels` takes the plain lines (one
+``$`` sentence, printable, an optional recognised tag: nearly all of a real log) and the
+regular expressions below take every other line, so the rules for the odd ones are
+written once.
 
 Recognised logger time tags (the text before the sentence):
 

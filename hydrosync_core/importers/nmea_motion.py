@@ -85,16 +85,17 @@ def split_pashr(log: LogLines, index: np.ndarray) -> tuple[np.ndarray, int]:
 
 def parse_pashr(log: LogLines, index: np.ndarray) -> MotionRecords:
     """Parse attitude-form ``$PASHR`` sentences (already filtered by :func:`split_pashr`)."""
-    heading, h_empty, h_bad = nf.floats(log, index, 2)
-    roll, r_empty, r_bad = nf.floats(log, index, 4)
-    pitch, p_empty, p_bad = nf.floats(log, index, 5)
-    heave, v_empty, v_bad = nf.floats(log, index, 6)
+    f = nf.floats_many(log, index, (1, 2, 4, 5, 6))
+    heading, h_empty, h_bad = f[2]
+    roll, r_empty, r_bad = f[4]
+    pitch, p_empty, p_bad = f[5]
+    heave, v_empty, v_bad = f[6]
     keep = np.ones(index.size, dtype=bool)
     skipped: dict[str, int] = {}
     nf.drop(skipped, "empty attitude field", h_empty | r_empty | p_empty, keep)
     nf.drop(skipped, "empty heave", v_empty, keep)
     nf.drop(skipped, "unparseable field", h_bad | r_bad | p_bad | v_bad, keep)
-    tod = nf.tod_field(log, index, 1)
+    tod = nf.time_of_day(f[1][0])
     return MotionRecords(
         "PASHR", index[keep], tod[keep], roll[keep], pitch[keep], heading[keep],
         heave[keep], {}, skipped,
@@ -111,10 +112,11 @@ def parse_psxn23(
     roll/pitch quality (field 5) is 2 = invalid are dropped; *carried_quality* is the
     last one of the blocks before (file read block by block).
     """
-    roll, r_empty, r_bad = nf.floats(log, index, 2)
-    pitch, p_empty, p_bad = nf.floats(log, index, 3)
-    heading, h_empty, h_bad = nf.floats(log, index, 4)
-    heave, v_empty, v_bad = nf.floats(log, index, 5)
+    f = nf.floats_many(log, index, (2, 3, 4, 5))
+    roll, r_empty, r_bad = f[2]
+    pitch, p_empty, p_bad = f[3]
+    heading, h_empty, h_bad = f[4]
+    heave, v_empty, v_bad = f[5]
     keep = np.ones(index.size, dtype=bool)
     skipped: dict[str, int] = {}
     nf.drop(skipped, "empty attitude field", r_empty | p_empty | h_empty, keep)

@@ -293,3 +293,49 @@ def test_kernel_splits_every_line_as_the_regex_splitter_does():
     counts = {k: v for k, v in raw.counts.items() if k != "lines"}
     assert counts == found.counts and raw.styles == found.styles
     assert raw.odd_prefix == found.odd_prefix
+
+
+def test_ctrl_c_mid_import_leaves_the_project_and_no_scratch(tmp_path, monkeypatch):
+    """Ctrl-C raises KeyboardInterrupt wherever the import is: here from inside the
+    progress report of the fourth block of the attitude pass."""
+    monkeypatch.setattr(log_stream, "BLOCK_BYTES", 8192)
+    log = tmp_path / "day.log"
+    log.write_bytes(awkward_log(40.0))
+    path = tmp_path / "P.h5"
+    project = Project.create(path)
+    import_file(project, "gnss_log", log)
+    project.save()
+    before = path.read_bytes()
+    calls = []
+
+    def progress(fraction, message=""):
+        calls.append(message)
+        if sum("MB read" in m for m in calls) == 4:
+            raise KeyboardInterrupt
+
+    with pytest.raises(KeyboardInterrupt):
+        import_file(project, "attitude_log", log, heave_positive="up", progress=progress)
+    assert not project.exists("raw/attitude") and not project.dirty
+    project.close()
+    assert path.read_bytes() == before
+    assert not list(tmp_path.glob(".hydrosync-import-*"))
+
+
+def test_bad_file_names_are_one_line_errors_naming_them(tmp_path):
+    empty = tmp_path / "empty.log"
+    empty.write_bytes(b"")
+    good = tmp_path / "good.log"
+    good.write_bytes(awkward_log(10.0))
+    cases = {
+        str(tmp_path / "nothing-*.log"): "matches no file",
+        str(empty): "file is empty",
+        str(tmp_path / "missing.log"): "no such file",
+        str(tmp_path): "is a folder",
+    }
+    project = Project.new()
+    for name, why in cases.items():
+        with pytest.raises(InputError) as err:
+            import_file(project, "gnss_log", [str(good), name])
+        text = str(err.value)
+        assert why in text and Path(name).name in text and "\n" not in text
+    assert not project.exists("raw/gnss")

@@ -39,6 +39,9 @@ KNOWN = {
     "asks for a compact legend by face kind)",
     ("gins_smoother", "1366x768"): "plugins/gins_smoother: the 'Errors vs reference' tab's "
     "nine plots have a data area ~117 px wide and legends cut by it (GNSS/INS owner)",
+    **{("tilt_alignment", size): "plugins/tilt_alignment: the methods table shows raw keys "
+       "(psi_deg, sd_e_mm [mm], method names mbgd, closed_form) and 4-6 digits where the "
+       "PDF prints σ 1.7 mm (tilt owner)" for size in SIZES},
 }
 
 
@@ -100,6 +103,23 @@ def test_checker_finds_a_legend_bigger_than_its_plot(qtbot):
     qtbot.wait(50)
     problems = check_layout(plot)
     assert "legend" in _kinds(problems), problems
+
+
+def test_checker_finds_raw_keys_in_table_headers(qtbot):
+    import numpy as np
+
+    from hydrosync_gui.widgets import ColumnsTable
+
+    table = ColumnsTable()
+    qtbot.addWidget(table)
+    table.set_columns({"psi_deg": np.zeros(2), "sd_e_mm": np.zeros(2), "n": np.zeros(2)},
+                      units={"sd_e_mm": "mm"}, labels={"n": "Vectors used"})
+    table.resize(400, 200)
+    table.show()
+    problems = check_layout(table.parentWidget() or table)
+    raw = sorted(p.detail for p in problems if p.kind == "raw label")
+    assert raw == ["column header 'psi_deg' is a key, not words",
+                   "column header 'sd_e_mm [mm]' is a key, not words"], problems
 
 
 def test_checker_passes_a_plain_form(qtbot):

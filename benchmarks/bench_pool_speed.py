@@ -15,7 +15,7 @@ import resource
 import time
 import tracemalloc
 
-from hydrosync_core.methods.pool_calibration.api import segment
+from hydrosync_core.methods.pool_calibration.estimator import segment
 from hydrosync_core.methods.pool_calibration.simulate import PoolPassConfig, simulate_pool_pass
 from hydrosync_core.methods.pool_calibration.solve import solve
 

@@ -36,6 +36,7 @@ from hydrosync_core import __version__
 from hydrosync_core.project import Project
 from hydrosync_gui.dialogs import PluginsDialog
 from hydrosync_gui.file_actions import UNTITLED, FileActions
+from hydrosync_gui.i18n import add_language_menu
 from hydrosync_gui.log_console import LogConsole
 from hydrosync_gui.plugin_host import PluginHost
 from hydrosync_gui.plugin_panel import PluginPanel
@@ -174,6 +175,8 @@ class MainWindow(QMainWindow, FileActions):
         view = self.menuBar().addMenu("&View")
         view.addAction(self.browser_dock.toggleViewAction())
         view.addAction(self.log_dock.toggleViewAction())
+        view.addSeparator()
+        self.language_menu = add_language_menu(view, self.settings)
         helpm = self.menuBar().addMenu("&Help")
         self._action(helpm, "&Plugins…", self.show_plugins, tip="Loaded and failed plugins")
         self._action(helpm, "&About HydroSync", self._on_about)

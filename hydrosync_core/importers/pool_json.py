@@ -8,13 +8,13 @@ string — end as one :class:`InputError` line like any other bad input.
 
 from __future__ import annotations
 
-import json
 import math
 import os
 from pathlib import Path
 
 from hydrosync_core import plausible
 from hydrosync_core.errors import InputError, quote
+from hydrosync_core.inputs import input_ok
 
 MAX_JSON_BYTES = 50_000_000
 """A setup, target or vessel file is a few kB; more is not one of them."""
@@ -22,25 +22,16 @@ MAX_JSON_BYTES = 50_000_000
 
 def read_json(path: str | os.PathLike) -> dict:
     """Parse a JSON object from *path*, with the line of a syntax error named."""
-    path = Path(path)
-    if not path.exists():
-        raise InputError(str(path), "no such file")
-    if path.is_dir():
-        raise InputError(str(path), "is a folder, not a file")
+    path = input_ok(path, "JSON settings file", max_bytes=MAX_JSON_BYTES)
     if path.stat().st_size > MAX_JSON_BYTES:
         raise InputError(str(path), f"file is {path.stat().st_size} bytes: too large for a "
                          "JSON settings file")
     text = path.read_text(encoding="utf-8", errors="replace")
     if not text.strip():
         raise InputError(str(path), "file is empty")
-    try:
-        document = json.loads(text)
-    except json.JSONDecodeError as exc:
-        raise InputError(str(path), f"invalid JSON: {exc.msg}", line=exc.lineno) from None
-    except RecursionError:
-        raise InputError(str(path), "invalid JSON: nested too deeply") from None
-    except ValueError as exc:  # e.g. an integer of more than 4300 digits
-        raise InputError(str(path), f"invalid JSON: {str(exc)[:80]}") from None
+    from hydrosync_core.configfiles import parse_json
+
+    document = parse_json(text, str(path))  # bounded depth, size and integer digits
     if not isinstance(document, dict):
         raise InputError(str(path), "expected a JSON object at the top level")
     return document
@@ -114,7 +105,24 @@ def check_target(document, source="target.json") -> dict:
         name = face.get("name", f"face{i}")
         if not isinstance(name, str | int | float) or len(str(name)) > 200:
             raise InputError(str(source), "a face name is a short text", field=f"{where}.name")
-        clean.append({"name": str(name), "corners": points})
+        item = {"name": str(name), "corners": points}
+        if "twin" in face:  # an explicit twin declaration (formats.md), checked below
+            if not isinstance(face["twin"], str):
+                raise InputError(str(source), "a twin is the name of another face",
+                                 field=f"{where}.twin")
+            item["twin"] = face["twin"]
+        if "offset_m" in face:
+            item["offset_m"] = finite_number(source, face["offset_m"], f"{where}.offset_m",
+                                             plausible.HEIGHT)
+        clean.append(item)
+    names = {c["name"] for c in clean}
+    for i, item in enumerate(clean):
+        if "offset_m" in item and "twin" not in item:
+            raise InputError(str(source), "offset_m needs a twin", field=f"faces[{i}].offset_m")
+        if item.get("twin") is not None and (item["twin"] not in names
+                                             or item["twin"] == item["name"]):
+            raise InputError(str(source), f"twin '{item['twin']}' is not another face of the "
+                             "target", field=f"faces[{i}].twin")
     water = finite_number(source, document.get("water_level_m", 0.0), "water_level_m",
                           plausible.HEIGHT)
     frame = document.get("frame", "ENU")

@@ -21,6 +21,7 @@ from reportlab.platypus import CondPageBreak, Flowable
 from hydrosync_core import __version__
 from hydrosync_core.atomic import atomic_path
 from hydrosync_core.errors import InputError, clip
+from hydrosync_core.i18n import language, normalise, tr, using
 from hydrosync_core.plugins import plugin_specs
 from hydrosync_core.plugins.spec import PluginSpec, load_object
 from hydrosync_core.progress import check_cancel, report
@@ -33,6 +34,7 @@ from hydrosync_core.report.cover import (
     results_path,
 )
 from hydrosync_core.report.sources import section as sources_section
+from hydrosync_core.report.styles import language_fonts
 from hydrosync_core.report.template import NumberedCanvas, PageLayout, ReportDocTemplate
 
 log = logging.getLogger(__name__)
@@ -52,7 +54,12 @@ def failure_reason(exc: BaseException) -> str:
     """Why a section failed, in one line: the input problem, or the exception."""
     if isinstance(exc, InputError):
         return clip(exc.message, 300)
-    return clip(f"{type(exc).__name__}: {exc}", 300)
+    # Not the raw library text ("TypeError: ufunc 'isfinite' …", issue #28): what it
+    # means to the reader; the exception itself goes to the log (-v, HYDROSYNC_DEBUG).
+    log.debug("section failure", exc_info=exc)
+    kind = "damaged" if isinstance(exc, OSError | KeyError) else "not of the expected form"
+    return (f"its stored data are {kind} (run the analysis again; "
+            f"{type(exc).__name__} in the report code)")
 
 
 def _section(project, ctx: ReportContext, status: ModuleStatus,
@@ -105,7 +112,7 @@ def section_break(doc) -> CondPageBreak:
 def build_report(project, pdf_path: str | os.PathLike, progress=None, cancel=None, *,
                  specs: list[PluginSpec] | None = None,
                  problems: list[str] | None = None,
-                 layout: PageLayout | None = None) -> Path:
+                 layout: PageLayout | None = None, lang: str | None = None) -> Path:
     """Write the PDF report of *project* to *pdf_path* atomically and return the path.
 
     Parameters
@@ -125,13 +132,27 @@ def build_report(project, pdf_path: str | os.PathLike, progress=None, cancel=Non
     layout : PageLayout, optional
         Receives how full each page is and where each section starts (benchmarks and
         tests check that no page is left nearly empty).
+    lang : str, optional
+        Language of the text (``en``, ``zh_CN``; default: the current
+        :func:`hydrosync_core.i18n.language`). Numbers, units and symbols are the same in
+        every language; Chinese embeds a CJK TrueType font (``fonts-wqy-zenhei``).
 
     Returns
     -------
     pathlib.Path
         *pdf_path*.
     """
-    pdf_path = Path(pdf_path)
+    try:
+        lang = normalise(lang or language())
+    except ValueError as exc:
+        raise InputError("--lang", str(exc)) from None
+    with using(lang), language_fonts(lang):
+        return _build(project, Path(pdf_path), progress, cancel, specs, problems, layout)
+
+
+def _build(project, pdf_path: Path, progress, cancel, specs: list[PluginSpec] | None,
+           problems: list[str] | None, layout: PageLayout | None) -> Path:
+    """:func:`build_report` in the current language."""
     if not pdf_path.parent.is_dir():
         raise InputError(str(pdf_path), "output folder does not exist")
     report(progress, 0.0, "collecting results")
@@ -141,10 +162,10 @@ def build_report(project, pdf_path: str | os.PathLike, progress=None, cancel=Non
     problems += _status_problems(project, statuses)
     check_cancel(cancel)
 
-    doc_title = f"HydroSync report \u2014 {project.name or 'Untitled project'}"
+    doc_title = tr(f"HydroSync report \u2014 {project.name or 'Untitled project'}")
     with atomic_path(pdf_path) as tmp:
         doc = ReportDocTemplate(str(tmp), title=doc_title, author="HydroSync",
-                                subject="Sensor calibration report", progress=progress,
+                                subject=tr("Sensor calibration report"), progress=progress,
                                 cancel=cancel)
         ctx = ReportContext(width=doc.width)
         story: list[Flowable] = cover_page(project, ctx, statuses)

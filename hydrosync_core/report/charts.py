@@ -28,10 +28,16 @@ from reportlab.graphics.shapes import (
 )
 from reportlab.lib import colors
 
+from hydrosync_core.i18n import tr
 from hydrosync_core.report.decimate import RESOLUTION, cloud_indices, line_indices
 from hydrosync_core.report.styles import FONT, GRID, INK, MUTED, SERIES
 
 FONT_SIZE = 7.5
+
+
+def _text_width(text: str) -> float:
+    """Width of *text* in Latin-letter units: a Chinese character is about two."""
+    return sum(2.0 if ord(ch) > 0x2E80 else 1.0 for ch in text)
 
 
 def nice_ticks(lo: float, hi: float, target: int = 6) -> np.ndarray:
@@ -264,9 +270,9 @@ class Chart:
             d.add(Line(left - 3, y, left, y, strokeColor=INK, strokeWidth=0.6))
             d.add(String(left - 5, y - 2.5, tick_label(v, ystep), fontName=FONT,
                          fontSize=FONT_SIZE, fillColor=INK, textAnchor="end"))
-        d.add(String(left + box_w / 2, bottom - 23, self.xlabel, fontName=FONT,
+        d.add(String(left + box_w / 2, bottom - 23, tr(self.xlabel), fontName=FONT,
                      fontSize=FONT_SIZE + 0.5, fillColor=INK, textAnchor="middle"))
-        ylabel = String(0, 0, self.ylabel, fontName=FONT, fontSize=FONT_SIZE + 0.5,
+        ylabel = String(0, 0, tr(self.ylabel), fontName=FONT, fontSize=FONT_SIZE + 0.5,
                         fillColor=INK, textAnchor="middle")
         g = Group(ylabel)
         g.translate(9, bottom + box_h / 2)
@@ -339,7 +345,7 @@ class Chart:
         rows: list[list[tuple[_Series, float]]] = [[]]
         used = 46.0
         for s in legend:
-            w = 22 + 4.2 * len(s.label or "")
+            w = 22 + 4.2 * _text_width(tr(s.label or ""))
             if rows[-1] and used + w > self.width - 8:
                 rows.append([])
                 used = 46.0
@@ -364,6 +370,6 @@ class Chart:
                 else:
                     d.add(Line(x, y + 3, x + 14, y + 3, strokeColor=s.color,
                                strokeWidth=max(s.width, 1.0), strokeDashArray=s.dash))
-                d.add(String(x + 18, y, s.label, fontName=FONT, fontSize=FONT_SIZE,
+                d.add(String(x + 18, y, tr(s.label), fontName=FONT, fontSize=FONT_SIZE,
                              fillColor=MUTED if s.kind == "vspan" else INK))
                 x += w

@@ -19,6 +19,7 @@ from reportlab.platypus.tableofcontents import TableOfContents
 
 from hydrosync_core import __version__
 from hydrosync_core.errors import InputError
+from hydrosync_core.i18n import tr
 from hydrosync_core.plugins.spec import PluginSpec, load_object
 from hydrosync_core.project.vessel import vessel_config
 from hydrosync_core.provenance import OUT_OF_DATE, stale_reasons
@@ -116,7 +117,7 @@ def cover_page(project, ctx: ReportContext, statuses: list[ModuleStatus]) -> lis
         vessel = f"(the vessel sheet could not be read: {exc.message})"
     now = datetime.now(UTC).strftime("%Y-%m-%d %H:%M:%S UTC")
     path = project.path
-    run = [s.spec.name for s in statuses if s.has_results]
+    run = [tr(s.spec.name) for s in statuses if s.has_results]
     pairs = [
         ("Project", project.name or "(unnamed)"),
         ("Vessel", vessel),
@@ -132,11 +133,11 @@ def cover_page(project, ctx: ReportContext, statuses: list[ModuleStatus]) -> lis
     ]
     out: list[Flowable] = [
         Spacer(1, 30 * mm),
-        Paragraph("Sensor calibration report", ctx.styles["Title"]),
-        Paragraph(esc(project.name or "Untitled project"), ctx.styles["Subtitle"]),
+        Paragraph(tr("Sensor calibration report"), ctx.styles["Title"]),
+        Paragraph(esc(project.name or tr("Untitled project")), ctx.styles["Subtitle"]),
     ]
-    rows = [[Paragraph(f"<b>{esc(k)}</b>", ctx.styles["Cell"]),
-             Paragraph(esc(v), ctx.styles["Cell"])] for k, v in pairs]
+    rows = [[Paragraph(f"<b>{esc(tr(k))}</b>", ctx.styles["Cell"]),
+             Paragraph(esc(tr(v)), ctx.styles["Cell"])] for k, v in pairs]
     info = Table(rows, colWidths=[0.26 * ctx.width, 0.74 * ctx.width], hAlign="LEFT")
     info.setStyle(TableStyle([
         ("VALIGN", (0, 0), (-1, -1), "TOP"),
@@ -150,8 +151,9 @@ def cover_page(project, ctx: ReportContext, statuses: list[ModuleStatus]) -> lis
 
 
 def _signoff(ctx: ReportContext) -> Table:
-    head = ["", "Name", "Signature", "Date"]
-    rows = [head] + [[role, "", "", ""] for role in ("Prepared by", "Checked by", "Approved by")]
+    head = ["", tr("Name", context="signoff"), tr("Signature"), tr("Date")]
+    rows = [head] + [[tr(role), "", "", ""]
+                     for role in ("Prepared by", "Checked by", "Approved by")]
     table = Table(rows, colWidths=[0.2 * ctx.width, 0.3 * ctx.width, 0.3 * ctx.width,
                                    0.2 * ctx.width], rowHeights=[14] + [26] * 3, hAlign="LEFT")
     table.setStyle(TableStyle([
@@ -169,8 +171,8 @@ def contents_and_summary(ctx: ReportContext, statuses: list[ModuleStatus]) -> li
     toc = TableOfContents()
     toc.levelStyles = [ctx.styles["TOC1"], ctx.styles["TOC2"]]
     toc.dotsMinLevel = 0
-    out: list[Flowable] = [Paragraph("Contents", ctx.styles["ContentsTitle"]), toc, Spacer(1, 10),
-                           ctx.heading("Summary of results")]
+    out: list[Flowable] = [Paragraph(tr("Contents"), ctx.styles["ContentsTitle"]), toc,
+                           Spacer(1, 10), ctx.heading("Summary of results")]
     if not statuses:
         out.append(ctx.para("No analysis module is installed."))
         return out
@@ -180,11 +182,11 @@ def contents_and_summary(ctx: ReportContext, statuses: list[ModuleStatus]) -> li
     for s in statuses:
         if rows:
             separators.append(("LINEABOVE", (0, len(rows) + 1), (-1, len(rows) + 1), 0.5, RULE))
-        name = Paragraph(f"<b>{esc(s.spec.name)}</b>"
-                         + (f"<br/><font color='#b00000'><b>{OUT_OF_DATE.upper()}</b></font>"
+        name = Paragraph(f"<b>{esc(tr(s.spec.name))}</b>"
+                         + (f"<br/><font color='#b00000'><b>{tr(OUT_OF_DATE.upper())}</b></font>"
                             if s.stale else ""), ctx.styles["Cell"])
         if not s.has_results:
-            rows.append([name, Paragraph(esc(s.reason), ctx.styles["Cell"]), "", ""])
+            rows.append([name, Paragraph(esc(tr(s.reason)), ctx.styles["Cell"]), "", ""])
             continue
         summary_rows = list(s.rows)
         # A flag whose quantity has no summary row still shows (never silently dropped).
@@ -195,11 +197,12 @@ def contents_and_summary(ctx: ReportContext, statuses: list[ModuleStatus]) -> li
             reason = s.flag(quantity)
             if reason:  # as the panel flags it: red, with why
                 flagged += 1
-                quantity_text = f"<font color='#a32020'><b>\u2691 {esc(quantity)}</b></font>"
+                quantity_text = f"<font color='#a32020'><b>\u2691 {esc(tr(quantity))}</b></font>"
                 value_text = (f"<font color='#a32020'><b>{esc(value)}</b></font><br/>"
-                              f"<font size='7' color='#a32020'>flagged: {esc(reason)}</font>")
+                              f"<font size='7' color='#a32020'>{esc(tr('flagged'))}: "
+                              f"{esc(tr(reason))}</font>")
             else:
-                quantity_text, value_text = esc(quantity), esc(value)
+                quantity_text, value_text = esc(tr(quantity)), esc(tr(value))
             rows.append([name if i == 0 else "", Paragraph(quantity_text, ctx.styles["Cell"]),
                          Paragraph(value_text, ctx.styles["Cell"]),
                          Paragraph(f"{esc(utc_text(s.run_utc))}<br/>HydroSync "

@@ -15,6 +15,7 @@ from reportlab.pdfbase.pdfmetrics import stringWidth
 from reportlab.pdfgen import canvas as rl_canvas
 from reportlab.platypus import BaseDocTemplate, Frame, KeepTogether, PageTemplate, Paragraph, Table
 
+from hydrosync_core.i18n import tr
 from hydrosync_core.progress import check_cancel, report
 from hydrosync_core.report.styles import ACCENT, FONT, MUTED, PAGE_MARGIN, RULE
 
@@ -72,7 +73,7 @@ class NumberedCanvas(rl_canvas.Canvas):
         self.saveState()
         self.setFont(FONT, 8)
         self.setFillColor(MUTED)
-        number = f"page {page} of {total}"
+        number = tr(f"page {page} of {total}")
         self.drawRightString(width - PAGE_MARGIN, 10 * mm, number)
         room = width - 2 * PAGE_MARGIN
         left_room = room - stringWidth(number, FONT, 8) - 12

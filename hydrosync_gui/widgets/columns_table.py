@@ -20,8 +20,10 @@ from __future__ import annotations
 from collections.abc import Mapping
 
 import numpy as np
-from PySide6.QtCore import QAbstractTableModel, QModelIndex, QPersistentModelIndex, Qt
+from PySide6.QtCore import QAbstractTableModel, QEvent, QModelIndex, QPersistentModelIndex, Qt
 from PySide6.QtWidgets import QAbstractItemView, QHeaderView, QTableView, QWidget
+
+from hydrosync_gui.i18n import tr
 
 _Index = QModelIndex | QPersistentModelIndex
 
@@ -106,7 +108,11 @@ class ColumnsTableModel(QAbstractTableModel):
         if isinstance(value, float | np.floating) and np.isnan(value):
             return self._missing[column]  # a missing value: blank unless stated
         pattern = self._formats[column]
-        return pattern.format(value) if pattern else _default_format(value)
+        if pattern:
+            return pattern.format(value)
+        text = _default_format(value)
+        # Words (a method, a role) in the workbench's language; numbers have no entry.
+        return tr(text) if self._columns[column].dtype.kind in "USO" else text
 
     def data(self, index: _Index, role: int = Qt.ItemDataRole.DisplayRole):
         if not index.isValid():
@@ -122,19 +128,20 @@ class ColumnsTableModel(QAbstractTableModel):
     def headerData(self, section: int, orientation, role=Qt.ItemDataRole.DisplayRole):  # noqa: N802
         horizontal = orientation == Qt.Orientation.Horizontal
         if role == Qt.ItemDataRole.ToolTipRole and horizontal and section < len(self._tips):
-            return self._tips[section] or None
+            return tr(self._tips[section]) or None
         if role != Qt.ItemDataRole.DisplayRole:
             return None
         if horizontal:
             if section >= len(self._headers):
                 return None
-            text = self._headers[section]
+            text = tr(self._headers[section])
             return wrap_header(text) if self.wrap_headers else text
         return str(section + 1)
 
     def header(self, column: int) -> str:
-        """The header of *column* (label and unit) on one line."""
-        return self._headers[column]
+        """The header of *column* (label and unit, in the workbench's language) on one
+        line."""
+        return tr(self._headers[column])
 
 
 class ColumnsTable(QTableView):
@@ -154,6 +161,12 @@ class ColumnsTable(QTableView):
         self.verticalHeader().setDefaultSectionSize(20)
         self.horizontalHeader().setSectionResizeMode(QHeaderView.ResizeMode.Interactive)
         self.horizontalHeader().setStretchLastSection(True)
+
+    def changeEvent(self, event) -> None:  # noqa: N802 (Qt API)
+        if event.type() == QEvent.Type.LanguageChange and self.table_model.columnCount():
+            self.table_model.headerDataChanged.emit(Qt.Orientation.Horizontal, 0,
+                                                    self.table_model.columnCount() - 1)
+        super().changeEvent(event)
 
     def set_columns(
         self,

@@ -2,7 +2,8 @@
 convergence.
 
 A thin view over :mod:`hydrosync_core.methods.pool_calibration`: "Segment" runs
-:func:`~hydrosync_core.methods.pool_calibration.api.segment` in a worker and shows the faces found
+:func:`~hydrosync_core.methods.pool_calibration.estimator.segment` in a
+worker and shows the faces found
 with the coarse setup (kept in memory, nothing written); "Iterate" runs the angle
 iteration, lever-arm steps and joint adjustment on that segmentation
 (:func:`~hydrosync_core.methods.pool_calibration.project_run.solve_and_store`); "Run all" runs
@@ -30,7 +31,7 @@ from PySide6.QtWidgets import (
 )
 
 from hydrosync_core.errors import InputError
-from hydrosync_core.methods.pool_calibration import api, project_run
+from hydrosync_core.methods.pool_calibration import estimator, project_run
 from hydrosync_core.methods.pool_calibration.params import PoolParams
 from hydrosync_core.methods.pool_calibration.preview import segmentation_preview
 from hydrosync_core.methods.pool_calibration.project_run import RESULT
@@ -50,6 +51,15 @@ WARN_STYLE = ("QLabel { background: #fff3cd; border: 1px solid #d39e00; border-r
               " color: #6b3d00; padding: 6px; }")
 
 
+def passes_text(passes: list[dict]) -> str:
+    """One line per session: each pass's soundings and those on referenced faces."""
+    if len(passes) < 2:
+        return ""
+    return (f"<br>{len(passes)} passes adjusted jointly: " + "; ".join(
+        f"pass {q['pass']}: {q['soundings']:,} soundings ({q['on_faces']:,} on faces)"
+        for q in passes))
+
+
 class PoolCalibrationPanel(PluginPanel):
     """Multibeam boresight and lever arm from the pool target (CN 105425246 B + joint fit)."""
 
@@ -59,7 +69,7 @@ class PoolCalibrationPanel(PluginPanel):
 
             spec = SPEC
         super().__init__(spec, parent)
-        self.segmentation: api.Segmentation | None = None
+        self.segmentation: estimator.Segmentation | None = None
         self._preview: tuple[dict, dict] | None = None  # (faces, clouds) of a Segment
         self._bound_project = None
         self._storing: tuple | None = None  # (project, {"result": …}) of a storing task
@@ -218,7 +228,9 @@ class PoolCalibrationPanel(PluginPanel):
                             & (faces["points_mbes"] >= self.form.values()["min_points"])))
         self.summary.setText(
             f"<b>Segmentation</b> with the coarse setup (not stored): {n_used} of "
-            f"{len(faces['face'])} faces have enough points in both clouds. "
+            f"{len(faces['face'])} faces have enough points in both clouds"
+            + (f" ({len(starts)} passes)" if (starts := self._pass_starts()) is not None
+               and len(starts) > 1 else "") + ". "
             "<b>Run all</b> to calibrate"
             + (" (replaces the stored results)." if self.project.exists(f"{RESULT}/faces")
                else "."))
@@ -229,6 +241,10 @@ class PoolCalibrationPanel(PluginPanel):
         self.convergence.show_table(None, None, self.log_check.isChecked())
         self.cloud_box.draw([str(n) for n in faces["face"]], clouds)
         self.tabs.setCurrentWidget(self.face_table)
+
+    def _pass_starts(self):
+        seg = self.segmentation
+        return None if seg is None else seg.ctx.pass_start
 
     def _show_results(self) -> None:
         project = self.project
@@ -242,6 +258,7 @@ class PoolCalibrationPanel(PluginPanel):
         if joint.get("sigma0_m") is not None:
             text += (f"<br>σ0 = {1000 * joint['sigma0_m']:.1f} mm from "
                      f"{joint.get('n_observations', 0)} soundings")
+        text += passes_text(result.get("passes") or [])
         text += f"<br><span style='color:#666'>run {attrs.get('run_utc', '?')}</span>"
         self.summary.setText(text)
         self._set_warnings(json.loads(attrs.get("warnings", "[]")))
@@ -273,11 +290,7 @@ class PoolCalibrationPanel(PluginPanel):
             return
 
         def task(progress, cancel):
-            seg = api.segment(np.asarray(project.get("raw/pool/lidar"), float),
-                              project.get_table("raw/pool/mbes"),
-                              project.get_table("raw/pool/ins"),
-                              project.get_json("raw/pool/setup"),
-                              project.get_json("raw/pool/target"), params, progress, cancel)
+            seg = project_run.segment_project(project, params, progress, cancel)
             return project, seg, segmentation_preview(seg, params.plan_points)
 
         self._enable(False)

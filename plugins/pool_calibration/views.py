@@ -8,6 +8,11 @@ from PySide6.QtCore import Qt
 from PySide6.QtGui import QColor
 from PySide6.QtWidgets import QAbstractItemView, QHeaderView, QTableWidget, QTableWidgetItem
 
+from hydrosync_core.methods.pool_calibration.result import (
+    ANGLE_DECIMALS,
+    LEVER_DECIMALS,
+)
+from hydrosync_core.numfmt import fixed, sigma_decimals
 from hydrosync_gui.widgets.columns_table import ColumnsTable, ColumnsTableModel
 from plugins.pool_calibration.cloud_views import face_colour
 
@@ -21,10 +26,11 @@ FACE_COLUMNS = {
     "normal_angle_deg": ("Normal Δ", "°", 1, "{:.3f}"),
     "used_for": ("Used for", "", 1, None),
     "reference": ("Reference", "", 1, None),
+    "pairing": ("Pairing", "", 1, None),
     "twin_de_m": ("Twin ΔE", "m", 1, "{:.3f}"), "twin_dn_m": ("Twin ΔN", "m", 1, "{:.3f}"),
     "twin_du_m": ("Twin ΔU", "m", 1, "{:.3f}"),
 }
-TEXT_COLUMNS = ("face", "role", "water", "used_for", "reference")
+TEXT_COLUMNS = ("face", "role", "water", "used_for", "reference", "pairing")
 FACE_TIPS = {"RMS laser": "RMS distance of the face's laser points to their fitted plane",
              "RMS MBES": "RMS distance of the face's soundings to their fitted plane "
                          "(final values)",
@@ -34,14 +40,18 @@ FACE_TIPS = {"RMS laser": "RMS distance of the face's laser points to their fitt
              "Reference": "plane the soundings are compared with: 'own' = the face's own "
                           "laser plane (it crosses the water), else the above-water twin "
                           "whose laser plane is moved by the design translation",
+             "Pairing": "the rule that gave the reference plane (own laser plane, declared "
+                        "in target.json, coplanar, parallel offset, congruent) or why the "
+                        "face has none (an underside, turned away from the vessel, no "
+                        "parallel above-water face)",
              "Twin ΔE": "design translation twin -> face, east", "Twin ΔN": "… north",
              "Twin ΔU": "… up (the design height difference of the patent's step 4.2)"}
 
 #: Iteration table: stored column -> (header, unit, format).
 ITERATION_COLUMNS = {
     "iteration": ("Iteration", "", None), "round": ("Round", "", None),
-    "d_roll_deg": ("Δ roll", "°", "{:+.2e}"), "d_pitch_deg": ("Δ pitch", "°", "{:+.2e}"),
-    "d_yaw_deg": ("Δ yaw", "°", "{:+.2e}"), "roll_deg": ("Roll", "°", "{:.5f}"),
+    "d_roll_deg": ("Δ roll", "°", "{:+.5f}"), "d_pitch_deg": ("Δ pitch", "°", "{:+.5f}"),
+    "d_yaw_deg": ("Δ yaw", "°", "{:+.5f}"), "roll_deg": ("Roll", "°", "{:.5f}"),
     "pitch_deg": ("Pitch", "°", "{:.5f}"), "yaw_deg": ("Yaw", "°", "{:.5f}"),
     "max_normal_angle_deg": ("Max normal angle", "°", "{:.4f}"),
 }
@@ -122,7 +132,7 @@ class IterationTable(ColumnsTable):
 def _fmt(value, digits: int, sign: bool = False) -> str:
     if value is None or not np.isfinite(value):
         return "–"
-    return f"{value:+.{digits}f}" if sign else f"{value:.{digits}f}"
+    return fixed(value, digits, sign=sign)
 
 
 class ValuesTable(QTableWidget):
@@ -152,11 +162,13 @@ class ValuesTable(QTableWidget):
         """*attrs*: stored result attrs (final values and σ); *result*: the result JSON."""
         result = result or {}
         for row, (_label, key, group, unit) in enumerate(VALUE_ROWS):
-            # Angles to 1e-4 ° and lever arms to 0.1 mm: below the joint σ of a good pass.
-            digits = 4
             attr = f"{key}_deg" if unit == "°" else f"lever_{key}_m"
             final = float(attrs[attr]) if attrs and attr in attrs else None
             sigma = (float(attrs.get(f"sigma_{attr}", np.nan)) if attrs else None)
+            # The digits σ supports, as the CLI and the PDF print them (parameter_text);
+            # without a σ 0.001° / 0.1 mm.
+            digits = sigma_decimals(sigma) or (ANGLE_DECIMALS if unit == "°" else
+                                               LEVER_DECIMALS)
             seed = (result.get("seed") or {}).get(group, {}).get(key)
             coarse = (result.get("coarse") or {}).get(group, {}).get(key)
             delta = None if final is None or coarse is None else final - coarse

@@ -9,7 +9,7 @@ import pytest
 
 from hydrosync_core.errors import InputError
 from hydrosync_core.methods.pool_calibration import georef
-from hydrosync_core.methods.pool_calibration.api import calibrate, segment
+from hydrosync_core.methods.pool_calibration.estimator import calibrate, segment
 from hydrosync_core.methods.pool_calibration.planes import fit_plane
 from hydrosync_core.methods.pool_calibration.simulate import PoolPassConfig, simulate_pool_pass
 from hydrosync_core.methods.pool_calibration.solve import solve

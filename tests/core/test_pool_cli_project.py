@@ -137,7 +137,9 @@ def test_cli_exit_3_names_undetermined_parameters(tmp_path, capsys):
     out = tmp_path / "result.json"
     capsys.readouterr()
     assert main(_args(paths, out) + ["--build-tol-m", "0.001", "--build-tol-deg", "0.005"]) == 3
-    err = capsys.readouterr().err.strip().splitlines()
+    # Progress lines ("[ 61.4%] …") appear on a slow machine; the verdict is one line.
+    err = [line for line in capsys.readouterr().err.strip().splitlines()
+           if not line.startswith("[")]
     assert len(err) == 1 and "lever_z" in err[0] and "not determined" in err[0]
     doc = json.loads(out.read_text())
     assert "horizontal face" in doc["undetermined"]["lever_z"]

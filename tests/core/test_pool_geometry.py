@@ -7,13 +7,13 @@ import pytest
 
 from hydrosync_core.errors import InputError
 from hydrosync_core.methods.pool_calibration import georef
-from hydrosync_core.methods.pool_calibration.api import calibrate
 from hydrosync_core.methods.pool_calibration.design import (
     cast_rays,
     design_faces,
     inside_polygon,
     make_face,
 )
+from hydrosync_core.methods.pool_calibration.estimator import calibrate
 from hydrosync_core.methods.pool_calibration.planes import fit_plane
 from hydrosync_core.methods.pool_calibration.roles import infer_roles
 from hydrosync_core.methods.pool_calibration.seed_iteration import signed_angle
@@ -76,7 +76,11 @@ def test_patent_target_twins_from_the_design():
         # Design translation: along the column by the twin shift, down by the height step.
         assert tw.translation == pytest.approx([0.0, 0.2 * sign, -4.9], abs=1e-9)
         assert tw.body == below.rsplit("_", 1)[0]
-    assert len(twins) == 16
+    # 8 faces per column pair: perpendicular, oblique and top paired; the bottoms are
+    # undersides (no scanner sees the above-water one), so they stay unpaired.
+    assert len(twins) == 12 and not any(n.endswith("_bottom") for n in twins)
+    # The twin shift moves the side planes too: every pair is a parallel offset here.
+    assert {tw.rule for tw in twins.values()} == {"parallel offset"}
     # The low first block pair (north here) is lower by the drop, above and below water.
     assert design_faces(target)[0].name == "wall"
     by = {f.name: f for f in faces}
@@ -97,7 +101,10 @@ def test_congruence_and_reference_planes():
     faces = design_faces(target)
     roles = infer_roles(faces, target["water_level_m"])
     twins = pair_twins(faces, roles)
-    assert list(twins) == ["S1_top"] and twins["S1_top"].twin == "S2_top"
+    # Its sides overlap the next block's in plan: parallel planes at a design offset.
+    assert twins["S1_top"].twin == "S2_top" and twins["S1_top"].rule == "congruent"
+    assert {n: tw.twin for n, tw in twins.items() if n != "S1_top"} == {
+        "S1_perpendicular": "S2_perpendicular", "S1_oblique": "S2_oblique"}
     planes = {f.name: fit_plane(f.corners + np.array([0, 0, 0.01]), roles[f.name].normal)
               for f in faces if roles[f.name].water != "below"}
     refs = reference_planes(faces, roles, planes, twins)

@@ -13,7 +13,7 @@ import pytest
 
 from hydrosync_core.methods.pool_calibration import georef
 from hydrosync_core.methods.pool_calibration import segment as segmod
-from hydrosync_core.methods.pool_calibration.api import calibrate
+from hydrosync_core.methods.pool_calibration.estimator import calibrate
 from hydrosync_core.methods.pool_calibration.ins_cov import attitude_derivatives, ins_covariance
 from hydrosync_core.methods.pool_calibration.params import PoolParams
 from hydrosync_core.methods.pool_calibration.planes import PlaneFit, fit_plane

@@ -3,7 +3,7 @@
 Seed 003 (CN 105425246 B) and ``methods.md`` section 4. Modules: ``design`` (target
 faces), ``georef`` (multibeam georeferencing), ``segment`` (face segmentation),
 ``planes`` (TLS plane fits), ``roles`` (face roles), ``seed_iteration`` (patent angles),
-``lever_arm`` (patent offsets), ``joint`` (joint least squares), ``result``, ``api``,
+``lever_arm`` (patent offsets), ``joint`` (joint least squares), ``result``, ``estimator``,
 ``project_run``, ``demo``.
 """
 

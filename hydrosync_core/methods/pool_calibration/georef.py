@@ -42,7 +42,8 @@ class GeorefContext:
     rot : (P, 3, 3) ``C · R_b`` at each kept ping time (body FRD -> ENU).
     keep : (M,) mask over the input soundings: True where georeferenced.
     dropped_pings, dropped_soundings : counts of pings/soundings in INS gaps or outside.
-    ping_time : (P,) time (s) of each kept ping (None when built by hand).
+    ping_time : (P,) time (s) of each kept ping (None when built by hand); merged passes
+        are shifted apart (:func:`merge`).
     """
 
     x_m: np.ndarray
@@ -53,6 +54,8 @@ class GeorefContext:
     dropped_pings: int
     dropped_soundings: int
     ping_time: np.ndarray | None = None
+    #: First ping index of each pass when several passes were merged (:func:`merge`).
+    pass_start: np.ndarray | None = None
 
     @property
     def mean_rot(self) -> np.ndarray:
@@ -114,6 +117,43 @@ def prepare(mbes: dict, ins: dict, max_gap_s: float | None = None,
         dropped_pings=int((~ok_ping).sum()), dropped_soundings=int((~keep).sum()),
         ping_time=tp,
     )
+
+
+#: Ping-time gap (s) put between merged passes: far beyond any INS correlation time or
+#: ping block, so no error model links two passes (they are independent recordings).
+PASS_SEPARATION_S = 1.0e4
+
+
+def merge(contexts: list[GeorefContext]) -> GeorefContext:
+    """One context holding several passes (each prepared with its own INS).
+
+    Soundings and pings are concatenated (ping indices offset). Each pass's ping times are
+    shifted to start :data:`PASS_SEPARATION_S` after the previous pass ends, so the times
+    stay increasing (``ins_cov``) and no ping block spans two passes (``block_sigma``);
+    ``pass_start`` holds the first ping index of each pass.
+    """
+    if len(contexts) == 1:
+        return contexts[0]
+    x_m, ping, origin, rot, keep, times, starts = [], [], [], [], [], [], []
+    n_ping, t_end = 0, None
+    for c in contexts:
+        x_m.append(c.x_m)
+        ping.append(c.ping + n_ping)
+        origin.append(c.origin)
+        rot.append(c.rot)
+        keep.append(c.keep)
+        tp = c.ping_time if c.ping_time is not None else np.arange(len(c.origin), dtype=float)
+        shift = 0.0 if t_end is None else t_end + PASS_SEPARATION_S - tp[0]
+        times.append(tp + shift)
+        t_end = float(times[-1][-1])
+        starts.append(n_ping)
+        n_ping += len(c.origin)
+    return GeorefContext(
+        x_m=np.concatenate(x_m), ping=np.concatenate(ping), origin=np.concatenate(origin),
+        rot=np.concatenate(rot), keep=np.concatenate(keep),
+        dropped_pings=sum(c.dropped_pings for c in contexts),
+        dropped_soundings=sum(c.dropped_soundings for c in contexts),
+        ping_time=np.concatenate(times), pass_start=np.array(starts, dtype=np.int64))
 
 
 def georeference(ctx: GeorefContext, r_m: np.ndarray, lever: np.ndarray,

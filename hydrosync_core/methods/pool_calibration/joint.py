@@ -203,20 +203,6 @@ def _reference_cov(ctx, obs, r_m, lever, jac_aug, weights, g_theta, refs=None) -
     return out
 
 
-def euler_jacobian(r_m: np.ndarray, h: float = 1e-7) -> np.ndarray:
-    """d(roll, pitch, yaw)/dδ at δ = 0 for ``R = Rot(δ)·r_m`` (3, 3), numeric."""
-    from scipy.spatial.transform import Rotation
-
-    base = np.array(boresight_angles(r_m))
-    out = np.zeros((3, 3))
-    for k in range(3):
-        step = np.zeros(3)
-        step[k] = h
-        moved = Rotation.from_rotvec(step).as_matrix() @ r_m
-        out[:, k] = (np.array(boresight_angles(moved)) - base) / h
-    return out
-
-
 def _augmented(jf, bcols, weights, sigma0_sq, prior_sig):
     """Normal matrix of (free parameters, build displacements) with the build prior."""
     a = np.hstack([jf, bcols])

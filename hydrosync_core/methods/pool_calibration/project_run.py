@@ -2,7 +2,9 @@
 
 Reads ``raw/pool/lidar`` ((N, 3) target ENU, m), ``raw/pool/mbes`` (table time, x, y, z;
 sensor FRD), ``raw/pool/ins`` (table time, e, n, u, roll, pitch, heading), ``raw/pool/setup``
-and ``raw/pool/target`` (JSON), runs :func:`~.api.calibrate` and REPLACES
+and ``raw/pool/target`` (JSON), and further passes of the session under
+``raw/pool/passes/<k>/`` (``mbes``, ``ins``, optionally ``lidar``), runs
+:func:`~.estimator.calibrate` and REPLACES
 ``/results/pool_calibration``. Stable layout (the report section and GUI panel rely on it):
 
 ``results/pool_calibration`` attrs
@@ -21,8 +23,10 @@ and ``raw/pool/target`` (JSON), runs :func:`~.api.calibrate` and REPLACES
     points_laser, points_mbes (int), rms_laser_m, rms_mbes_m, normal_angle_deg (float,
     NaN when a sensor has no plane), used_for (str, comma-separated parameters the face
     carries in the joint adjustment), reference (str: "own" = its own laser plane, the
-    name of its above-water twin, or ""), twin_de_m, twin_dn_m, twin_du_m (float, the
-    design translation twin -> face, ENU; NaN without reference).
+    name of its above-water twin, or ""), pairing (str: the rule that gave the reference
+    — own laser plane, declared, coplanar, parallel offset, congruent — or why there is
+    none), twin_de_m, twin_dn_m, twin_du_m (float, the design translation twin -> face,
+    ENU; NaN without reference).
 ``results/pool_calibration/iterations`` table: iteration, round (int), d_roll_deg,
     d_pitch_deg, d_yaw_deg, roll_deg, pitch_deg, yaw_deg, max_normal_angle_deg.
 ``results/pool_calibration/plan`` arrays for a plan view (ENU, m; at most
@@ -39,8 +43,9 @@ from collections.abc import Mapping
 
 import numpy as np
 
+from hydrosync_core.errors import InputError
 from hydrosync_core.methods.pool_calibration import VERSION, georef
-from hydrosync_core.methods.pool_calibration.api import as_params, segment
+from hydrosync_core.methods.pool_calibration.estimator import as_params, segment
 from hydrosync_core.methods.pool_calibration.params import PoolParams
 from hydrosync_core.methods.pool_calibration.solve import solve
 from hydrosync_core.params import stored
@@ -48,8 +53,9 @@ from hydrosync_core.progress import sub_progress
 from hydrosync_core.provenance import record
 
 RESULT = "results/pool_calibration"
+PASSES = "raw/pool/passes"
 INPUTS = ("raw/pool/lidar", "raw/pool/mbes", "raw/pool/ins", "raw/pool/setup",
-          "raw/pool/target")
+          "raw/pool/target", PASSES)
 
 
 def _plan(project, seg, result, n_max: int, rng: np.random.Generator) -> None:
@@ -78,15 +84,45 @@ def _plan(project, seg, result, n_max: int, rng: np.random.Generator) -> None:
     project.put(f"{RESULT}/plan/mbes_face", face[sel])
 
 
+def pass_names(project) -> list[str]:
+    """Groups of the further passes under ``raw/pool/passes`` (sorted), [] for one pass."""
+    if not project.exists(PASSES):
+        return []
+    return sorted(project.children(PASSES), key=lambda s: (len(s), s))
+
+
+def read_inputs(project) -> tuple:
+    """The stored inputs: laser points (N, 3) target ENU m, multibeam and INS tables, setup
+    and target JSON (the layout of :data:`INPUTS`). With further passes under
+    ``raw/pool/passes/<k>/{mbes, ins[, lidar]}`` the clouds and tables are lists, pass 1
+    (``raw/pool/*``) first; a pass without its own cloud uses the shared one."""
+    lidar = [np.asarray(project.get("raw/pool/lidar"), dtype=float)]
+    mbes, ins = [project.get_table("raw/pool/mbes")], [project.get_table("raw/pool/ins")]
+    for name in pass_names(project):
+        base = f"{PASSES}/{name}"
+        for need in ("mbes", "ins"):
+            if not project.exists(f"{base}/{need}"):
+                raise InputError(str(project.path or "project"),
+                                 f"pass {name} has no /{base}/{need}")
+        mbes.append(project.get_table(f"{base}/mbes"))
+        ins.append(project.get_table(f"{base}/ins"))
+        if project.exists(f"{base}/lidar"):
+            lidar.append(np.asarray(project.get(f"{base}/lidar"), dtype=float))
+    one = len(mbes) == 1
+    return ((lidar[0], mbes[0], ins[0]) if one else (lidar, mbes, ins)) + (
+        project.get_json("raw/pool/setup"), project.get_json("raw/pool/target"))
+
+
+def segment_project(project, params: PoolParams | Mapping | None = None, progress=None,
+                    cancel=None):
+    """:func:`~.estimator.segment` on the project's stored inputs (what Segment runs)."""
+    return segment(*read_inputs(project), as_params(params), progress, cancel)
+
+
 def run(project, params: PoolParams | Mapping | None = None, progress=None, cancel=None):
     """Run the pool calibration on *project* and store the results (see module doc)."""
     p = as_params(params)
-    lidar = np.asarray(project.get("raw/pool/lidar"), dtype=float)
-    mbes = project.get_table("raw/pool/mbes")
-    ins = project.get_table("raw/pool/ins")
-    setup = project.get_json("raw/pool/setup")
-    target = project.get_json("raw/pool/target")
-    seg = segment(lidar, mbes, ins, setup, target, p, sub_progress(progress, 0, 0.6), cancel)
+    seg = segment_project(project, p, sub_progress(progress, 0, 0.6), cancel)
     return solve_and_store(project, seg, p, sub_progress(progress, 0.6, 1.0), cancel)
 
 
@@ -142,6 +178,7 @@ def store(project, seg, result, p: PoolParams) -> None:
         "normal_angle_deg": np.array([r.normal_angle_deg for r in rows]),
         "used_for": np.array([r.used_for for r in rows], dtype=str),
         "reference": np.array([r.reference for r in rows], dtype=str),
+        "pairing": np.array([r.pairing for r in rows], dtype=str),
         **{f"twin_d{a}_m": np.array([r.design_offset_m[k] for r in rows], dtype=float)
            for k, a in enumerate("enu")}})
     cols = ("iteration", "round", "d_roll_deg", "d_pitch_deg", "d_yaw_deg", "roll_deg",

@@ -19,17 +19,19 @@ from reportlab.platypus import Flowable, Paragraph
 
 from hydrosync_core.methods.pool_calibration.params import PoolParams
 from hydrosync_core.methods.pool_calibration.report_figures import plan_figures
+from hydrosync_core.methods.pool_calibration.result import (
+    ANGLE_DECIMALS,
+    LEVER_DECIMALS,
+    parameter_text,
+)
+from hydrosync_core.numfmt import sigma_decimals
 from hydrosync_core.params import stored
-from hydrosync_core.report.context import ReportContext, esc, fmt, fmt_pm, utc_text
+from hydrosync_core.report.context import ReportContext, esc, fmt, utc_text
 from hydrosync_core.report.styles import BAD_TEXT, SERIES
 
 RESULT = "results/pool_calibration"
 HEADING = "Pool calibration of multibeam boresight and lever arm"
 
-# Decimals: angles to the millidegree, lever arms to the tenth of a millimetre (the
-# joint adjustment's 1-σ are a few millidegrees and tenths of millimetres).
-ANGLE_DECIMALS = 3
-LEVER_DECIMALS = 4
 
 ANGLES = (("roll", "Boresight roll", "\u00b0"), ("pitch", "Boresight pitch", "\u00b0"),
           ("yaw", "Boresight yaw", "\u00b0"))
@@ -45,11 +47,11 @@ def parameter_rows(attrs: dict) -> list[tuple[str, str]]:
     """``(name, "value ± σ unit")`` of the six final parameters, as printed everywhere."""
     rows = []
     for key, label, unit in ANGLES:
-        rows.append((label, fmt_pm(attrs.get(f"{key}_deg"), attrs.get(f"sigma_{key}_deg"),
-                                   ANGLE_DECIMALS, unit)))
+        rows.append((label, parameter_text(attrs.get(f"{key}_deg"),
+                                           attrs.get(f"sigma_{key}_deg"), unit)))
     for key, label, unit in LEVERS:
-        rows.append((label, fmt_pm(attrs.get(f"lever_{key}_m"),
-                                   attrs.get(f"sigma_lever_{key}_m"), LEVER_DECIMALS, unit)))
+        rows.append((label, parameter_text(attrs.get(f"lever_{key}_m"),
+                                           attrs.get(f"sigma_lever_{key}_m"), unit)))
     return rows
 
 
@@ -116,18 +118,22 @@ def _parameter_table(ctx, attrs, res) -> list[Flowable]:
     for i, (key, label, unit) in enumerate(ANGLES + LEVERS):
         group, sig_group = (("boresight_deg", "sigma_boresight_deg") if unit == "\u00b0"
                             else ("lever_arm_m", "sigma_lever_arm_m"))
-        dec = ANGLE_DECIMALS if unit == "\u00b0" else LEVER_DECIMALS
         final_key = f"{key}_deg" if unit == "\u00b0" else f"lever_{key}_m"
         name = key if unit == "\u00b0" else f"lever_{key}"
+        # Every number of the row to the digits the final σ supports (as the panel, CLI).
+        dec = sigma_decimals(attrs.get(f"sigma_{final_key}")) or (
+            ANGLE_DECIMALS if unit == "\u00b0" else LEVER_DECIMALS)
         c = coarse.get(group, {}).get(key)
         final = attrs.get(final_key)
         status = ("undetermined (coarse kept)" if name in undetermined else
+                  "contradicts the setup" if name in (res.get("contradicted") or {}) else
                   "\u03c3 above threshold" if name in flagged else "determined")
         if name in undetermined or name in flagged:
             style.append(("TEXTCOLOR", (6, i + 1), (6, i + 1), BAD_TEXT))
         rows.append([
             f"{label} [{unit}]", fmt(c, dec), fmt(seed.get(group, {}).get(key), dec),
-            fmt_pm(joint.get(group, {}).get(key), joint.get(sig_group, {}).get(key), dec),
+            parameter_text(joint.get(group, {}).get(key), joint.get(sig_group, {}).get(key),
+                           ""),
             fmt(final, dec),
             fmt(None if c is None or final is None else final - c, dec), status])
     method = str(attrs.get("method", "?"))
@@ -188,25 +194,34 @@ def _twin_table(project, ctx) -> list[Flowable]:
     if "reference" not in t:
         return []
     rows = []
+    small = ParagraphStyle("Pairing", parent=ctx.styles["Cell"], fontSize=7.5, leading=9)
+    pairing = t.get("pairing")
     for i, name in enumerate(t["face"]):
-        ref = str(t["reference"][i])
-        if not ref or int(t["points_mbes"][i]) == 0:
+        if str(t["water"][i]) == "above":
             continue
+        ref = str(t["reference"][i])
         offs = [float(t[f"twin_d{a}_m"][i]) for a in "enu"]
-        rows.append([str(name), "own laser plane (crosses the water)" if ref == "own" else ref,
-                     *(fmt(v, 3) for v in offs),
-                     str(t["used_for"][i]).replace(",", ", ") or "\u2014"])
+        how = str(pairing[i]) if pairing is not None else (
+            "own laser plane" if ref == "own" else ref or "\u2014")
+        rows.append([Paragraph(esc(str(name)), small), Paragraph(esc(how), small),
+                     *(fmt(v, 3) for v in offs), str(int(t["points_mbes"][i])),
+                     Paragraph(esc(str(t["used_for"][i]).replace(",", ", ") or "\u2014"),
+                               small)])
     if not rows:
         return []
-    return [ctx.heading("Reference planes", 2)] + ctx.table(
-        ["Face (multibeam)", "Reference (laser)", "\u0394E [m]", "\u0394N [m]", "\u0394U [m]",
-         "Carries"], rows, col_widths=[0.2, 0.27, 0.09, 0.09, 0.09, 0.26], numeric_from=2,
-        left_columns=[5], font_size=7.5,
-        caption="Reference plane of each face the multibeam sees: a face that crosses the "
+    return [ctx.heading("Face pairing and reference planes", 2)] + ctx.table(
+        ["Face (multibeam)", "Pairing (rule, twin) or why none", "\u0394E [m]", "\u0394N [m]",
+         "\u0394U [m]", "MBES pts", "Carries"], rows,
+        col_widths=[0.2, 0.3, 0.075, 0.075, 0.075, 0.075, 0.2], numeric_from=2,
+        left_columns=[6], font_size=7.5,
+        caption="Reference plane of each face the multibeam may see: a face that crosses the "
         "water is compared with its own laser plane; a below-water face with the laser plane "
-        "of its above-water twin (same shape and orientation, from the design) moved by the "
-        "design translation \u0394 (known to the build tolerance, propagated into \u03c3). "
-        "'Carries': parameters whose \u03c3 grows by more than 10 % without the face.")
+        "of its above-water twin, found by plane (parallel outward normals, overlapping "
+        "footprints in plan: coplanar, or a parallel offset such as the tops' design height "
+        "difference) or declared in target.json, moved by the design translation \u0394 "
+        "(known to the build tolerance, propagated into \u03c3). Undersides and faces turned "
+        "away from the vessel are never references. 'Carries': parameters whose \u03c3 grows "
+        "by more than 10 % without the face.")
 
 
 def _sigma_model(joint: dict, params: PoolParams) -> str:
@@ -245,6 +260,11 @@ def _run_info(ctx, attrs, res, params: PoolParams) -> list[Flowable]:
                    + f", {joint.get('n_observations', '?')} soundings, \u03c3\u2080 = "
                    + fmt(1000 * float(joint.get("sigma0_m", np.nan)), 1, "mm")),
                   ("Uncertainty model", _sigma_model(joint, params))]
+    passes = res.get("passes") or []
+    if passes:
+        pairs.append((f"Passes adjusted jointly ({len(passes)})", "; ".join(
+            f"{q['pass']}: {q['pings']} pings, {q['soundings']} soundings, "
+            f"{q['on_faces']} on referenced faces" for q in passes)))
     pairs += [("Multibeam pings dropped (INS gaps)", str(res.get("dropped_pings", 0))),
               ("Computed", f"{utc_text(attrs.get('run_utc'))} with HydroSync "
                            f"{attrs.get('software_version', '?')}")]
@@ -322,7 +342,7 @@ def _iterations(project, ctx) -> list[Flowable]:
 
 def _iteration_table(ctx, t: dict, rows_idx: list[int], caption: str) -> list[Flowable]:
     rows = [[str(int(t["iteration"][i])), str(int(t["round"][i])),
-             *(fmt(t[c][i], 4) for c in ("d_roll_deg", "d_pitch_deg", "d_yaw_deg")),
+             *(fmt(t[c][i], 5) for c in ("d_roll_deg", "d_pitch_deg", "d_yaw_deg")),
              *(fmt(t[c][i], ANGLE_DECIMALS) for c in ("roll_deg", "pitch_deg", "yaw_deg")),
              fmt(t["max_normal_angle_deg"][i], 4)] for i in rows_idx]
     return ctx.table(

@@ -8,7 +8,24 @@ from __future__ import annotations
 
 from dataclasses import asdict, dataclass, field
 
+import numpy as np
+
 from hydrosync_core.jsonsafe import jsonable
+from hydrosync_core.numfmt import value_sigma
+
+# Decimals without a σ (an undetermined parameter): angles to the millidegree, lever arms
+# to the tenth of a millimetre.
+ANGLE_DECIMALS = 3
+LEVER_DECIMALS = 4
+
+
+def parameter_text(value, sigma, unit: str, sign: bool = False) -> str:
+    """One final parameter as printed everywhere (CLI, panel, PDF): value and σ to the
+    digits σ supports (:func:`~hydrosync_core.numfmt.value_sigma`); without a σ (not
+    determined) the value to 0.001° / 0.1 mm."""
+    s = None if sigma is None or not np.isfinite(float(sigma)) else float(sigma)
+    return value_sigma(value, s, unit, decimals=None if s is not None else
+                       (ANGLE_DECIMALS if unit == "\u00b0" else LEVER_DECIMALS), sign=sign)
 
 
 @dataclass(frozen=True)
@@ -27,6 +44,9 @@ class FaceRow:
     reference: str = ""
     #: Design translation twin -> face (ENU, m); zeros for "own", NaN without reference.
     design_offset_m: tuple = (float("nan"),) * 3
+    #: Which rule gave the reference plane ("own", "declared", "coplanar", "parallel
+    #: offset") or why the face has none (:mod:`.twins`).
+    pairing: str = ""
 
 
 @dataclass(frozen=True)
@@ -92,6 +112,12 @@ class PoolResult:
     flagged: dict = field(default_factory=dict)
     #: Build tolerance of the twins used in the σ (half-widths, m and deg).
     build_tolerance: dict = field(default_factory=dict)
+    #: Parameters whose correction exceeds the coarse accuracy -> message (also in
+    #: ``flagged``): the data contradict the setup; not a calibration (CLI exit code 3).
+    contradicted: dict = field(default_factory=dict)
+    #: One entry per pass adjusted jointly: ``pass`` (1-based), ``pings``, ``soundings``
+    #: (georeferenced) and ``on_faces`` (soundings on a face with a reference plane).
+    passes: list = field(default_factory=list)
 
     def to_dict(self) -> dict:
         """JSON-ready dict (NaN -> null)."""

@@ -46,9 +46,10 @@ from hydrosync_core.methods.pool_calibration.georef import C_NED_TO_ENU, boresig
 from hydrosync_core.methods.pool_calibration.simulate_target import (
     KINDS,
     build_target,
+    prism_target,
     random_target,
 )
-from hydrosync_core.methods.pool_calibration.twins import bodies
+from hydrosync_core.methods.pool_calibration.twins import bodies, outward_normals
 
 
 @dataclass(frozen=True)
@@ -93,13 +94,17 @@ class PoolPassConfig:
     build_tol_deg: float = 0.01
     target_kind: str = "patent"
     target: dict | None = field(default=None)
+    #: Seed of the as-built errors (None: from the pass's seed). Passes of one session
+    #: share it: they see the same built target.
+    build_seed: int | None = None
 
 
 def random_config(rng: np.random.Generator, kind: str | None = None,
                   passes: int | None = None, **override) -> PoolPassConfig:
     """A pass drawn at random: target (kind, blocks, spacing, low side, wall, water level),
-    pass ranges and headings, vessel speed and attitude dynamics, beam count and opening,
-    laser density/noise, stray returns, INS noise and the coarse errors (±2°, ±0.15 m)."""
+    pass ranges and headings, vessel speed and attitude dynamics, INS height above the
+    water (hence the head's depth), beam count and opening, laser density/noise, stray
+    returns, INS noise and the coarse errors (±2°, ±0.15 m)."""
     kind = kind or str(rng.choice(KINDS))
     target = random_target(rng, kind)
     n = int(passes or rng.integers(1, 4))
@@ -130,6 +135,7 @@ def random_config(rng: np.random.Generator, kind: str | None = None,
         laser_stray_fraction=float(rng.uniform(0.0, 0.06)),
         ins_attitude_noise_deg=float(rng.choice([0.0, rng.uniform(0.002, 0.01)])),
         ins_noise_tau_s=float(rng.uniform(0.5, 3.0)),
+        ins_height_m=float(rng.uniform(0.5, 1.0)),
         target=target, target_kind=kind)
     return replace(cfg, **override) if override else cfg
 
@@ -206,19 +212,6 @@ def _sample_polygon(corners: np.ndarray, n: int, rng: np.random.Generator) -> np
     return a + r1[:, None] * (b[tri] - a) + r2[:, None] * (c[tri] - a)
 
 
-def _outward(faces: list[DesignFace]) -> dict[str, np.ndarray]:
-    """Outward normal of every face: away from the solid (body) it belongs to; a lone face
-    (the wall) faces the other bodies (the vessel side)."""
-    body = bodies(faces)
-    centre = np.mean([f.centroid for f in faces], axis=0)
-    out = {}
-    for f in faces:
-        group = [g.centroid for g in faces if body[g.name] == body[f.name]]
-        away = f.centroid - np.mean(group, axis=0) if len(group) > 1 else centre - f.centroid
-        out[f.name] = f.normal if f.normal @ away > 0 else -f.normal
-    return out
-
-
 def as_built(faces: list[DesignFace], water: float, tol_m: float, tol_deg: float,
              rng: np.random.Generator) -> tuple[list[DesignFace], dict]:
     """The faces as built: bodies wholly below water displaced by a rigid error (uniform
@@ -248,7 +241,7 @@ def _laser(faces: list[DesignFace], water: float, traj: np.ndarray, cfg: PoolPas
            rng: np.random.Generator) -> np.ndarray:
     """Laser points (N, 3) ENU m on above-water faces facing the vessel, plus clutter."""
     chunks = []
-    outward = _outward(faces)
+    outward = outward_normals(faces)
     for face in faces:
         out = outward[face.name]
         if face.z_max <= water + 1e-6 or out[0] > 0.5 or out[2] < -0.5:
@@ -339,10 +332,13 @@ def simulate_pool_pass(config: PoolPassConfig | None = None, seed: int = 0) -> d
     """
     cfg = config or PoolPassConfig()
     rng = np.random.default_rng(seed)
-    target = cfg.target or build_target(kind=cfg.target_kind)
+    target = cfg.target or (prism_target(rng) if cfg.target_kind == "prism"
+                            else build_target(kind=cfg.target_kind))
     water = float(target["water_level_m"])
     design = design_faces(target)
-    faces, build_errors = as_built(design, water, cfg.build_tol_m, cfg.build_tol_deg, rng)
+    build_rng = rng if cfg.build_seed is None else np.random.default_rng(cfg.build_seed)
+    faces, build_errors = as_built(design, water, cfg.build_tol_m, cfg.build_tol_deg,
+                                   build_rng)
     corners = np.concatenate([f.corners for f in design])
     floor = float(corners[:, 2].min()) if cfg.floor_m is None else cfg.floor_m
     y0 = corners[:, 1].min() - 4.5 if cfg.y_start_m is None else cfg.y_start_m

@@ -23,13 +23,18 @@ Two kinds of target (``kind``), both occurring in practice and often mixed:
   multibeam below, the same face); the low first block's top lies below water and is
   compared with an above-water top of the same shape (the design height difference).
 * ``"mixed"`` — the north column crosses the water, the south column is of the patent kind.
+* ``"prism"`` — the patent's target as built by others (:func:`prism_target`): every block
+  a full prism (top, underside, three sides, one of them against the wall plane), the
+  below-water prism of another height than the above-water one (coplanar sides, parallel
+  tops), optionally on a plinth (a wider, lower slab under it), shifted along the column
+  (a horizontal design offset), with a block missing or explicit twin declarations.
 """
 
 from __future__ import annotations
 
 import numpy as np
 
-KINDS = ("patent", "crossing", "mixed")
+KINDS = ("patent", "crossing", "mixed", "prism")
 
 
 def _block(name: str, y0: float, sign: float, depth: float, length: float,
@@ -145,11 +150,91 @@ def build_target(
     return {"frame": "ENU", "water_level_m": float(water_level), "faces": faces}
 
 
+def _prism(name: str, tri: np.ndarray, z0: float, z1: float) -> list[dict]:
+    """Faces of a vertical prism over the plan triangle *tri* (3, 2) from z0 to z1: top,
+    underside and the three sides (named side0..2 after the triangle's edges)."""
+    def c3(xy, z):
+        return [[round(float(xy[0]), 6), round(float(xy[1]), 6), round(float(z), 6)]]
+    faces = [{"name": f"{name}_top", "corners": sum((c3(v, z1) for v in tri), [])},
+             {"name": f"{name}_bottom", "corners": sum((c3(v, z0) for v in tri[::-1]), [])}]
+    for k in range(3):
+        a, b = tri[k], tri[(k + 1) % 3]
+        faces.append({"name": f"{name}_side{k}",
+                      "corners": c3(a, z0) + c3(b, z0) + c3(b, z1) + c3(a, z1)})
+    return faces
+
+
+def prism_target(rng: np.random.Generator, *, water_level: float = 0.0,
+                 different_heights: bool = True, plinth: bool = False,
+                 shift: float = 0.0, missing: bool = False, declare: bool = False,
+                 blocks_per_side: int = 3) -> dict:
+    """The patent's twin-block target with full prisms (module docstring, kind "prism").
+
+    Each column: an above-water prism (heights 0.8-1.0 m) over a right triangle with legs
+    drawn in 0.8-1.2 m (across) and 1.2-1.8 m (along the wall), and a below-water prism over
+    the same triangle shifted along the column by *shift* (m), 1.0 m tall when
+    *different_heights* (else as tall as the above-water one); the first north column sits
+    0.25 m lower. *plinth*: each below-water prism stands on a slab 0.3 m wider; *missing*:
+    one column has no below-water prism; *declare*: the below-water faces name their twin
+    (``"twin"``; tops also ``"offset_m"``).
+    """
+    w = water_level
+    half = float(rng.uniform(2.5, 3.5))
+    depth, length = float(rng.uniform(0.8, 1.2)), float(rng.uniform(1.2, 1.8))
+    gap = float(rng.uniform(0.8, 1.2))
+    h_up = float(rng.uniform(0.8, 1.0))
+    h_dn = 1.0 if different_heights else h_up
+    floor = w - 4.0
+    faces = [{"name": "wall", "corners": [[0.0, -half, floor], [0.0, half, floor],
+                                          [0.0, half, w + 2.0], [0.0, -half, w + 2.0]]}]
+    skip = int(rng.integers(0, 2 * blocks_per_side)) if missing else -1
+    k_col = 0
+    for side, s in (("N", 1.0), ("S", -1.0)):
+        for k in range(blocks_per_side):
+            y0 = s * (half + 0.3 + k * (length + gap))
+            tri = np.array([[0.0, y0], [-depth, y0], [0.0, y0 + s * length]])
+            if s < 0:
+                tri = tri[[0, 2, 1]]       # keep the corner order counter-clockwise
+            drop = 0.25 if (side == "N" and k == 0) else 0.0
+            up0 = w + 0.4 - drop
+            faces += _prism(f"{side}{k + 1}_up", tri, up0, up0 + h_up)
+            if k_col != skip:
+                dn1 = w - 1.3 - drop
+                tri_dn = tri + np.array([0.0, s * shift])
+                dn = _prism(f"{side}{k + 1}_dn", tri_dn, dn1 - h_dn, dn1)
+                if declare:
+                    for f in dn:
+                        part = f["name"].rsplit("_", 1)[1]
+                        if part != "bottom":
+                            f["twin"] = f"{side}{k + 1}_up_{part}"
+                        if part == "top":
+                            f["offset_m"] = round(dn1 - (up0 + h_up), 6)
+                faces += dn
+                if plinth:
+                    # A similar triangle 1.8× the size (parallel sides, a ring ~0.25 m wide
+                    # round the block), flush with the wall.
+                    c = tri_dn.mean(axis=0)
+                    wide = c + 1.8 * (tri_dn - c)
+                    wide[:, 0] -= wide[:, 0].max()
+                    faces += _prism(f"{side}{k + 1}_plinth", wide, dn1 - h_dn - 0.3,
+                                    dn1 - h_dn)
+            k_col += 1
+    return {"frame": "ENU", "water_level_m": float(w), "faces": faces}
+
+
 def random_target(rng: np.random.Generator, kind: str | None = None) -> dict:
     """A target drawn at random: kind, number and size of blocks, spacing, which side's
     first block is lower and by how much, wall height, water level, twin heights/shift."""
     kind = kind or str(rng.choice(KINDS))
     water = float(rng.uniform(-0.4, 0.4))
+    if kind == "prism":
+        return prism_target(rng, water_level=water,
+                            different_heights=bool(rng.random() < 0.8),
+                            plinth=bool(rng.random() < 0.3),
+                            shift=float(rng.choice([0.0, rng.uniform(-0.2, 0.2)])),
+                            missing=bool(rng.random() < 0.2),
+                            declare=bool(rng.random() < 0.2),
+                            blocks_per_side=int(rng.integers(2, 4)))
     floor = water - float(rng.uniform(4.0, 5.5))
     depth = float(rng.uniform(0.7, 1.2))
     length = float(rng.uniform(1.0, 1.9))

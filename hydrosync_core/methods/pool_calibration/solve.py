@@ -1,6 +1,6 @@
 """The solving half of the pool calibration: seed angles, seed lever arm, joint LSQ.
 
-Runs on a :class:`~.api.Segmentation` (inputs as documented in :mod:`.api`); the result
+Runs on a :class:`~.estimator.Segmentation` (inputs as documented in :mod:`.estimator`); the result
 is a :class:`~.result.PoolResult`.
 
 Every face the multibeam sees is compared with its reference plane (:mod:`.twins`): its
@@ -47,6 +47,15 @@ def _angles(r_m) -> dict:
 
 def _lever(v) -> dict:
     return {k: float(x) for k, x in zip("xyz", v, strict=True)}
+
+
+def _matrix(angles_deg: dict) -> np.ndarray:
+    return georef.boresight_matrix(*np.deg2rad([angles_deg[k] for k in ("roll", "pitch",
+                                                                        "yaw")]))
+
+
+def _vector(lever: dict) -> np.ndarray:
+    return np.array([lever[k] for k in "xyz"], dtype=float)
 
 
 def _joint_obs(seg, mfaces, min_points):
@@ -164,32 +173,65 @@ def face_usage(ctx, obs, fit, min_gain: float = 0.1) -> dict[str, list[str]]:
     return out
 
 
-def solve(seg, params: PoolParams | None = None, progress=None, cancel=None) -> PoolResult:
-    """Run steps 3 and 4 of the patent and the joint adjustment on a segmentation.
+def _sigmas(joint: JointSolution | None) -> dict[str, float]:
+    """Parameter -> 1σ (° / m) of a joint solution."""
+    if joint is None:
+        return {}
+    return {**joint.sigma_boresight_deg,
+            **{f"lever_{k}": v for k, v in joint.sigma_lever_arm_m.items()}}
 
-    *params* default to those the segmentation was made with (the GUI may change the
-    solving parameters between Segment and Iterate).
+
+def contradictions(final_deg: dict, final_m: dict, coarse: dict, p: PoolParams,
+                   held: set[str], usage: dict[str, list[str]],
+                   sigma: dict[str, float] | None = None) -> dict[str, str]:
+    """Parameters whose correction exceeds the stated coarse accuracy -> message.
+
+    The coarse accuracy (``coarse_tol_deg``/``coarse_tol_m``) is a half-width the user vouches
+    for; a correction beyond it by more than 3σ of the estimate (*sigma*: parameter -> σ in
+    ° / m) means the data contradict the setup (a wrong sign or axis in the drawing, a
+    mis-paired face, a target moved since it was surveyed), so it is flagged with the faces
+    that carry the parameter and is not a calibration. Within 3σ of the bound the data
+    cannot tell, and a true error right at the stated accuracy is not a contradiction.
     """
-    p = seg.params if params is None else params
-    warnings = list(seg.warnings)
-    mp = p.min_points
-    refs = {n: r.plane for n, r in seg.refs.items()}
-    r_a = seg.r_align if seg.r_align is not None else seg.r_m0
-    l_a = seg.lever_align if seg.lever_align is not None else seg.lever0
-    report(progress, 0.0, "selecting the multibeam face points around the aligned setup")
-    mfaces = _resegment(seg, p, r_a, l_a, cancel)
-    # Seed steps 3 then 4, alternated, from the coarse values: the angles are first found
-    # with the coarse lever arm, whose error (through the varying attitude) slightly bends
-    # small faces, so the angle iteration is repeated with the corrected lever arm until
-    # both settle.
+    b, la = coarse["boresight_deg"], coarse["lever_arm_m"]
+    out = {}
+    for name in NAMES:
+        if name in held:
+            continue
+        if name.startswith("lever_"):
+            k = name[-1]
+            corr, tol, unit = final_m[k] - la[k], p.coarse_tol_m, " m"
+        else:
+            corr = (final_deg[name] - b[name] + 180.0) % 360.0 - 180.0
+            tol, unit = p.coarse_tol_deg, "°"
+        s = (sigma or {}).get(name)
+        if abs(corr) > tol + 3.0 * (s if s is not None and np.isfinite(s) else 0.0):
+            faces = sorted(f for f, used in usage.items() if name in used)
+            out[name] = (f"correction {corr:+.3g}{unit} exceeds the coarse accuracy "
+                         f"±{tol:g}{unit}: the data contradict the setup (faces carrying it: "
+                         f"{', '.join(faces) or 'none'}); not a calibration — check the "
+                         "setup, the target design and the face pairing")
+    return out
+
+
+def _seed(seg, p, mfaces, refs, progress, cancel) -> tuple[SeedSolution, list[dict], int,
+                                                               dict[str, str], list[str]]:
+    """Patent steps 3 then 4, alternated from the coarse values.
+
+    The angles are first found with the coarse lever arm, whose error (through the varying
+    attitude) slightly bends small faces, so the angle iteration is repeated with the
+    corrected lever arm until both settle. Returns the seed solution, its iteration table,
+    the number of rounds, the undetermined parameters (-> reason) and warnings.
+    """
+    mp, warnings = p.min_points, []
     lever, r_m, table, total_it = seg.lever0.copy(), seg.r_m0.copy(), [], 0
     for rnd in range(1, p.max_rounds + 1):
         check_cancel(cancel)
         angles = iterate_angles(seg.ctx, mfaces, seg.roles, refs, r_m,
                                 lever, tol_deg=p.tol_deg, max_iter=p.max_iter,
                                 min_points=mp,
-                                progress=sub_progress(progress, 0.4 * (rnd - 1) / p.max_rounds,
-                                                      0.4 * rnd / p.max_rounds),
+                                progress=sub_progress(progress, (rnd - 1) / p.max_rounds,
+                                                      rnd / p.max_rounds),
                                 cancel=cancel)
         table += [dict(row, iteration=total_it + row["iteration"], round=rnd)
                   for row in angles.table]
@@ -202,22 +244,26 @@ def solve(seg, params: PoolParams | None = None, progress=None, cancel=None) -> 
         r_m, lever = angles.r_m, lev.lever
         if rnd > 1 and d_lever < p.lever_tol_m and d_angle < 10 * p.tol_deg:
             break
-    seed_converged = bool(angles.converged and d_lever < p.lever_tol_m)
-    if not seed_converged:
+    converged = bool(angles.converged and d_lever < p.lever_tol_m)
+    if not converged:
         warnings.append(f"seed method did not converge (last round: angle iteration "
                         f"{'converged' if angles.converged else 'not converged'}, lever-arm "
                         f"change {d_lever * 1000:.2f} mm)")
-    seed_reasons = {name: f"no {'/'.join(PARAMETER_ROLES[name])} face with a reference "
-                          "plane seen by the multibeam" for name in angles.undetermined}
-    seed_reasons.update(lev.reasons or {})
-    for name, why in seed_reasons.items():
+    reasons = {name: f"no {'/'.join(PARAMETER_ROLES[name])} face with a reference "
+                     "plane seen by the multibeam" for name in angles.undetermined}
+    reasons.update(lev.reasons or {})
+    for name, why in reasons.items():
         warnings.append(f"seed method: {name} cannot be determined ({why}); kept at the "
                         "coarse value")
-    seed = SeedSolution(_angles(r_m), _lever(lever), total_it, seed_converged,
-                        [float(v) for v in lev.shift_xyz_m], list(seed_reasons))
-    # Joint adjustment from the aligned setup (independent of the seed's outcome); held
-    # parameters at their coarse values.
-    report(progress, 0.5, "joint adjustment")
+    seed = SeedSolution(_angles(r_m), _lever(lever), total_it, converged,
+                        [float(v) for v in lev.shift_xyz_m], list(reasons))
+    return seed, table, rnd, reasons, warnings
+
+
+def _joint(seg, p, mfaces, r_a, l_a, cancel):
+    """Joint adjustment from the aligned setup (independent of the seed's outcome), held
+    parameters at their coarse values; the points are re-selected once around its own
+    first solution. Returns (fit or None, observations, face indices, warnings)."""
     theta_c = np.array([*georef.boresight_angles(seg.r_m0), *seg.lever0])
     c_sig = (np.deg2rad(p.coarse_tol_deg) / np.sqrt(3), p.coarse_tol_m / np.sqrt(3))
     b_sig = (p.build_tol_m / np.sqrt(3), np.deg2rad(p.build_tol_deg) / np.sqrt(3))
@@ -225,47 +271,39 @@ def solve(seg, params: PoolParams | None = None, progress=None, cancel=None) -> 
     kw = dict(huber_m=p.huber_m, cancel=cancel, block_s=p.sigma_block_s,
               ins_sigma_rad=ins_sig, ins_tau_s=p.ins_tau_s, refs=seg.refs,
               build_sigma=b_sig, coarse=theta_c, coarse_sigma=c_sig)
-    joint, r_final, l_final, method = None, r_m, lever, "seed"
-    fit, obs = None, {}
+    obs = {}
     try:
-        obs = _joint_obs(seg, mfaces, mp)
+        obs = _joint_obs(seg, mfaces, p.min_soundings)
         first = adjust(seg.ctx, obs, r_a, l_a, fix=structural_fix(seg.roles, obs),
-                       covariance=False, **{k: v for k, v in kw.items()
-                                            if k in ("huber_m", "cancel")})
-        # The final point selection around the joint solution itself, then the final fit.
+                       covariance=False, huber_m=p.huber_m, cancel=cancel)
         mfaces = _resegment(seg, p, first.r_m, first.lever, cancel)
-        obs = _joint_obs(seg, mfaces, mp)
+        obs = _joint_obs(seg, mfaces, p.min_soundings)
         fit = adjust(seg.ctx, obs, first.r_m, first.lever,
                      fix=structural_fix(seg.roles, obs), **kw)
     except (ValueError, np.linalg.LinAlgError) as exc:
-        warnings.append(f"joint adjustment failed ({exc}); the seed solution is reported")
-        fit = None
-    flagged: dict[str, str] = {}
-    undetermined = dict(seed_reasons)
-    usage: dict[str, list[str]] = {}
-    if fit is not None:
-        corr = correlation(fit.covariance)
-        sig = np.sqrt(np.diag(fit.covariance))
-        budget = _budget(fit)
-        flagged = _flags(fit.covariance, fit.fixed, p, budget)
-        warnings += _corr_warnings(corr, p)
-        joint = JointSolution(
-            _angles(fit.r_m), _lever(fit.lever),
-            dict(zip(("roll", "pitch", "yaw"), map(float, np.degrees(sig[:3])), strict=True)),
-            _lever(sig[3:]), list(NAMES), corr.tolist(), fit.sigma0_m, fit.n_obs,
-            fit.iterations, fit.converged, list(fit.fixed), fit.residual_rms,
-            dict(zip(NAMES, map(float, fit.variance_factor), strict=True)),
-            dict(fit.undetermined), budget)
-        usage = face_usage(seg.ctx, obs, fit)
-        if p.final == "joint" and fit.converged:
-            r_final, l_final, method = fit.r_m, fit.lever, "joint"
-            undetermined = dict(fit.undetermined)
-    for name, why in (undetermined.items() if method == "joint" else ()):
-        warnings.append(f"joint adjustment: {name} cannot be determined ({why}); kept at "
-                        "the coarse value")
-    for name, why in flagged.items():
-        warnings.append(f"joint adjustment: {name} {why}")
-    report(progress, 0.9, "face table")
+        return None, obs, mfaces, [f"joint adjustment failed ({exc}); the seed solution is "
+                                   "reported"]
+    return fit, obs, mfaces, []
+
+
+def _joint_solution(fit, p) -> tuple[JointSolution, dict[str, str], list[str]]:
+    """The joint fit in user units, its flagged parameters (-> message) and warnings."""
+    corr = correlation(fit.covariance)
+    sig = np.sqrt(np.diag(fit.covariance))
+    budget = _budget(fit)
+    flagged = _flags(fit.covariance, fit.fixed, p, budget)
+    joint = JointSolution(
+        _angles(fit.r_m), _lever(fit.lever),
+        dict(zip(("roll", "pitch", "yaw"), map(float, np.degrees(sig[:3])), strict=True)),
+        _lever(sig[3:]), list(NAMES), corr.tolist(), fit.sigma0_m, fit.n_obs,
+        fit.iterations, fit.converged, list(fit.fixed), fit.residual_rms,
+        dict(zip(NAMES, map(float, fit.variance_factor), strict=True)),
+        dict(fit.undetermined), budget)
+    return joint, flagged, _corr_warnings(corr, p)
+
+
+def _face_rows(seg, mfaces, obs, usage, r_final, l_final) -> list[FaceRow]:
+    """One row per design face: points, plane fits, reference plane and what it carries."""
     final_pts = georef.georeference(seg.ctx, r_final, l_final)
     rows = []
     for name, role in seg.roles.items():
@@ -279,15 +317,75 @@ def solve(seg, params: PoolParams | None = None, progress=None, cancel=None) -> 
             angle_deg(ref.plane.normal, mpl.normal) if ref and mpl else float("nan"),
             ",".join(usage.get(name, [])) if name in obs else "",
             ("own" if ref.kind == "own" else ref.source) if ref else "",
-            tuple(float(v) for v in ref.translation) if ref else (float("nan"),) * 3))
-    converged = bool(seed_converged and (joint is None or joint.converged))
-    message = (f"seed: {total_it} angle iterations in {rnd} rounds "
-               f"({'converged' if seed_converged else 'not converged'}); final = {method}")
+            tuple(float(v) for v in ref.translation) if ref else (float("nan"),) * 3,
+            seg.pairing.get(name, "")))
+    return rows
+
+
+def pass_table(ctx, mfaces: dict[str, np.ndarray], refs) -> list[dict]:
+    """Pings, soundings and soundings on referenced faces of each pass (see PoolResult)."""
+    starts = ctx.pass_start if ctx.pass_start is not None else np.array([0])
+    bounds = np.append(starts, len(ctx.origin))
+    of_ping = np.searchsorted(bounds, ctx.ping, side="right") - 1
+    used = np.zeros(len(ctx.ping), bool)
+    for name, idx in mfaces.items():
+        if name in refs:
+            used[idx] = True
+    return [{"pass": k + 1, "pings": int(bounds[k + 1] - bounds[k]),
+             "soundings": int(np.sum(of_ping == k)),
+             "on_faces": int(np.sum(used & (of_ping == k)))} for k in range(len(starts))]
+
+
+def solve(seg, params: PoolParams | None = None, progress=None, cancel=None) -> PoolResult:
+    """Run steps 3 and 4 of the patent and the joint adjustment on a segmentation.
+
+    *params* default to those the segmentation was made with (the GUI may change the
+    solving parameters between Segment and Iterate).
+    """
+    p = seg.params if params is None else params
+    warnings = list(seg.warnings)
+    refs = {n: r.plane for n, r in seg.refs.items()}
+    r_a = seg.r_align if seg.r_align is not None else seg.r_m0
+    l_a = seg.lever_align if seg.lever_align is not None else seg.lever0
+    report(progress, 0.0, "selecting the multibeam face points around the aligned setup")
+    mfaces = _resegment(seg, p, r_a, l_a, cancel)
+    seed, table, rounds, seed_reasons, seed_warn = _seed(
+        seg, p, mfaces, refs, sub_progress(progress, 0.0, 0.4), cancel)
+    warnings += seed_warn
+    report(progress, 0.5, "joint adjustment")
+    fit, obs, mfaces, joint_warn = _joint(seg, p, mfaces, r_a, l_a, cancel)
+    warnings += joint_warn
+    joint, flagged, usage = None, {}, {}
+    r_final, l_final, method = _matrix(seed.boresight_deg), _vector(seed.lever_arm_m), "seed"
+    undetermined = dict(seed_reasons)
+    if fit is not None:
+        joint, flagged, corr_warn = _joint_solution(fit, p)
+        warnings += corr_warn
+        usage = face_usage(seg.ctx, obs, fit)
+        if p.final == "joint" and fit.converged:
+            r_final, l_final, method = fit.r_m, fit.lever, "joint"
+            undetermined = dict(fit.undetermined)
+    for name, why in (undetermined.items() if method == "joint" else ()):
+        warnings.append(f"joint adjustment: {name} cannot be determined ({why}); kept at "
+                        "the coarse value")
+    contradicted = (contradictions(_angles(r_final), _lever(l_final), seg.coarse, p,
+                                   set(undetermined), usage, _sigmas(joint))
+                    if method == "joint" else {})
+    for name, why in contradicted.items():
+        flagged[name] = why + (f"; {flagged[name]}" if name in flagged else "")
+    for name, why in flagged.items():
+        warnings.append(f"joint adjustment: {name} {why}")
+    report(progress, 0.9, "face table")
+    rows = _face_rows(seg, mfaces, obs, usage, r_final, l_final)
+    converged = bool(seed.converged and (joint is None or joint.converged))
+    message = (f"seed: {seed.iterations} angle iterations in {rounds} rounds "
+               f"({'converged' if seed.converged else 'not converged'}); final = {method}")
     if undetermined:
         message += f"; undetermined: {', '.join(undetermined)}"
     report(progress, 1.0, "pool calibration done")
-    return PoolResult(_angles(r_final), _lever(l_final), total_it, converged, message,
+    return PoolResult(_angles(r_final), _lever(l_final), seed.iterations, converged, message,
                       method, seg.coarse, seed, joint, rows, table, warnings,
                       seg.ctx.dropped_pings, seg.ctx.dropped_soundings, undetermined,
                       flagged, {"translation_m": p.build_tol_m,
-                                "rotation_deg": p.build_tol_deg})
+                                "rotation_deg": p.build_tol_deg}, contradicted,
+                      pass_table(seg.ctx, mfaces, seg.refs))

@@ -30,10 +30,16 @@ from hydrosync_core.methods.pool_calibration.segment import (
     voxel_downsample,
 )
 from hydrosync_core.methods.pool_calibration.twins import (
+    PAIR_ANGLE_DEG,
+    PAIR_OFFSET_M,
     Reference,
     Twin,
+    hidden_reason,
+    outward_normals,
     pair_twins,
+    pairing_notes,
     reference_planes,
+    vessel_side,
 )
 from hydrosync_core.progress import check_cancel, report, sub_progress
 
@@ -61,6 +67,8 @@ class Segmentation:
     #: Coarse setup aligned by the staged segmentation (:mod:`.align`); selects the points.
     r_align: np.ndarray | None = None
     lever_align: np.ndarray | None = None
+    #: Face -> the rule that gave its reference plane, or why it has none (:mod:`.twins`).
+    pairing: dict[str, str] = field(default_factory=dict)
 
 
 def as_params(params: PoolParams | Mapping | None) -> PoolParams:
@@ -85,12 +93,34 @@ def _check_inputs(lidar: np.ndarray, mbes: dict, ins: dict) -> np.ndarray:
     return lidar
 
 
-def segment(lidar_enu, mbes: dict, ins: dict, setup: dict, target: dict,
+def _as_passes(lidar_enu, mbes, ins) -> tuple[np.ndarray, list[dict], list[dict]]:
+    """One laser cloud (the union of the passes' clouds) and the per-pass tables.
+
+    *mbes* and *ins* are one table each (one pass) or equally long lists (several passes);
+    *lidar_enu* one (N, 3) array (a shared cloud) or a list of them (one per pass).
+    """
+    mbes_l = list(mbes) if isinstance(mbes, list | tuple) else [mbes]
+    ins_l = list(ins) if isinstance(ins, list | tuple) else [ins]
+    if len(mbes_l) != len(ins_l) or not mbes_l:
+        raise InputError("passes", f"{len(mbes_l)} multibeam tables but {len(ins_l)} INS "
+                         "tables: give one of each per pass")
+    clouds = list(lidar_enu) if isinstance(lidar_enu, list | tuple) else [lidar_enu]
+    clouds = [_check_inputs(c, mbes_l[0], ins_l[0]) for c in clouds]
+    for m, i in zip(mbes_l[1:], ins_l[1:], strict=True):
+        _check_inputs(clouds[0], m, i)
+    return np.concatenate(clouds), mbes_l, ins_l
+
+
+def segment(lidar_enu, mbes, ins, setup: dict, target: dict,
             params: PoolParams | Mapping | None = None, progress=None,
             cancel=None) -> Segmentation:
-    """Segment both clouds into the design faces and fit the laser planes."""
+    """Segment both clouds into the design faces and fit the laser planes.
+
+    Several passes are adjusted jointly: give *mbes* and *ins* as lists (one table per
+    pass) and *lidar_enu* as one shared cloud or a list of clouds (see :func:`_as_passes`).
+    """
     p = as_params(params)
-    lidar = _check_inputs(lidar_enu, mbes, ins)
+    lidar, mbes_l, ins_l = _as_passes(lidar_enu, mbes, ins)
     faces = design_faces(target)
     water = float(target.get("water_level_m", 0.0))
     roles = infer_roles(faces, water)
@@ -110,13 +140,23 @@ def segment(lidar_enu, mbes: dict, ins: dict, setup: dict, target: dict,
     planes = {n: fit_plane(v, roles[n].normal) for n, v in lpts.items()}
     # Reference plane of each face: its own laser plane (crossing the water) or its
     # above-water twin's, moved by the design translation (below water).
-    twins = pair_twins(faces, roles)
-    refs = reference_planes(faces, roles, planes, twins)
+    vessel = vessel_side(roles)
+    outward = outward_normals(faces, vessel)
+    visible = {n for n in planes if hidden_reason(outward[n], vessel) is None}
+    declared = {f["name"]: f for f in target["faces"] if f.get("twin")}
+    twins = pair_twins(faces, roles, visible, declared,
+                       angle_tol_deg=max(PAIR_ANGLE_DEG, p.build_tol_deg),
+                       offset_tol_m=max(PAIR_OFFSET_M, p.build_tol_m))
+    refs = reference_planes(faces, roles, {n: planes[n] for n in visible}, twins)
+    pairing = pairing_notes(faces, roles, twins, {n: len(v) for n, v in lpts.items()},
+                            p.min_points)
     # Multibeam: georeference with the coarse setup, align in stages, segment below water.
     b, la = setup["boresight_deg"], setup["lever_arm_m"]
     r_m0 = georef.boresight_matrix(*np.deg2rad([b["roll"], b["pitch"], b["yaw"]]))
     lever0 = np.array([la["x"], la["y"], la["z"]], dtype=float)
-    ctx = georef.prepare(mbes, ins, p.max_gap_s)
+    ctx = georef.merge([georef.prepare(m, i, p.max_gap_s,
+                                       source="ins" if len(ins_l) == 1 else f"ins (pass {k + 1})")
+                        for k, (m, i) in enumerate(zip(mbes_l, ins_l, strict=True))])
     if ctx.dropped_pings:
         warnings.append(f"{ctx.dropped_pings} multibeam pings ({ctx.dropped_soundings} "
                         "soundings) fall in INS gaps or outside the INS span: dropped, "
@@ -148,12 +188,13 @@ def segment(lidar_enu, mbes: dict, ins: dict, setup: dict, target: dict,
                          "target design and the coarse setup")
     return Segmentation({f.name: f for f in faces}, roles, water, lpts, planes, lseg, ctx,
                         mfaces, r_m0, lever0, setup, p, warnings, twins, refs, align.r_m,
-                        align.lever)
+                        align.lever, pairing)
 
 
-def calibrate(lidar_enu, mbes: dict, ins: dict, setup: dict, target: dict,
+def calibrate(lidar_enu, mbes, ins, setup: dict, target: dict,
               params: PoolParams | Mapping | None = None, progress=None, cancel=None):
-    """Segment then solve; returns a :class:`~.result.PoolResult`."""
+    """Segment then solve (one pass or several, see :func:`segment`); returns a
+    :class:`~.result.PoolResult`."""
     from hydrosync_core.methods.pool_calibration.solve import solve
 
     seg = segment(lidar_enu, mbes, ins, setup, target, params,

@@ -1,0 +1,285 @@
+"""Pool calibration on targets it did not design (#24), with a second opinion beside it.
+
+Variants, each drawn at random (:func:`~hydrosync_core.methods.pool_calibration.
+simulate_target.prism_target` and ``random_config``): the patent's twin blocks as full
+prisms whose below-water prism has another height than the above-water one (coplanar sides,
+parallel tops, undersides and faces against the wall that no scanner sees), blocks on
+plinths, a horizontal design offset between twins, a missing block, explicit twin
+declarations; plus the module's own ``patent`` kind. Every pass also randomises the vessel
+motion, ranges, headings, noise levels, INS noise, the coarse boresight and lever arm.
+
+Two kinds of run:
+
+* **single** — one pass (one file set, one range);
+* **session** — four passes, each its own files and laser cloud, at different ranges and
+  headings, of one built target (same as-built errors), adjusted jointly
+  (``calibrate(..., mbes=[...], ins=[...])``), at the simulator's default noise.
+
+Beside the module's result, the **second opinion**: a plain joint point-to-plane adjustment
+of the six parameters on the *design* planes of the below-water and crossing faces, written
+here independently of the module (its own INS interpolation, sounding-to-face assignment and
+``scipy.optimize.least_squares`` with a soft-L1 loss), run on the same passes.
+
+Also the foreign passes (``/work/shared/data/foreign/pool``, skipped when absent): each pass
+alone, module and second opinion.
+
+Per variant: RMS rotation error (deg, angle of R_est R_trueᵀ) and lever error (mm) of both,
+their ratio, RMS and max |error/σ| per parameter, exit-3 (undetermined) count, how many
+outputs are further from the truth than the coarse input without a flag, and, for
+sessions, how many meet 0.02° / 2 mm on every parameter.
+
+Run: ``.venv/bin/python benchmarks/bench_pool_twins.py [--draws 30] [--sessions 10]``
+(full sizes take long on 2 cores; ``--draws 3 --sessions 2`` for a quick look).
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import time
+from dataclasses import replace
+from pathlib import Path
+
+import numpy as np
+from scipy.optimize import least_squares
+from scipy.spatial.transform import Rotation, Slerp
+
+from hydrosync_core.methods.pool_calibration.design import design_faces, inside_polygon
+from hydrosync_core.methods.pool_calibration.estimator import calibrate
+from hydrosync_core.methods.pool_calibration.params import PoolParams
+from hydrosync_core.methods.pool_calibration.simulate import (
+    PoolPassConfig,
+    random_config,
+    simulate_pool_pass,
+)
+from hydrosync_core.methods.pool_calibration.simulate_target import prism_target
+
+PARAMS = ("roll", "pitch", "yaw", "lever_x", "lever_y", "lever_z")
+FOREIGN = Path("/work/shared/data/foreign/pool")
+ROT_DEG, LEVER_MM = 0.02, 2.0
+VARIANTS = {
+    "taller twin": dict(different_heights=True),
+    "plinth+shift": dict(plinth=True, shift=0.15),
+    "missing block": dict(missing=True),
+    "declared": dict(declare=True),
+}
+NOISE_FIELDS = ("range_noise_m", "angle_noise_deg", "mbes_outlier_fraction", "laser_noise_m",
+                "laser_stray_fraction", "ins_attitude_noise_deg")
+
+
+# ------------------------------------------------------------------ second opinion
+def _euler_matrix(r, p, y):
+    return Rotation.from_euler("ZYX", [y, p, r]).as_matrix()
+
+
+def second_opinion(mbes_list, ins_list, setup: dict, target: dict,
+                   max_points: int = 30000) -> np.ndarray:
+    """Boresight (deg) and lever (m) from a plain point-to-plane fit on the design planes.
+
+    Independent of the module: INS interpolated here (linear position, Slerp attitude,
+    body FRD -> NED -> ENU), soundings assigned to the nearest design face (not above water)
+    whose polygon contains them, within a band narrowed 0.3 -> 0.1 -> 0.04 m around the
+    current estimate, then ``least_squares`` (soft-L1, f_scale 2 cm) on the distances.
+    """
+    ned2enu = np.array([[0.0, 1, 0], [1, 0, 0], [0, 0, -1]])
+    pos, rot, xs = [], [], []
+    for mbes, ins in zip(mbes_list, ins_list, strict=True):
+        t = np.asarray(ins["time"], float)
+        tp = np.asarray(mbes["time"], float)
+        ok = (tp >= t[0]) & (tp <= t[-1])
+        tp = tp[ok]
+        p = np.column_stack([np.interp(tp, t, np.asarray(ins[k], float)) for k in "enu"])
+        att = Rotation.from_euler("ZYX", np.deg2rad(np.column_stack(
+            [ins["heading"], ins["pitch"], ins["roll"]])))
+        pos.append(p)
+        rot.append(ned2enu @ Slerp(t, att)(tp).as_matrix())
+        xs.append(np.column_stack([mbes["x"], mbes["y"], mbes["z"]])[ok])
+    pos, rot, xs = np.concatenate(pos), np.concatenate(rot), np.concatenate(xs)
+    rng = np.random.default_rng(0)
+    if len(xs) > 4 * max_points:
+        pick = rng.choice(len(xs), 4 * max_points, replace=False)
+        pos, rot, xs = pos[pick], rot[pick], xs[pick]
+    water = float(target.get("water_level_m", 0.0))
+    faces = [f for f in design_faces(target) if f.z_min < water - 1e-6]
+    b, la = setup["boresight_deg"], setup["lever_arm_m"]
+    theta = np.array([*np.deg2rad([b["roll"], b["pitch"], b["yaw"]]),
+                      la["x"], la["y"], la["z"]])
+
+    def points(th, sel=slice(None)):
+        body = xs[sel] @ _euler_matrix(*th[:3]).T + th[3:]
+        return pos[sel] + np.einsum("nij,nj->ni", rot[sel], body)
+
+    for band in (0.3, 0.1, 0.04):
+        pts = points(theta)
+        best = np.full(len(pts), np.inf)
+        which = np.full(len(pts), -1)
+        for k, f in enumerate(faces):
+            d = np.abs(pts @ f.normal - f.d)
+            ok = (d < band) & (d < best) & inside_polygon(f, pts, margin=0.03)
+            best[ok], which[ok] = d[ok], k
+        sel = np.flatnonzero(which >= 0)
+        if len(sel) > max_points:
+            sel = np.sort(rng.choice(sel, max_points, replace=False))
+        normals = np.array([f.normal for f in faces])[which[sel]]
+        offsets = np.array([f.d for f in faces])[which[sel]]
+
+        def resid(th, sel=sel, normals=normals, offsets=offsets):
+            return np.einsum("ij,ij->i", points(th, sel), normals) - offsets
+
+        theta = least_squares(resid, theta, loss="soft_l1", f_scale=0.02,
+                              x_scale=[1e-3] * 3 + [1e-2] * 3).x
+    return np.array([*np.degrees(theta[:3]), *theta[3:]])
+
+
+# ------------------------------------------------------------------ scoring
+def _vec(bd: dict, la: dict) -> np.ndarray:
+    return np.array([bd["roll"], bd["pitch"], bd["yaw"], la["x"], la["y"], la["z"]], float)
+
+
+def _rot_err(a: np.ndarray, b: np.ndarray) -> float:
+    ra, rb = (_euler_matrix(*np.deg2rad(v[:3])) for v in (a, b))
+    return float(np.degrees(Rotation.from_matrix(ra @ rb.T).magnitude()))
+
+
+def _score(res, ref: np.ndarray, truth: dict, setup: dict) -> dict:
+    est = _vec(res.boresight_deg, res.lever_arm_m)
+    tru = _vec(truth["boresight_deg"], truth["lever_arm_m"])
+    coarse = _vec(setup["boresight_deg"], setup["lever_arm_m"])
+    j = res.joint
+    sig = (np.array([j.sigma_boresight_deg[k] for k in ("roll", "pitch", "yaw")]
+                    + [j.sigma_lever_arm_m[k] for k in "xyz"], float)
+           if j else np.full(6, np.nan))
+    err = est - tru
+    worse = [n for k, n in enumerate(PARAMS) if abs(err[k]) > abs(coarse[k] - tru[k])
+             and n not in res.flagged and n not in res.undetermined]
+    scale = np.array([1, 1, 1, 1000, 1000, 1000.0])
+    within = bool(np.all(np.abs(err * scale) <= np.array([ROT_DEG] * 3 + [LEVER_MM] * 3)))
+    return {"err": err, "z": err / sig, "rot": _rot_err(est, tru),
+            "lev": float(np.linalg.norm(err[3:]) * 1000),
+            "ref_rot": _rot_err(ref, tru), "ref_lev": float(np.linalg.norm((ref - tru)[3:])
+                                                            * 1000),
+            "exit3": bool(res.undetermined or res.contradicted), "worse": worse,
+            "within": within, "flagged": sorted(res.flagged),
+            "undetermined": sorted(res.undetermined)}
+
+
+def _params(cfg: PoolPassConfig) -> PoolParams:
+    return PoolParams(ins_sigma_deg=(cfg.ins_attitude_noise_deg,) * 3,
+                      ins_tau_s=cfg.ins_noise_tau_s, build_tol_m=cfg.build_tol_m,
+                      build_tol_deg=cfg.build_tol_deg)
+
+
+def _print(label: str, r: dict, seconds: float) -> None:
+    z = " ".join("   nan" if not np.isfinite(v) else f"{v:+6.2f}" for v in r["z"])
+    print(f"  {label:<22} rot {r['rot']:.4f}° lev {r['lev']:6.2f} mm | 2nd {r['ref_rot']:.4f}° "
+          f"{r['ref_lev']:6.2f} mm | e/σ {z} | undet {','.join(r['undetermined']) or '-'} "
+          f"flag {','.join(r['flagged']) or '-'}"
+          f"{' WORSE ' + ','.join(r['worse']) if r['worse'] else ''} {seconds:5.0f}s", flush=True)
+
+
+def _summary(label: str, runs: list[dict]) -> None:
+    if not runs:
+        return
+    rot = np.sqrt(np.mean([r["rot"] ** 2 for r in runs]))
+    lev = np.sqrt(np.mean([r["lev"] ** 2 for r in runs]))
+    rrot = np.sqrt(np.mean([r["ref_rot"] ** 2 for r in runs]))
+    rlev = np.sqrt(np.mean([r["ref_lev"] ** 2 for r in runs]))
+    z = np.array([r["z"] for r in runs])
+    rms = np.sqrt(np.nanmean(z**2, axis=0))
+    print(f"{label}: {len(runs)} runs; RMS rotation {rot:.4f}° (2nd opinion {rrot:.4f}°, ratio "
+          f"{rot / rrot:.2f}); RMS lever {lev:.2f} mm (2nd {rlev:.2f} mm, ratio {lev / rlev:.2f})")
+    print(f"  RMS e/σ {dict(zip(PARAMS, np.round(rms, 2).tolist(), strict=True))}; max |e/σ| "
+          f"{np.nanmax(np.abs(z)):.2f}; exit 3: {sum(r['exit3'] for r in runs)}; worse than "
+          f"coarse without a flag: {sum(bool(r['worse']) for r in runs)}; every parameter "
+          f"within {ROT_DEG}°/{LEVER_MM} mm: {sum(r['within'] for r in runs)}/{len(runs)}")
+
+
+# ------------------------------------------------------------------ runs
+def _single(variant: str, draw: int, rng) -> dict:
+    kind = "patent" if variant == "patent" else "prism"
+    cfg = random_config(rng, kind, 1)
+    if kind == "prism":
+        cfg = replace(cfg, target=prism_target(rng, water_level=0.0, **VARIANTS[variant]))
+    sim = simulate_pool_pass(cfg, seed=5000 + draw)
+    t0 = time.perf_counter()
+    res = calibrate(sim["lidar"], sim["mbes"], sim["ins"], sim["setup"], sim["target"],
+                    _params(cfg))
+    ref = second_opinion([sim["mbes"]], [sim["ins"]], sim["setup"], sim["target"])
+    r = _score(res, ref, sim["truth"], sim["setup"])
+    _print(f"{variant} #{draw}", r, time.perf_counter() - t0)
+    return r
+
+
+def _session(draw: int, rng, n_passes: int = 4) -> dict:
+    variant = list(VARIANTS)[draw % len(VARIANTS)]
+    base = random_config(rng, "prism", 1, target=prism_target(rng, **VARIANTS[variant]))
+    default = PoolPassConfig()
+    base = replace(base, **{k: getattr(default, k) for k in NOISE_FIELDS},
+                   build_seed=9000 + draw)
+    ranges = np.linspace(rng.uniform(3.5, 4.5), rng.uniform(6.0, 7.5), n_passes)
+    sims = [simulate_pool_pass(replace(base, ranges_m=(float(r),),
+                                       headings_deg=(float(rng.uniform(-8, 8)),)),
+                               seed=7000 + 10 * draw + k) for k, r in enumerate(ranges)]
+    t0 = time.perf_counter()
+    res = calibrate([s["lidar"] for s in sims], [s["mbes"] for s in sims],
+                    [s["ins"] for s in sims], sims[0]["setup"], sims[0]["target"],
+                    _params(base))
+    ref = second_opinion([s["mbes"] for s in sims], [s["ins"] for s in sims],
+                         sims[0]["setup"], sims[0]["target"])
+    r = _score(res, ref, sims[0]["truth"], sims[0]["setup"])
+    _print(f"session {variant} #{draw}", r, time.perf_counter() - t0)
+    return r
+
+
+def _foreign() -> list[dict]:
+    from hydrosync_core.importers.pool_json import read_setup_json, read_target_json
+    from hydrosync_core.importers.survey_csv import read_ins_csv, read_lidar_csv, read_mbes_csv
+
+    out = []
+    for d in sorted(FOREIGN.glob("pass_*")):
+        t0 = time.perf_counter()
+        mbes, ins = read_mbes_csv(d / "mbes.csv"), read_ins_csv(d / "ins.csv")
+        setup, target = read_setup_json(d / "setup.json"), read_target_json(d / "target.json")
+        res = calibrate(read_lidar_csv(d / "lidar.csv"), mbes, ins, setup, target)
+        ref = second_opinion([mbes], [ins], setup, target)
+        r = _score(res, ref, json.loads((d / "truth.json").read_text()), setup)
+        _print(d.name, r, time.perf_counter() - t0)
+        out.append(r)
+    return out
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--draws", type=int, default=30, help="single passes per variant")
+    parser.add_argument("--sessions", type=int, default=10, help="four-pass sessions")
+    parser.add_argument("--seed", type=int, default=24)
+    parser.add_argument("--variants", nargs="*", default=[*VARIANTS, "patent"])
+    parser.add_argument("--no-foreign", action="store_true")
+    args = parser.parse_args()
+    rng = np.random.default_rng(args.seed)
+    print("module (joint adjustment) vs second opinion (plain point-to-plane on the design "
+          "planes); e/σ for roll pitch yaw x y z")
+    if not args.no_foreign:
+        if FOREIGN.is_dir():
+            print("foreign passes:")
+            _summary("foreign passes", _foreign())
+        else:
+            print(f"foreign passes skipped: {FOREIGN} is absent")
+    results = {}
+    for variant in args.variants:
+        print(f"single passes, {variant}:")
+        results[variant] = [_single(variant, k, rng) for k in range(args.draws)]
+    print("four-pass sessions (default noise, a laser cloud per pass):")
+    sessions = [_session(k, rng) for k in range(args.sessions)]
+    print()
+    for variant, runs in results.items():
+        _summary(f"single, {variant}", runs)
+    _summary("four-pass sessions", sessions)
+    if sessions:
+        share = np.mean([r["within"] for r in sessions])
+        print(f"session target (every parameter within {ROT_DEG}°/{LEVER_MM} mm in >= 90 %): "
+              f"{100 * share:.0f} % -> {'met' if share >= 0.9 else 'NOT met'}")
+
+
+if __name__ == "__main__":
+    main()

@@ -10,7 +10,9 @@
   it into view (the pool parameter column cut off on the right);
 * **overlap** — two sibling widgets of one layout drawn over each other;
 * **legend** — a plot legend cut by its plot or covering most of it ("forwa/smoo"),
-  and plots too small to read.
+  and plots too small to read;
+* **raw label** — a table header that is a program's key (``sd_heading``, ``psi_deg``)
+  instead of words with a unit.
 
 It needs no screen of its own: run it offscreen on a window resized to 1366×768 (see
 ``tests/gui/test_layout_harness.py``). Every problem names the widget by its path of
@@ -19,15 +21,18 @@ object names or classes, so a failure points to the code that laid it out.
 
 from __future__ import annotations
 
+import re
 from dataclasses import dataclass
 
-from PySide6.QtCore import QRect
+from PySide6.QtCore import QRect, Qt
 from PySide6.QtWidgets import (
     QAbstractButton,
+    QAbstractItemView,
     QAbstractScrollArea,
     QAbstractSpinBox,
     QComboBox,
     QGroupBox,
+    QHeaderView,
     QLabel,
     QLineEdit,
     QTabBar,
@@ -190,6 +195,26 @@ def _plot_problems(root: QWidget) -> list[Problem]:
     return out
 
 
+RAW_KEY = re.compile(r"^[a-z][a-z0-9]*(_[a-z0-9]+)+\b")
+
+
+def _raw_headers(root: QWidget) -> list[Problem]:
+    """Table headers that read like program keys (snake_case) rather than words."""
+    out = []
+    views = [w for w in (root, *root.findChildren(QAbstractItemView))
+             if isinstance(w, QAbstractItemView) and not isinstance(w, QHeaderView)]
+    for view in views:
+        model = view.model()
+        if model is None or (view is not root and not _visible(view, root)):
+            continue
+        for column in range(model.columnCount()):
+            text = str(model.headerData(column, Qt.Orientation.Horizontal) or "")
+            if RAW_KEY.match(text):
+                out.append(Problem("raw label", widget_path(view, root),
+                                   f"column header '{text}' is a key, not words"))
+    return out
+
+
 def check_layout(root: QWidget) -> list[Problem]:
     """Every layout problem of the visible widgets under *root* (see the module doc)."""
     problems: list[Problem] = []
@@ -203,4 +228,5 @@ def check_layout(root: QWidget) -> list[Problem]:
             problems += _outside(widget, root)
         problems += _overlaps(widget, root)
     problems += _plot_problems(root)
+    problems += _raw_headers(root)
     return problems

@@ -11,12 +11,34 @@ from dataclasses import dataclass, field
 
 from reportlab.lib.pagesizes import A4
 from reportlab.lib.units import mm
+from reportlab.pdfbase.pdfmetrics import stringWidth
 from reportlab.pdfgen import canvas as rl_canvas
 from reportlab.platypus import BaseDocTemplate, Frame, KeepTogether, PageTemplate, Paragraph, Table
 
 from hydrosync_core.i18n import tr
 from hydrosync_core.progress import check_cancel, report
 from hydrosync_core.report.styles import ACCENT, FONT, MUTED, PAGE_MARGIN, RULE
+
+
+def fit_text(text: str, width: float, font: str, size: float) -> str:
+    """*text* cut at a word boundary with "…" so that it fits *width* points.
+
+    A long project name was cut at a fixed number of characters, mid-word, in the running
+    header and footer.
+    """
+    if stringWidth(text, font, size) <= width:
+        return text
+    words = text.split(" ")
+    while len(words) > 1:
+        words.pop()
+        candidate = " ".join(words).rstrip(" \u2014-,;:") + " \u2026"
+        if stringWidth(candidate, font, size) <= width:
+            return candidate
+    # One word longer than the line: cut it (rare: a path without spaces).
+    cut = text
+    while cut and stringWidth(cut + "\u2026", font, size) > width:
+        cut = cut[:-1]
+    return cut + "\u2026"
 
 
 class NumberedCanvas(rl_canvas.Canvas):
@@ -51,10 +73,14 @@ class NumberedCanvas(rl_canvas.Canvas):
         self.saveState()
         self.setFont(FONT, 8)
         self.setFillColor(MUTED)
-        self.drawRightString(width - PAGE_MARGIN, 10 * mm, tr(f"page {page} of {total}"))
-        self.drawString(PAGE_MARGIN, 10 * mm, self.footer_left[:110])
+        number = tr(f"page {page} of {total}")
+        self.drawRightString(width - PAGE_MARGIN, 10 * mm, number)
+        room = width - 2 * PAGE_MARGIN
+        left_room = room - stringWidth(number, FONT, 8) - 12
+        self.drawString(PAGE_MARGIN, 10 * mm, fit_text(self.footer_left, left_room, FONT, 8))
         if page > 1:  # the cover carries its own title block
-            self.drawString(PAGE_MARGIN, height - 11 * mm, self.header_text[:120])
+            self.drawString(PAGE_MARGIN, height - 11 * mm,
+                            fit_text(self.header_text, room, FONT, 8))
             self.setStrokeColor(RULE)
             self.setLineWidth(0.5)
             self.line(PAGE_MARGIN, height - 12.5 * mm, width - PAGE_MARGIN, height - 12.5 * mm)

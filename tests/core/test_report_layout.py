@@ -204,3 +204,19 @@ def test_band_of_many_curves_is_one_shaded_polygon_with_a_legend_entry():
     assert sum(isinstance(s, Polygon) for s in shapes) == 1
     strings = [s.text for s in drawing.contents if hasattr(s, "text")]
     assert "500 lines: range" in strings and "median" in strings
+
+
+def test_running_header_and_footer_cut_long_names_at_a_word():
+    """The running header cut a long project name mid-word at a fixed character count."""
+    from reportlab.pdfbase.pdfmetrics import stringWidth
+
+    from hydrosync_core.report.template import fit_text
+
+    name = ("HydroSync report \u2014 Harbour approaches multibeam patch test with the "
+            "launch Sounder II and the Seapath 380 motion sensor, November 2026")
+    text = fit_text(name, 300, FONT, 8)
+    assert stringWidth(text, FONT, 8) <= 300 and text.endswith(" \u2026")
+    assert name.startswith(text[:-2]) and name[len(text) - 2] == " "  # ends on a word
+    assert fit_text("short", 300, FONT, 8) == "short"
+    long_word = fit_text("x" * 200, 100, FONT, 8)
+    assert stringWidth(long_word, FONT, 8) <= 100 and long_word.endswith("\u2026")

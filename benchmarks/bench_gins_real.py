@@ -3,9 +3,11 @@
 ``../shared/data/comma2k19-ex1`` (60 s highway, phone IMU 104 Hz, u-blox 10 Hz, the
 provider's fused pose at 20 Hz — not independent) and
 ``../shared/data/rtkexplorer-gnss-imu/drive_0708`` (9 min, MEMS IMU 100 Hz, real-time RTK
-4 Hz, no reference), each through :mod:`hydrosync_core.methods.gins_smoother.recordings`
-with no hand edits: the recording's assumed IMU grade and options, the GNSS−IMU clock
-offset estimated from the smoothed residuals, moving alignment from the GNSS course.
+4 Hz, no reference) and ``walk_0827`` (2 min hand-held, the same sensors), each through
+:mod:`hydrosync_core.methods.gins_smoother.recordings` with no hand edits: the recording's
+assumed IMU grade and options, the GNSS−IMU clock offset estimated from the turns
+(:mod:`.clock`, no filter pass; the walk keeps its own timing) beside the second opinion of
+the smoothed-residual grid (13 smoother runs), the alignment chosen by ``auto``.
 
 Prints per recording: the clock offset; GNSS residual RMS N/E/D (trajectory with lever arm
 minus fix) forward and smoothed; for comma2k19 the error RMS / mean against the reference;
@@ -19,7 +21,8 @@ file's σ) and the default (``auto``: checked against the residuals and re-estim
 they disagree; the line printed says what the σ were computed from):
 
 * GNSS innovations normalised by their own predicted std (``ν/√S`` per N/E/D): RMS (1 if
-  the noise model is right) and autocorrelation at 1 s (0 if right);
+  the noise model is right), autocorrelation at 1 s and at one fix, and the Ljung–Box
+  p-value over 10 fixes (white if right);
 * drive (RTK fixes ≈ cm truth): at every fix removed by the outage test, the error of the
   forward and smoothed position (lever arm applied) over ``√(σ_trajectory² + σ_fix²)`` —
   share within 1.96 and RMS per N/E/D.
@@ -41,6 +44,8 @@ from hydrosync_core.methods.gins_smoother.params import GinsParams
 DATA = Path(__file__).resolve().parents[1].parent / "shared" / "data"
 SETS = (("comma2k19-ex1", DATA / "comma2k19-ex1", R.read_comma2k19),
         ("rtkexplorer drive_0708", DATA / "rtkexplorer-gnss-imu" / "drive_0708",
+         R.read_rtkexplorer),
+        ("rtkexplorer walk_0827", DATA / "rtkexplorer-gnss-imu" / "walk_0827",
          R.read_rtkexplorer))
 
 
@@ -54,8 +59,11 @@ def _innov(check: dict) -> str:
     if check["rms"] is None:
         return "—"
     rho = " ".join("  —  " if r is None else f"{r:+.2f}" for r in check["rho_1s"])
+    lag1 = " ".join(f"{r:+.2f}" for r in check["rho_lag1"])
+    lb = " ".join(f"{p:.0e}" for p in check["ljung_box_p"])
     return ("RMS N/E/D " + " ".join(f"{v:5.2f}" for v in check["rms"])
-            + f"   autocorrelation 1 s {rho}   ({check['fixes']} fixes)")
+            + f"   autocorrelation 1 s {rho}, one fix {lag1}, Ljung–Box p {lb}   "
+            f"({check['fixes']} fixes)")
 
 
 def _z_cells(z: np.ndarray) -> str:
@@ -95,7 +103,12 @@ def main() -> int:
         t0 = time.perf_counter()
         rec = reader(folder)
         t_read = time.perf_counter() - t0
-        shift, _grid = R.estimate_time_shift(rec)
+        shift, est = R.estimate_time_shift(rec)
+        t_clock = time.perf_counter() - t0 - t_read
+        t2 = time.perf_counter()
+        grid_shift, _grid = R.time_shift_by_residuals(rec, half_range_s=0.3 if est else 0.6,
+                                                      step_s=0.05 if est else 0.1)
+        t_grid = time.perf_counter() - t2
         rec = R.shifted(rec, shift)
         t1 = time.perf_counter()
         res = run_gins(rec.imu, rec.gnss, rec.config, GinsParams.from_dict(rec.params))
@@ -103,11 +116,12 @@ def main() -> int:
         span = rec.imu.time[-1] - rec.imu.time[0]
         print(f"\n=== {label}: {rec.imu.time.size} IMU epochs ({rec.imu.rate_hz:.0f} Hz), "
               f"{rec.gnss.time.size} GNSS fixes, {span:.0f} s ===")
-        print(f"read {t_read:.2f} s, clock-offset search {t1 - t0 - t_read:.1f} s, "
-              f"one forward+smoothed run {t_run:.2f} s")
-        print(f"GNSS−IMU clock offset estimated: {shift:+.3f} s; alignment: "
-              f"{res.alignment.get('method')}, {res.alignment.get('levelling')}; start "
-              f"{res.alignment['start_time'] - rec.imu.time[0]:.1f} s at "
+        print(f"read {t_read:.2f} s, clock offset {t_clock:.2f} s, one forward+smoothed "
+              f"run {t_run:.2f} s (second opinion: residual grid {t_grid:.0f} s)")
+        print("clock: " + (est.text() if est is not None else "the recording's own timing")
+              + f"; residual-grid minimum {grid_shift * 1e3:+.0f} ms")
+        print(f"alignment: {res.alignment.get('method')}, {res.alignment.get('levelling')}; "
+              f"start {res.alignment['start_time'] - rec.imu.time[0]:.1f} s at "
               f"{res.alignment.get('speed_mps', 0):.1f} m/s")
         print("GNSS residual RMS N/E/D (m)  forward " + _rms(res.gnss["residual_forward"])
               + "   smoothed " + _rms(res.gnss["residual"]))
@@ -122,6 +136,13 @@ def main() -> int:
                 cells = [f"{a[k]['rms']:6.3f}({a[k]['mean']:+6.3f})" for k in
                          ("north", "east", "down", "vn", "ve", "vd", "roll", "pitch", "yaw")]
                 print(f"  {name:9} " + " ".join(f"{c:>13}" for c in cells))
+            print("  within 1.96σ (%), as is / with the reference's constant offset removed")
+            for name in ("forward", "smoothed"):
+                c, c0 = ev[name]["coverage"]["all"], ev[name]["coverage"]["offset_removed"]
+                print(f"  {name:9} " + " ".join(
+                    f"{k} {100 * c[k]['within_95']:.0f}/{100 * c0[k]['within_95']:.0f}"
+                    for k in ("north", "east", "down", "vn", "ve", "vd", "roll", "pitch",
+                              "yaw")))
         sigma_honesty(rec, rec.reference is None)
         print("outage test: largest distance to the removed fixes (m), median / max over "
               "windows")

@@ -20,7 +20,7 @@ from PySide6.QtWidgets import (
     QWidget,
 )
 
-from hydrosync_core.methods.gins_smoother.params import GinsParams
+from hydrosync_core.methods.gins_smoother.params import RAN, GinsParams
 from hydrosync_core.methods.gins_smoother.project_run import GNSS, OUTAGES, RESULT
 from hydrosync_core.params import stored
 from hydrosync_gui.analysis_panel import AnalysisPanel, plot_widget
@@ -95,8 +95,10 @@ class GinsPanel(AnalysisPanel):
         attrs = project.attrs(RESULT)
         counts = json.loads(attrs["counts"])
         ev = json.loads(attrs["evaluation"])
-        text = (f"{counts['imu_epochs']} IMU epochs, {counts['gnss_used']} of "
-                f"{counts['gnss_epochs']} GNSS fixes used, {counts['states']} states.")
+        text = (f"Ran: {counts.get('ran', RAN[True])}; {counts['imu_epochs']} IMU epochs, "
+                f"{counts['gnss_used']} of {counts['gnss_epochs']} GNSS fixes used, "
+                f"{counts['states']} states; alignment: "
+                f"{json.loads(attrs['alignment']).get('method')}.")
         model = json.loads(attrs.get("gnss_model", "{}"))
         if model.get("summary"):
             text += "\nσ from: " + model["summary"]

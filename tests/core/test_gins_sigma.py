@@ -200,13 +200,13 @@ def test_ljung_box_tells_white_from_correlated():
 
     rng = np.random.default_rng(3)
     w = rng.normal(size=600)
-    r1, p, lags = ljung_box(w)
-    assert lags == 10 and p > 0.01 and abs(r1) < 0.15
+    r1, p, lags, rmax = ljung_box(w)
+    assert lags == 10 and p > 0.01 and abs(r1) < 0.15 and rmax < 0.15
     ar = np.empty(600)
     ar[0] = w[0]
     for k in range(1, 600):
         ar[k] = 0.3 * ar[k - 1] + w[k]
-    r1, p, _ = ljung_box(ar)
+    r1, p, _, _ = ljung_box(ar)
     assert p < 1e-6 and 0.2 < r1 < 0.4
 
 

@@ -232,6 +232,7 @@ TAU_GRID = (3.0, 10.0, 30.0, 100.0, 300.0, 1000.0, 3000.0)
 #: below which they are reported as still correlated.
 LB_LAGS = 10
 LB_ALPHA = 0.01
+LB_RHO_MIN = 0.1
 
 
 def _lag_pairs(tt: np.ndarray, lag_s: float) -> tuple[np.ndarray, np.ndarray]:
@@ -270,25 +271,34 @@ def innovation_check(gnss_out: dict, lag_s: float = 1.0) -> dict:
     return {"fixes": int(nu.shape[0]), "rms": np.sqrt(np.mean(u * u, axis=0)).tolist(),
             "rho_1s": rho, "nll": float(np.mean(0.5 * (logdet + m))),
             "rho_lag1": [r[0] for r in lb], "ljung_box_p": [r[1] for r in lb],
-            "ljung_box_lags": lb[0][2]}
+            "ljung_box_lags": lb[0][2], "rho_max": [r[3] for r in lb]}
 
 
-def ljung_box(u: np.ndarray, max_lags: int = LB_LAGS) -> tuple[float, float, int]:
+def still_correlated(check: dict) -> bool:
+    """Innovations correlated fix to fix, significantly (Ljung–Box p < :data:`LB_ALPHA`)
+    *and* materially (some |ρ_l| ≥ :data:`LB_RHO_MIN`; thousands of fixes make a ρ of
+    0.03 significant, which changes no σ)."""
+    return any(p == p and p < LB_ALPHA and r >= LB_RHO_MIN
+               for p, r in zip(check.get("ljung_box_p", []), check.get("rho_max", []),
+                               strict=False))
+
+
+def ljung_box(u: np.ndarray, max_lags: int = LB_LAGS) -> tuple[float, float, int, float]:
     """Whiteness of a series of normalised innovations (consecutive fixes): the
-    autocorrelation at lag 1 and the Ljung–Box p-value over ``L = min(max_lags, n/5)``
-    lags, ``Q = n(n+2) Σ ρ_l²/(n−l)`` against χ²(L) (small p: correlated — a Kalman
-    filter with the right model has white innovations)."""
+    autocorrelation at lag 1, the Ljung–Box p-value over ``L = min(max_lags, n/5)`` lags,
+    ``Q = n(n+2) Σ ρ_l²/(n−l)`` against χ²(L) (small p: correlated — a Kalman filter with
+    the right model has white innovations), L, and the largest |ρ_l|."""
     from scipy.stats import chi2
 
     n = u.size
     L = int(min(max_lags, n // 5))
     if L < 1:
-        return float("nan"), float("nan"), 0
+        return float("nan"), float("nan"), 0, float("nan")
     e = u - u.mean()
     v = float(e @ e)
     rho = np.array([float(e[:-k] @ e[k:]) / v for k in range(1, L + 1)])
     q = n * (n + 2) * float(np.sum(rho ** 2 / (n - np.arange(1, L + 1))))
-    return float(rho[0]), float(chi2.sf(q, L)), L
+    return float(rho[0]), float(chi2.sf(q, L)), L, float(np.max(np.abs(rho)))
 
 
 def _consistent(check: dict) -> bool:
@@ -397,12 +407,13 @@ def _model_summary(info: dict) -> str:
         text = (f"normalised GNSS innovations RMS N/E/D {f3(chk['rms'])}"
                 + (f", autocorrelation at 1 s ≤ {max(rho):.2f}" if rho else ""))
         p = [x for x in chk.get("ljung_box_p", []) if x == x]
-        if p and min(p) < LB_ALPHA:
+        if p and still_correlated(chk):
             text += (f", still correlated fix to fix (lag 1 {f3(chk['rho_lag1'])}, "
                      f"Ljung–Box p {'/'.join(f'{x:.0e}' for x in chk['ljung_box_p'])}: σ may "
                      "be optimistic)")
         elif p:
-            text += f", white (Ljung–Box p ≥ {min(p):.2g})"
+            text += (f", white (Ljung–Box p ≥ {min(p):.2g}, |ρ| ≤ "
+                     f"{max(chk['rho_max']):.2f} over {chk['ljung_box_lags']} fixes)")
         return text
     if not info["estimated"]:
         return ("GNSS σ from the file" + (f" ×{info['gnss_std_scale']:g}"

@@ -278,8 +278,12 @@ def _joint(seg, p, mfaces, r_a, l_a, cancel):
                        covariance=False, huber_m=p.huber_m, cancel=cancel)
         mfaces = _resegment(seg, p, first.r_m, first.lever, cancel)
         obs = _joint_obs(seg, mfaces, p.min_soundings)
-        fit = adjust(seg.ctx, obs, first.r_m, first.lever,
-                     fix=structural_fix(seg.roles, obs), **kw)
+        # No structural hold here: without a horizontal face the vessel's roll and pitch
+        # still tie lever z to the wall and the obliques; the data decide (singular normal
+        # matrix, or σ not below the coarse accuracy). Holding it at a coarse value off by
+        # up to the coarse accuracy biased the angles correlated with it (#24: single passes
+        # without a visible top 2-20× worse than a plain point-to-plane fit).
+        fit = adjust(seg.ctx, obs, first.r_m, first.lever, fix={}, **kw)
     except (ValueError, np.linalg.LinAlgError) as exc:
         return None, obs, mfaces, [f"joint adjustment failed ({exc}); the seed solution is "
                                    "reported"]

@@ -11,8 +11,9 @@ solutions; the joint adjustment is repeated once on the points re-selected aroun
 solution.
 
 Undetermined parameters (never a value fitted from insufficient geometry): a parameter
-that no face can determine (lever_z without a below-water block top with a twin, a
-singular normal matrix) or whose σ from the data exceeds the accuracy of the coarse setup
+that no face can determine (a singular normal matrix; the patent's seed also needs a
+below-water block top with a twin for lever_z, the joint adjustment only needs the data to
+fix it) or whose σ from the data exceeds the accuracy of the coarse setup
 keeps its coarse value, gets a NaN σ and a named reason (``PoolResult.undetermined``);
 the coarse error of such a parameter is propagated into the σ of the others. A parameter
 whose σ exceeds ``max_sigma_deg``/``max_sigma_m`` is flagged (``PoolResult.flagged``).

@@ -15,7 +15,14 @@ $(STAMP): pyproject.toml scripts/install-system-packages.sh
 	$(BIN)/python -m hydrosync_core.warmup
 	touch $(STAMP)
 
-install: $(STAMP)
+# Qt translation catalogues: resources/i18n/*.ts compiled to .qm (the GUI compiles a
+# missing or older one itself, into the temporary folder).
+QM := $(patsubst %.ts,%.qm,$(wildcard resources/i18n/*.ts))
+
+%.qm: %.ts $(STAMP)
+	$(BIN)/pyside6-lrelease -silent $< -qm $@
+
+install: $(STAMP) $(QM)
 
 demo: $(STAMP)
 	$(BIN)/hydrosync demo --out $(OUT)
@@ -26,7 +33,7 @@ test: $(STAMP)
 	if command -v xvfb-run >/dev/null; then \
 	  QT_QPA_PLATFORM=xcb xvfb-run -a $(BIN)/python -m pytest -q -m gl; \
 	fi
-	QT_QPA_PLATFORM=offscreen $(BIN)/python -m pytest -q
+	QT_QPA_PLATFORM=offscreen $(BIN)/python -m pytest -q -n auto --dist loadgroup
 
 bench: $(STAMP)
 	$(BIN)/python benchmarks/run_all.py

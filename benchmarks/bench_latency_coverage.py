@@ -45,7 +45,7 @@ def main() -> None:
         results = {est: estimate_latency(day["gnss"], day["attitude"], day["lines"],
                                          cfg.lever_arm_m, {"estimator": est})
                    for est in ESTIMATORS}
-        # estimator="auto" keeps the smaller-σ of qi2010 and weighted (same rule as api._auto)
+        # estimator="auto" keeps the smaller-σ of qi2010 and weighted (same rule as estimate._auto)
         results["auto"] = min((results["qi2010"], results["weighted"]), key=lambda r: (
             r.uncertainty_s if r.converged and np.isfinite(r.uncertainty_s) else np.inf))
         for est, res in results.items():

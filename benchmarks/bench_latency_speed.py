@@ -19,7 +19,7 @@
   shared machine whose speed wanders (the same scan took 60–77 s within one hour);
 * the pre-v2 estimator (every candidate interpolated: ``correlation_curve_direct``) for the
   "identical to today's" check: final and per-line Δt must agree to 0.1 ms;
-* auto with the weighted pass windowed (``api.WINDOWED_SCAN = True``, opt-in) against the
+* auto with the weighted pass windowed (``passes.WINDOWED_SCAN = True``, opt-in) against the
   default auto, which scans every candidate of every pass;
 * the CLI's qi2010 and auto results against *reference* (``--reference``; by default
   ``reference/latency_speed_day.json``: the default day's results before the auto
@@ -44,9 +44,10 @@ from pathlib import Path
 import numpy as np
 
 from hydrosync_core.importers.survey_csv import read_lines_csv
-from hydrosync_core.methods.latency import api, fastscan
-from hydrosync_core.methods.latency.fastcsv import read_attitude_csv, read_gnss_csv
+from hydrosync_core.methods.latency import fastscan, passes
+from hydrosync_core.methods.latency.estimate import estimate_latency
 from hydrosync_core.methods.latency.heave import total_heave_deg
+from hydrosync_core.methods.latency.readers import read_attitude_csv, read_gnss_csv
 from hydrosync_core.methods.latency.simulate import DayConfig, simulate_day, write_day_csv
 
 CFG = dict(latency_s=0.123, line_s=120.0, run_in_s=10.0, turn_s=30.0, gnss_hz=10.0,
@@ -215,16 +216,16 @@ def main() -> None:
     auto_wall, auto_rss, auto_cpu, auto_doc, auto_med = summary(auto_runs)
 
     params = {"range_s": (-1.0, 1.0), "step_s": args.step, "estimator": "qi2010"}
-    res, t_est, c_est, m_est = timed(args.repeat, lambda: api.estimate_latency(
+    res, t_est, c_est, m_est = timed(args.repeat, lambda: estimate_latency(
         gnss, att, lines, arm, params))
-    auto, t_auto, c_auto, m_auto = timed(args.repeat, lambda: api.estimate_latency(
+    auto, t_auto, c_auto, m_auto = timed(args.repeat, lambda: estimate_latency(
         gnss, att, lines, arm, {**params, "estimator": "auto"}))
-    api.WINDOWED_SCAN = True  # the opt-in windowed pass, against the default full scans
+    passes.WINDOWED_SCAN = True  # the opt-in windowed pass, against the default full scans
     try:
-        auto_full, t_auto_full, c_auto_full, _ = timed(1, lambda: api.estimate_latency(
+        auto_full, t_auto_full, c_auto_full, _ = timed(1, lambda: estimate_latency(
             gnss, att, lines, arm, {**params, "estimator": "auto"}))
     finally:
-        api.WINDOWED_SCAN = False
+        passes.WINDOWED_SCAN = False
     auto_line_diff = max(max(abs(a.latency_s - b.latency_s), abs(a.uncertainty_s
                                                                   - b.uncertainty_s))
                          for a, b in zip(auto.lines, auto_full.lines, strict=True)
@@ -237,7 +238,7 @@ def main() -> None:
     fastscan.available = lambda: False  # the pre-v2 evaluation: every candidate interpolated
     try:
         t0 = time.perf_counter()
-        old = api.estimate_latency(gnss, att, lines, arm, params)
+        old = estimate_latency(gnss, att, lines, arm, params)
         t_old = time.perf_counter() - t0
     finally:
         fastscan.available = available

@@ -13,10 +13,15 @@ removes the temporary; a process killed mid-save leaves its temporary behind, an
 from __future__ import annotations
 
 import contextlib
+import errno
+import functools
+import hashlib
 import json
 import logging
 import os
 import re
+import shutil
+import socket
 import stat
 import tempfile
 import time
@@ -26,7 +31,7 @@ from pathlib import Path
 from typing import IO
 
 from hydrosync_core import interrupts
-from hydrosync_core.errors import InputError
+from hydrosync_core.errors import DiskFullError, InputError
 
 notice_log = logging.getLogger("hydrosync.notice")
 """Things the user should hear about that are not errors (stale temporaries removed)."""
@@ -35,12 +40,62 @@ LEGACY_TMP_AGE_S = 120.0
 """A pre-lock ``NAME.tmp`` untouched for this long is stale (its writer is gone)."""
 
 
+def _read_first_line(path: str) -> str:
+    try:
+        with open(path, encoding="ascii", errors="replace") as fh:
+            return fh.readline().strip()
+    except OSError:
+        return ""
+
+
+def _short_hash(text: str) -> str:
+    return hashlib.sha256(text.encode("utf-8", "replace")).hexdigest()[:8]
+
+
+@functools.cache
+def kernel_tag() -> str:
+    """8 hex digits naming the running kernel: its boot id (Linux), else the host name.
+
+    Processes under one kernel (containers included) see one ``flock`` table.
+    """
+    boot = _read_first_line("/proc/sys/kernel/random/boot_id")
+    return _short_hash(boot or f"host:{socket.gethostname()}")
+
+
+@functools.cache
+def machine_tag() -> str:
+    """8 hex digits naming where our pids mean something: kernel and pid namespace.
+
+    Two processes with the same tag see each other's pids, so ``pid_alive`` is an answer
+    between them; a pid from another tag (another machine sharing the folder, another
+    container, a Dask worker on another node) says nothing here.
+    """
+    try:
+        namespace = str(os.stat("/proc/self/ns/pid").st_ino)
+    except OSError:
+        namespace = ""
+    return _short_hash(f"{kernel_tag()}:{namespace}")
+
+
+@functools.cache
+def boot_time() -> float:
+    """When the running kernel booted (UNIX s; 0 when unknown)."""
+    try:
+        with open("/proc/stat", encoding="ascii") as fh:
+            for line in fh:
+                if line.startswith("btime "):
+                    return float(line.split()[1])
+    except (OSError, ValueError):
+        pass
+    return 0.0
+
+
 def temp_prefix(target: Path) -> str:
     return f".{target.name}."
 
 
 def temp_suffix(pid: int | None = None) -> str:
-    return f".{os.getpid() if pid is None else pid}.tmp"
+    return f".{machine_tag()}-{os.getpid() if pid is None else pid}.tmp"
 
 
 def make_temp(target: Path) -> Path:
@@ -75,17 +130,32 @@ def _human(nbytes: int) -> str:
     return f"{size:.1f} GB"
 
 
-def clean_stale_temporaries(target: str | os.PathLike, *, legacy: bool = False) -> list[str]:
-    """Remove temporaries of *target* left by processes that no longer run; say so.
+BREAK_LOCK = False
+"""``hydrosync --break-lock``: locks and temporaries of another machine or container,
+older than :data:`FOREIGN_MIN_AGE_S`, are removed (with a note) instead of reported."""
 
-    ``.NAME.XXXXXXXX.PID.tmp`` files are removed when process PID is gone. With
-    *legacy* (the caller holds the project's write lock) an old-style ``NAME.tmp`` not
-    modified for :data:`LEGACY_TMP_AGE_S` seconds is removed too. Returns (and logs on
-    ``hydrosync.notice``) one message per file removed; never raises.
+FOREIGN_MIN_AGE_S = 60.0
+"""A lock or temporary of another machine younger than this is a save in progress: it is
+neither reported nor broken."""
+
+_TEMP_NAME = r"[A-Za-z0-9_]+\.(?:(?P<tag>[0-9a-f]{8})-)?(?P<pid>\d+)\.tmp$"
+
+
+def clean_stale_temporaries(target: str | os.PathLike, *, legacy: bool = False) -> list[str]:
+    """Remove temporaries of *target* whose writer is proven gone; report the others.
+
+    ``.NAME.XXXXXXXX.TAG-PID.tmp`` files written under our :func:`machine_tag` are
+    removed when process PID is gone. Those of another machine or container (another
+    tag, or no tag: an older HydroSync) cannot be judged from here: older than
+    :data:`FOREIGN_MIN_AGE_S` they are reported, and removed only with
+    :data:`BREAK_LOCK`. With *legacy* (the caller holds the project's write lock) an
+    old-style ``NAME.tmp`` not modified for :data:`LEGACY_TMP_AGE_S` seconds is removed
+    too. Returns (and logs on ``hydrosync.notice``) one message per file removed or
+    reported; never raises.
     """
     target = Path(target)
     folder = target.parent if str(target.parent) else Path(".")
-    pattern = re.compile(r"^" + re.escape(temp_prefix(target)) + r"[A-Za-z0-9_]+\.(\d+)\.tmp$")
+    pattern = re.compile(r"^" + re.escape(temp_prefix(target)) + _TEMP_NAME)
     messages: list[str] = []
     try:
         entries = list(os.scandir(folder))
@@ -93,30 +163,52 @@ def clean_stale_temporaries(target: str | os.PathLike, *, legacy: bool = False) 
         return messages
     for entry in entries:
         match = pattern.match(entry.name)
-        stale_pid = None
-        if match:
-            pid = int(match.group(1))
-            if pid == os.getpid() or pid_alive(pid):
-                continue
-            stale_pid = pid
-        elif not (legacy and entry.name == f"{target.name}.tmp"):
+        if not match and not (legacy and entry.name == f"{target.name}.tmp"):
             continue
         try:
             info = entry.stat(follow_symlinks=False)
-            if not stat.S_ISREG(info.st_mode):
-                continue
-            if stale_pid is None and time.time() - info.st_mtime < LEGACY_TMP_AGE_S:
-                continue
-            os.unlink(entry.path)
         except OSError:
             continue
-        who = (f"by HydroSync process {stale_pid}, which ended before finishing its save"
-               if stale_pid is not None else "by an interrupted save of an older HydroSync")
-        message = (f"removed the stale temporary file {entry.name} ({_human(info.st_size)}) "
-                   f"left beside {target.name} {who}")
-        notice_log.warning("%s", message)
-        messages.append(message)
+        if not stat.S_ISREG(info.st_mode):
+            continue
+        message = _judge_temporary(entry, info, match, target)
+        if message:
+            notice_log.warning("%s", message)
+            messages.append(message)
     return messages
+
+
+def _judge_temporary(entry: os.DirEntry, info: os.stat_result, match: re.Match | None,
+                     target: Path) -> str | None:
+    """Remove one temporary if its writer is proven gone; the message, or None."""
+    age = time.time() - info.st_mtime
+    if match is None:  # NAME.tmp of an older HydroSync, the project lock held
+        if age < LEGACY_TMP_AGE_S:
+            return None
+        who = "by an interrupted save of an older HydroSync"
+    else:
+        pid, tag = int(match.group("pid")), match.group("tag")
+        if tag == machine_tag():
+            if pid == os.getpid() or pid_alive(pid):
+                return None
+            who = f"by HydroSync process {pid}, which ended before finishing its save"
+        else:
+            if age < FOREIGN_MIN_AGE_S:
+                return None
+            where = ("another machine or container" if tag else
+                     "an older HydroSync, which did not say on which machine")
+            if not BREAK_LOCK:
+                return (f"left alone the temporary file {entry.name} "
+                        f"({_human(info.st_size)}, {age / 60:.0f} min old) beside "
+                        f"{target.name}: written by pid {pid} of {where}, which cannot be "
+                        "checked from here (hydrosync --break-lock removes it)")
+            who = f"by pid {pid} of {where} (--break-lock)"
+    try:
+        os.unlink(entry.path)
+    except OSError:
+        return None
+    return (f"removed the stale temporary file {entry.name} ({_human(info.st_size)}) "
+            f"left beside {target.name} {who}")
 
 
 def _umask() -> int:
@@ -154,6 +246,37 @@ def _owner_name(uid: int) -> str:
         return f"uid {uid}"
 
 
+KERNEL_FOLDERS = ("/proc", "/sys", "/dev")
+"""Folders of the kernel's own files (a file written there is not data: ``/dev/full``)."""
+
+_KINDS = {stat.S_ISCHR: "a character device", stat.S_ISBLK: "a block device",
+          stat.S_ISFIFO: "a named pipe (FIFO)", stat.S_ISSOCK: "a socket"}
+
+
+def special_file_problem(path: str | os.PathLike) -> str | None:
+    """Why *path* is no place for an output (a device, FIFO, socket, /proc …), or None.
+
+    Symbolic links are followed: a link to ``/dev/full`` is ``/dev/full``.
+    """
+    try:
+        real = os.path.realpath(path)
+    except (OSError, ValueError) as exc:
+        return f"its path cannot be resolved ({exc})"
+    for folder in KERNEL_FOLDERS:
+        if real == folder or real.startswith(folder + os.sep):
+            return f"it is in {folder}, the kernel's own files, not a place for data"
+    try:
+        info = os.stat(real)
+    except FileNotFoundError:
+        return None
+    except OSError as exc:
+        return f"it cannot be examined ({exc.strerror or exc})"
+    for test, kind in _KINDS.items():
+        if test(info.st_mode):
+            return f"it is {kind}, not a regular file; HydroSync writes only plain files"
+    return None
+
+
 def write_problem(path: str | os.PathLike) -> str | None:
     """Why *path* cannot be (re)written atomically by this process now, or None.
 
@@ -162,6 +285,9 @@ def write_problem(path: str | os.PathLike) -> str | None:
     answer reads after the file name: ``"P.h5 cannot be changed: " + problem``.
     """
     path = Path(path)
+    special = special_file_problem(path)
+    if special is not None:
+        return special
     folder = path.parent if str(path.parent) else Path(".")
     if not folder.exists():
         return f"its folder {folder} does not exist"
@@ -180,6 +306,48 @@ def write_problem(path: str | os.PathLike) -> str | None:
             return (f"it belongs to {_owner_name(info.st_uid)}, and HydroSync cannot replace "
                     "it keeping its owner")
     return None
+
+
+FREE_SPACE_MARGIN = 1.05
+"""Free space asked beyond the expected size of a file about to be written."""
+
+_DISK_FULL_TEXT = ("no space left on device", "disk quota exceeded", "errno = 28",
+                   "errno = 122")
+
+
+def is_disk_full(exc: BaseException) -> bool:
+    """True for ``ENOSPC``/``EDQUOT``, also as HDF5 words it (``errno = 28``)."""
+    if isinstance(exc, OSError) and exc.errno in (errno.ENOSPC, errno.EDQUOT):
+        return True
+    text = str(exc).lower()
+    return isinstance(exc, OSError) and any(t in text for t in _DISK_FULL_TEXT)
+
+
+def disk_full(path: str | os.PathLike, exc: BaseException | None = None,
+              needed: int | None = None, free: int | None = None) -> DiskFullError:
+    """The one-line error of a full disk while writing *path*."""
+    amount = (f" (needs about {_human(needed)}, {_human(free)} free)"
+              if needed is not None and free is not None else "")
+    return DiskFullError(str(path), f"no space left on the disk{amount}: nothing was "
+                         "written, the previous file is kept; free some space and run again")
+
+
+def check_free_space(path: str | os.PathLike, needed: int) -> None:
+    """Raise :class:`DiskFullError` if *path*'s folder has not *needed* bytes free."""
+    folder = Path(path).parent if str(Path(path).parent) else Path(".")
+    try:
+        free = shutil.disk_usage(folder).free
+    except OSError:
+        return  # cannot tell: the write itself will say
+    if free < needed * FREE_SPACE_MARGIN:
+        raise disk_full(path, needed=needed, free=free)
+
+
+def check_special(path: str | os.PathLike) -> None:
+    """Raise :class:`InputError` if *path* is a device, FIFO, socket or kernel file."""
+    problem = special_file_problem(path)
+    if problem is not None:
+        raise InputError(str(path), f"cannot be written: {problem}")
 
 
 def check_writable(path: str | os.PathLike, what: str | None = None) -> None:
@@ -222,6 +390,8 @@ def publish(pairs: list[tuple[Path, Path]]) -> None:
     :data:`hydrosync_core.interrupts.completed` as it lands.
     """
     olds = []
+    for _, target in pairs:
+        check_special(target)  # may have appeared since planned
     for tmp, target in pairs:
         fsync_file(tmp)
         try:
@@ -252,10 +422,22 @@ def atomic_path(path: str | os.PathLike) -> Iterator[Path]:
     as it was.
     """
     path = real_target(path)
-    tmp = make_temp(path)
+    check_special(path)
+    clean_stale_temporaries(path)
+    try:
+        tmp = make_temp(path)
+    except OSError as exc:
+        if is_disk_full(exc):
+            raise disk_full(path, exc) from None
+        raise
     try:
         yield tmp
         publish([(tmp, path)])
+    except OSError as exc:
+        tmp.unlink(missing_ok=True)
+        if is_disk_full(exc):
+            raise disk_full(path, exc) from None
+        raise
     except BaseException:
         tmp.unlink(missing_ok=True)
         raise

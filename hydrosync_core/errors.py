@@ -107,6 +107,14 @@ class ProjectLockedError(ProjectAccessError):
         who = f"pid {pid}" if pid else "pid unknown"
         super().__init__(file, f"{file} is being written by another HydroSync process ({who})")
 
+    @classmethod
+    def with_message(cls, file, pid: int | None, message: str) -> ProjectLockedError:
+        """The same error with another sentence (a lock of another machine, a hard link)."""
+        error = cls(file, pid)
+        error.message = message
+        error.args = (error.one_line(),)
+        return error
+
 
 class ProjectReadOnlyError(ProjectAccessError):
     """The project file or its folder may not be written (permissions, owner, read-only open)."""
@@ -114,6 +122,10 @@ class ProjectReadOnlyError(ProjectAccessError):
 
 class ProjectChangedError(ProjectAccessError):
     """The file changed on disk since the project was opened: not overwritten."""
+
+
+class DiskFullError(InputError):
+    """The disk (or the user's quota) is full: nothing was changed; free space and retry."""
 
 
 class Cancelled(HydroSyncError):

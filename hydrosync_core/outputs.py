@@ -64,6 +64,7 @@ class Outputs:
             raise InputError(str(path), f"{option or 'an output'} would overwrite the input "
                              f"{opt}")
         atomic.check_writable(path, option)
+        atomic.clean_stale_temporaries(path)  # a killed earlier run's (``.R.pdf.….tmp``)
         self._planned[key] = (path, option)
         return path
 

@@ -14,6 +14,7 @@ import sys
 import traceback
 from types import TracebackType
 
+from PySide6.QtCore import QSettings
 from PySide6.QtWidgets import QApplication, QMessageBox, QWidget
 
 from hydrosync_core import __version__
@@ -78,6 +79,9 @@ def main(argv: list[str] | None = None) -> int:
     from hydrosync_gui.resources import icon
 
     app.setWindowIcon(icon("app.svg"))
+    from hydrosync_gui.i18n import apply_saved_language
+
+    apply_saved_language(QSettings())  # the View → Language choice, else the system locale
     window = MainWindow()
     previous_hook = sys.excepthook
     sys.excepthook = excepthook_for(window)

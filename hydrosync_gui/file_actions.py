@@ -25,10 +25,12 @@ from hydrosync_core.importers.kinds import import_file, kinds
 from hydrosync_core.project import Project
 from hydrosync_core.project.subtree import copy_subtree
 from hydrosync_gui.dialogs import ImportDialog
+from hydrosync_gui.i18n import current as current_language
 
 log = logging.getLogger("hydrosync_gui.file")
 
 PROJECT_FILTER = "HydroSync projects (*.h5 *.hdf5);;All files (*)"
+UNTITLED = "Untitled"  # the name of a new project until it is saved under a file name
 
 
 def open_for_gui(path: str) -> Project:
@@ -45,11 +47,26 @@ def open_for_gui(path: str) -> Project:
         return project
 
 
-def _import_into_scratch(kind: str, path: str, options: dict):
-    """Read *path* into a scratch project (worker thread): the real one stays untouched."""
+def _import_into_scratch(kind: str, path: str | list[str], options: dict, progress=None,
+                         cancel=None):
+    """Read *path* (one file, or several of one kind) into a scratch project (worker
+    thread): the real one stays untouched. Device logs report progress and stop on
+    *cancel*."""
     scratch = Project.new(name="import")
     accepted = {k: v for k, v in options.items() if k in kinds()[kind].options}
-    return scratch, import_file(scratch, kind, path, **accepted)
+    return scratch, import_file(scratch, kind, path, progress=progress, cancel=cancel,
+                                **accepted)
+
+
+def _move_into(scratch: Project, project: Project, target: str) -> None:
+    """Put what the scratch project read at *target* into *project*: a streamed table as
+    it is (its columns stay in their file), anything else copied."""
+    from hydrosync_core.project.table_files import adopt_table, is_file_table
+
+    if is_file_table(scratch, target):
+        adopt_table(scratch, project, target)
+    else:
+        copy_subtree(scratch, project, target)
 
 
 class FileActions:
@@ -85,7 +102,7 @@ class FileActions:
 
     def new_project(self) -> None:
         """Replace the current project by an empty, unsaved one."""
-        project = Project.new("Untitled")
+        project = Project.new(UNTITLED)
         project.dirty = False  # nothing to lose yet
         self.set_project(project)
         log.info("new project")
@@ -162,6 +179,11 @@ class FileActions:
             target = Path(chosen)
             if not target.suffix:
                 target = target.with_suffix(".h5")
+        old_name = project.name
+        if old_name in ("", UNTITLED):
+            # The placeholder name would go on the window title and the report cover:
+            # a project saved as "harbour-2026-11.h5" is called "harbour-2026-11".
+            project.set_attrs("", name=Path(target).stem)
 
         def saved(path: Path) -> None:
             self.update_banner()
@@ -175,6 +197,8 @@ class FileActions:
                 then()
 
         def failed(message: str) -> None:
+            if project.name != old_name:
+                project.set_attrs("", name=old_name)
             self.update_title()
             self.show_error("Save failed", f"{message}\n\nThe project is still open and "
                             "unchanged in memory; save it somewhere else.")
@@ -190,8 +214,10 @@ class FileActions:
         if choice is not None:
             self.import_data(*choice)
 
-    def import_data(self, kind: str, path: str, options: dict | None = None) -> None:
-        """Import *path* as *kind* (a key of ``KINDS``) in a worker.
+    def import_data(self, kind: str, path: str | list[str], options: dict | None = None
+                    ) -> None:
+        """Import *path* (a file, or several of one kind) as *kind* (a key of ``KINDS``) in
+        a worker, with progress and Cancel.
 
         *options*: ``{"heave_positive": "up" | "down"}`` for a motion log.
 
@@ -204,19 +230,22 @@ class FileActions:
 
         def imported(result) -> None:
             scratch, message = result
-            copy_subtree(scratch, project, kinds()[kind].target)
+            _move_into(scratch, project, kinds()[kind].target)
             scratch.close()
-            self.remember_dir(path)
+            self.remember_dir(path if isinstance(path, str) else path[0])
             self.browser.refresh()
             self.host.refresh()
             self.update_title()
             log.info("imported %s", message)
             self.statusBar().showMessage(f"Imported {message}", 8000)
 
-        self.run_shell_task(f"Importing {Path(path).name}",
-                            lambda p, c: _import_into_scratch(kind, path, dict(options or {})),
+        name = Path(path).name if isinstance(path, str) else f"{len(path)} files"
+        self.run_shell_task(f"Importing {name}",
+                            lambda p, c: _import_into_scratch(kind, path, dict(options or {}),
+                                                              p, c),
                             imported,
-                            lambda msg: self.show_error("Import failed", msg))
+                            lambda msg: self.show_error("Import failed", msg),
+                            cancellable=True)
 
     # --------------------------------------------------------------- report
     def _on_export_report(self) -> None:
@@ -238,10 +267,11 @@ class FileActions:
             self.export_report(path, build_report)
 
     def export_report(self, path: str, build_report: Callable) -> None:
-        """Run ``build_report(project, path[, progress, cancel])`` in a worker."""
+        """Run ``build_report(project, path[, progress, cancel, lang])`` in a worker."""
         project = self.project
         accepted = inspect.signature(build_report).parameters
         cancellable = "cancel" in accepted
+        language = current_language()
 
         def work(progress, cancel):
             kwargs = {}
@@ -249,6 +279,8 @@ class FileActions:
                 kwargs["progress"] = progress
             if cancellable:
                 kwargs["cancel"] = cancel
+            if "lang" in accepted:  # the report follows the workbench's language
+                kwargs["lang"] = language
             return build_report(project, path, **kwargs)
 
         def done(_result) -> None:

@@ -28,11 +28,24 @@ class _Bridge(QObject):
     sig_record = Signal(str, int)  # formatted text, level number
 
 
+#: Loggers whose INFO lines are the application's own; other libraries' (PyOpenGL's
+#: "OpenGL_accelerate module loaded" at start-up) show from WARNING on, unless the
+#: console shows debug lines (``-v``).
+OWN_LOGGERS = ("hydrosync", "plugins", "root")
+
+
+def _own_or_important(record: logging.LogRecord, level: int) -> bool:
+    if record.levelno >= logging.WARNING or level < logging.INFO:
+        return True
+    return record.name.split(".")[0].startswith(OWN_LOGGERS)
+
+
 class QtLogHandler(logging.Handler):
     """A :class:`logging.Handler` that emits ``bridge.sig_record(text, levelno)``."""
 
     def __init__(self, level: int = logging.INFO) -> None:
         super().__init__(level)
+        self.addFilter(lambda record: _own_or_important(record, self.level))
         self.bridge = _Bridge()
         self.setFormatter(logging.Formatter("%(asctime)s %(levelname)s %(name)s: %(message)s",
                                             "%H:%M:%S"))

@@ -35,7 +35,8 @@ from PySide6.QtWidgets import (
 from hydrosync_core import __version__
 from hydrosync_core.project import Project
 from hydrosync_gui.dialogs import PluginsDialog
-from hydrosync_gui.file_actions import FileActions
+from hydrosync_gui.file_actions import UNTITLED, FileActions
+from hydrosync_gui.i18n import add_language_menu
 from hydrosync_gui.log_console import LogConsole
 from hydrosync_gui.plugin_host import PluginHost
 from hydrosync_gui.plugin_panel import PluginPanel
@@ -45,6 +46,14 @@ from hydrosync_gui.recent_files import RecentFiles
 from hydrosync_gui.resources import icon
 from hydrosync_gui.task_status import TaskStatus
 from hydrosync_gui.vessel_dialog import VesselDialog
+from hydrosync_gui.window_geometry import (
+    DOCK_WIDTH_WIDE,
+    LOG_HEIGHT_TALL,
+    PREFERRED,
+    dock_width,
+    fit_window,
+    log_height,
+)
 from hydrosync_gui.workers import Worker, start
 
 log = logging.getLogger("hydrosync_gui.main_window")
@@ -74,7 +83,7 @@ class MainWindow(QMainWindow, FileActions):
         self.shell_worker: Worker | None = None
         self._close_ok = False
         self.setWindowIcon(icon("app.svg"))
-        self.resize(1280, 800)
+        self.resize(PREFERRED)
 
         self.console = LogConsole()
         # The console shows debug lines only when the application logs them (-v).
@@ -109,12 +118,10 @@ class MainWindow(QMainWindow, FileActions):
         layout.addWidget(self.banner)
         layout.addWidget(self.tabs, 1)
         self.setCentralWidget(central)
-        self.resizeDocks([self.browser_dock], [420], Qt.Orientation.Horizontal)
-        self.resizeDocks([self.log_dock], [140], Qt.Orientation.Vertical)
         self._build_menus()
         self._restore_settings()
         if project is None:
-            project = Project.new("Untitled")
+            project = Project.new(UNTITLED)
             project.dirty = False  # an empty new project has nothing to lose
         self.set_project(project)
         self.tabs.ensure_current()  # the first tab's panel: it is shown from the start
@@ -168,6 +175,8 @@ class MainWindow(QMainWindow, FileActions):
         view = self.menuBar().addMenu("&View")
         view.addAction(self.browser_dock.toggleViewAction())
         view.addAction(self.log_dock.toggleViewAction())
+        view.addSeparator()
+        self.language_menu = add_language_menu(view, self.settings)
         helpm = self.menuBar().addMenu("&Help")
         self._action(helpm, "&Plugins…", self.show_plugins, tip="Loaded and failed plugins")
         self._action(helpm, "&About HydroSync", self._on_about)
@@ -338,12 +347,19 @@ class MainWindow(QMainWindow, FileActions):
         self.settings.setValue("paths/last_dir", str(Path(path).resolve().parent))
 
     def _restore_settings(self) -> None:
+        """Saved geometry and dock layout, fitted to this screen (a geometry saved on a
+        large monitor must not put the status bar below a laptop's screen)."""
         geometry = self.settings.value("window/geometry")
-        if geometry is not None:
-            self.restoreGeometry(geometry)
+        restored = geometry is not None and self.restoreGeometry(geometry)
         state = self.settings.value("window/state")
-        if state is not None:
-            self.restoreState(state)
+        if state is None or not self.restoreState(state):
+            screen = self.screen()
+            available = screen.availableGeometry() if screen is not None else None
+            width = dock_width(available) if available is not None else DOCK_WIDTH_WIDE
+            height = log_height(available) if available is not None else LOG_HEIGHT_TALL
+            self.resizeDocks([self.browser_dock], [width], Qt.Orientation.Horizontal)
+            self.resizeDocks([self.log_dock], [height], Qt.Orientation.Vertical)
+        fit_window(self, restored)
 
     def _save_settings(self) -> None:
         self.settings.setValue("window/geometry", self.saveGeometry())

@@ -8,6 +8,10 @@ its signals; the main window shows progress in the status bar and offers Cancel.
 Completion: *on_finished(result)* runs on the GUI thread when the task returns; whatever
 the outcome (finished, failed, cancelled) :meth:`work_done` runs afterwards — override it
 to re-enable buttons instead of reaching into the worker's signals.
+
+Side tasks (:meth:`start_side_task`): short reads a view needs (e.g. the raw data of one
+line's plot) run beside the main task, without progress or busy state; their results reach
+the panel only while it exists, so closing it meanwhile is harmless.
 """
 
 from __future__ import annotations
@@ -21,6 +25,10 @@ from PySide6.QtWidgets import QLabel, QWidget
 from hydrosync_core.plugins.spec import PluginSpec
 from hydrosync_core.project import Project
 from hydrosync_gui.workers import Worker, start
+
+_SIDE_TASKS: set[Worker] = set()
+"""Side tasks started and not yet pruned: the pool does not own its workers, and a side
+task may outlive the panel that started it."""
 
 STALE_STYLE = ("QLabel { background: #f8d7da; border: 1px solid #c0392b; border-radius: 3px;"
                " color: #6e1a12; padding: 6px; }")
@@ -115,6 +123,28 @@ class PluginPanel(QWidget):
     def cancel_work(self) -> None:
         if self.worker is not None:
             self.worker.cancel()
+
+    def start_side_task(
+        self,
+        fn: Callable[[Callable, Any], Any],
+        on_finished: Callable[[Any], None],
+        on_failed: Callable[[str], None] | None = None,
+    ) -> Worker:
+        """Run ``fn(progress, cancel)`` off the GUI thread beside the main task.
+
+        *on_finished(result)* (or *on_failed(one_line_message)*) runs on the GUI thread,
+        and only while this panel exists: pass bound methods of the panel, which Qt
+        disconnects when the panel is deleted. Progress is not shown and the task is not
+        cancelled by :meth:`start_work`.
+        """
+        for done in [w for w in _SIDE_TASKS if w.finished_event.is_set()]:
+            _SIDE_TASKS.discard(done)
+        worker = Worker(fn)
+        worker.signals.sig_finished.connect(on_finished)
+        if on_failed is not None:
+            worker.signals.sig_failed.connect(on_failed)
+        _SIDE_TASKS.add(worker)
+        return start(worker)
 
     def wait_idle(self, timeout: float = 30.0) -> bool:
         """Block until the current task ends (for tests and shutdown)."""

@@ -4,7 +4,7 @@
 set -euo pipefail
 PACKAGES=(
   libusb-1.0-0 libegl1 libgl1 libgl1-mesa-dri libxkbcommon0 libxkbcommon-x11-0
-  libfontconfig1 libdbus-1-3 fonts-dejavu-core poppler-utils xvfb xauth
+  libfontconfig1 libdbus-1-3 fonts-dejavu-core fonts-wqy-zenhei poppler-utils xvfb xauth
   libxcb-cursor0 libxcb-icccm4 libxcb-keysyms1 libxcb-image0 libxcb-render-util0
   libxcb-xkb1 libxcb-shape0 libxcb-randr0 libxcb-xinerama0
 )

@@ -9,6 +9,7 @@ in the PDF as "could not be produced: <reason>" and warned about on stderr; with
 from __future__ import annotations
 
 import argparse
+import os
 import sys
 from pathlib import Path
 
@@ -24,7 +25,7 @@ def cmd_report(args: argparse.Namespace) -> int:
     out = Path(args.output) if args.output else Path(args.project).with_suffix(".pdf")
     if out.suffix.lower() != ".pdf":
         raise InputError(str(out), "the report file name must end in .pdf")
-    if out.resolve() == Path(args.project).resolve():
+    if os.path.realpath(out) == os.path.realpath(args.project):  # no raise on a loop
         raise InputError(str(out), "the report would overwrite the project file")
     problems: list[str] = []
     with Outputs() as outputs:
@@ -47,7 +48,8 @@ def cmd_report(args: argparse.Namespace) -> int:
                                  + ", ".join(stale) + "): run them again or drop --strict")
             progress = TerminalProgress("report")
             try:
-                build_report(project, outputs.temp(out), progress=progress, problems=problems)
+                build_report(project, outputs.temp(out), progress=progress, problems=problems,
+                             lang=args.lang)
             finally:
                 progress.done()
         if problems and args.strict:
@@ -70,6 +72,10 @@ def register(sub: argparse._SubParsersAction) -> None:
     p.add_argument("project", help="project file (.h5)")
     p.add_argument("-o", "--output", metavar="PDF",
                    help="report file to write (default: the project name with .pdf)")
+    p.add_argument("--lang", choices=["en", "zh_CN"], default="en",
+                   help="language of the report's text: en (default) or zh_CN (Simplified "
+                   "Chinese; needs a CJK font, e.g. Debian fonts-wqy-zenhei). Numbers, units "
+                   "and the command's own messages stay the same")
     p.add_argument("--strict", action="store_true",
                    help="refuse (exit 2, no PDF) when a result is out of date (its inputs or "
                    "vessel-sheet entries changed since it was computed) or a section cannot "

@@ -39,6 +39,7 @@ import numpy as np
 
 from hydrosync_core import plausible
 from hydrosync_core.errors import InputError
+from hydrosync_core.inputs import input_ok
 
 CHECK_CHUNK = 1 << 24
 """Bytes scanned per read when screening a file for the pyarrow path."""
@@ -209,22 +210,19 @@ def _parse_py(buf, start, stop, ncols, slot, out, row0, lo, hi, pow10):  # pragm
     return row - row0, 0
 
 
-_kernels: list | None = None
+_kernels: tuple | None = None
 
 
 def _compiled():
-    """(count, parse) compiled by numba (cached on disk), or None without numba. Loaded on
+    """(count, parse) compiled by numba (cached on disk; numba is a dependency). Loaded on
     first use: numba costs about a second to import, which small files do not pay."""
     global _kernels
     if _kernels is None:
-        try:
-            from numba import njit
-        except ImportError:  # pragma: no cover - numba is a dependency
-            _kernels = [None, None]
-        else:
-            _kernels = [njit(cache=True, nogil=True)(_count_py),
-                        njit(cache=True, nogil=True)(_parse_py)]
-    return None if _kernels[0] is None else tuple(_kernels)
+        from numba import njit
+
+        _kernels = (njit(cache=True, nogil=True)(_count_py),
+                    njit(cache=True, nogil=True)(_parse_py))
+    return _kernels
 
 
 def _release(mm, start: int, stop: int) -> None:
@@ -368,6 +366,7 @@ class Prescan:
 
     def _run(self) -> None:
         try:
+            input_ok(self.path)  # a FIFO would hang this thread; the reader then says so
             self._plan = _plan(*self._args)
         except Exception:  # never an error of its own: the reader then counts itself
             self._plan = None
@@ -390,8 +389,6 @@ def _read_compiled(path: Path, names: list[str], header_bytes: int, wanted: Sequ
 
     kernels = _compiled()  # loading numba first: the prescan goes on meanwhile
     plan = prescan.take() if prescan is not None else None
-    if kernels is None:
-        return None
     count_kernel, parse_kernel = kernels
     ncols = len(names)
     slot = np.full(ncols, SKIP, dtype=np.int64)
@@ -609,6 +606,7 @@ def read_numeric_fast(
     same columns, saves the first pass. Raises only the duplicate-time
     :class:`InputError`, worded and placed as the generic reader does.
     """
+    input_ok(path, "CSV file")  # before any open: not a FIFO, device or sparse file
     path = Path(path)
     limits = limits or {}
     try:

@@ -11,11 +11,11 @@ from __future__ import annotations
 import hashlib
 import json
 import logging
-import os
 from datetime import UTC, datetime
 from pathlib import Path
 from typing import Any
 
+from hydrosync_core.inputs import input_ok
 from hydrosync_core.plugins.spec import DataKind, load_object
 from hydrosync_core.project import Project, schema
 
@@ -69,11 +69,16 @@ def _summary(path: Path, target: str, count: int | None, what: str) -> str:
             else f"{path.name} into /{target}")
 
 
-def import_file(project: Project, kind: str, path: str | os.PathLike, **options: Any) -> str:
+def import_file(project: Project, kind: str, path, *, progress=None, cancel=None,
+                **options: Any) -> str:
     """Read *path* as *kind* into *project*; return a one-line summary.
 
-    *options* are passed to the reader when the kind declares them (others are an error);
-    those given are recorded as attributes of the imported data.
+    *path* may be a list of files (or glob patterns): a kind whose reader takes several
+    files (``several_files``, the device logs) makes one table of them in time order;
+    other kinds import them one after the other. *options* are passed to the reader
+    when the kind declares them (others are an error); those given are recorded as
+    attributes of the imported data. *progress* and *cancel* reach the readers that
+    stream (the device logs).
     """
     table = kinds()
     if kind not in table:
@@ -83,8 +88,21 @@ def import_file(project: Project, kind: str, path: str | os.PathLike, **options:
     unknown = sorted(set(given) - set(spec.options))
     if unknown:
         raise ValueError(f"import kind '{kind}' takes no option {', '.join(unknown)}")
-    path = Path(path)
     reader = load_object(spec.reader)
+    several = getattr(reader, "several_files", None)
+    if spec.store == "custom" and several is not None:
+        # One table from several files (a day of hourly logs): names and globs expanded.
+        files = several(path)
+        message = reader(project, spec.target, files, progress=progress, cancel=cancel,
+                         **given)
+        for file in files:
+            record_import(project, spec.target, file, kind, given)
+        return message
+    if isinstance(path, list | tuple):
+        return "\n".join(import_file(project, kind, p, **options) for p in path)
+    path = Path(path)
+    if not path.is_dir():  # a recording kind takes a folder; its reader checks it
+        input_ok(path, f"--{kind.replace('_', '-')} file", text=spec.store != "points")
     if spec.store == "custom":
         message = reader(project, spec.target, path, **given)
         record_import(project, spec.target, path, kind, given)

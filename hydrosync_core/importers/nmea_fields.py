@@ -1,9 +1,8 @@
 """Vectorised field conversion and time assembly shared by the NMEA readers.
 
-Sentences are split on commas once (C speed); each wanted field is then converted for
-all sentences at once with numpy (fast path), falling back to element-wise conversion
-only when some value is not a number, so a bad value costs a NaN and a count, not the
-file.
+Each wanted field is converted for all sentences at once by a compiled kernel reading
+the sentence bytes (:mod:`nmea_kernels`), with ``float()`` only for a value that is not a
+plain decimal, so a bad value costs a NaN and a count, not the file.
 
 Time model. NMEA sentences carry the UTC *time of day*; the date comes from ZDA/RMC/GGK
 sentences or, failing those, from the logger's time tag. All results are float64 Unix
@@ -16,43 +15,50 @@ from __future__ import annotations
 
 import numpy as np
 
+from hydrosync_core.importers import nmea_kernels as nk
+
 DAY = 86400.0
 HALF_DAY = 43200.0
 ROLLOVER_DAYS = 1024 * 7
 """GPS week-number rollover: 1024 weeks, the period of the 10-bit week counter."""
 
 
-def rows_of(body: list[str], indices: np.ndarray) -> list[list[str]]:
-    """Comma-split sentence bodies ``body[i]`` for *indices*."""
-    return [body[i].split(",") for i in indices]
+def floats(log, index: np.ndarray, k: int, *, eht: bool = False
+           ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Field *k* of sentences *index* of a :class:`~.nmea_lines.SentenceBlock` as float64.
 
-
-def column(rows: list[list[str]], k: int) -> list[str]:
-    """Field *k* of every row, ``""`` where a row is shorter."""
-    return [r[k].strip() if len(r) > k else "" for r in rows]
-
-
-def to_float(values: list[str]) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Convert strings to float64.
+    Parsed by the compiled kernel; a field that is not a plain decimal (an exponent, a
+    word) goes through ``float()``. *eht* drops a leading ``EHT`` (``$PTNL,GGK`` height).
 
     Returns
     -------
     numbers : ndarray of float64
         NaN where empty or not a number.
     empty : ndarray of bool
-        The field was empty.
+        The field was empty or missing.
     bad : ndarray of bool
         The field was present but not a finite number.
     """
+    numbers, state, spans = nk.field_floats(log.buf, log.start, log.end, index, k, eht)
+    empty = state == 1
+    for r in np.flatnonzero(state == 2):
+        text = log.buf[spans[r, 0]:spans[r, 1]].tobytes().decode("latin-1")
+        numbers[r] = _float_or_nan(text)
+    bad = ~empty & ~np.isfinite(numbers)
+    numbers[bad] = np.nan
+    return numbers, empty, bad
+
+
+def texts(log, index: np.ndarray, k: int, width: int = 4) -> np.ndarray:
+    """Field *k* of sentences *index*, spaces stripped, as bytes ``S<width>`` (truncated)."""
+    return nk.field_text(log.buf, log.start, log.end, index, k, width)
+
+
+def to_float(values: list[str]) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Convert strings to float64: (numbers, empty, bad) as :func:`floats` returns them."""
     n = len(values)
     empty = np.fromiter((v == "" for v in values), dtype=bool, count=n)
-    if n == 0:
-        return np.zeros(0), empty, np.zeros(0, dtype=bool)
-    text = np.array([v if v else "nan" for v in values], dtype=str)
-    try:
-        numbers = text.astype(np.float64)
-    except ValueError:
-        numbers = np.array([_float_or_nan(v) for v in values], dtype=np.float64)
+    numbers = np.array([_float_or_nan(v) for v in values], dtype=np.float64)
     bad = ~empty & ~np.isfinite(numbers)
     numbers[bad] = np.nan
     return numbers, empty, bad
@@ -65,9 +71,8 @@ def _float_or_nan(value: str) -> float:
         return float("nan")
 
 
-def time_of_day(values: list[str]) -> np.ndarray:
-    """``hhmmss[.sss]`` -> seconds of the UTC day (float64); NaN when invalid."""
-    v, _, _ = to_float(values)
+def time_of_day(v: np.ndarray) -> np.ndarray:
+    """``hhmmss[.sss]`` (as a number) -> seconds of the UTC day (float64); NaN when invalid."""
     hh = np.floor(v / 10000.0)
     mm = np.floor(v / 100.0) - 100.0 * hh
     ss = v - 10000.0 * hh - 100.0 * mm
@@ -75,20 +80,25 @@ def time_of_day(values: list[str]) -> np.ndarray:
     return np.where(ok, hh * 3600.0 + mm * 60.0 + ss, np.nan)
 
 
-def latlon(values: list[str], hemispheres: list[str], negative: str) -> np.ndarray:
-    """NMEA ``(d)ddmm.mmmm`` + hemisphere -> signed decimal degrees.
+def tod_field(log, index: np.ndarray, k: int) -> np.ndarray:
+    """UTC seconds of day of the ``hhmmss.ss`` field *k* of sentences *index*."""
+    return time_of_day(floats(log, index, k)[0])
+
+
+def latlon(log, index: np.ndarray, k: int, negative: str) -> np.ndarray:
+    """NMEA ``(d)ddmm.mmmm`` field *k* + hemisphere field *k+1* -> signed decimal degrees.
 
     *negative* is ``"S"`` or ``"W"``. A value written with its own minus sign and a
     hemisphere letter (seen in a Unicore GLL) is taken by magnitude, the letter decides.
     """
-    v, _, _ = to_float(values)
-    v = np.abs(v)
+    v = np.abs(floats(log, index, k)[0])
     # ddmm.mmmm: degrees = floor(v/100), minutes = the rest.
     deg = np.floor(v / 100.0)
     minutes = v - 100.0 * deg
     out = deg + minutes / 60.0
     out[minutes >= 60.0] = np.nan
-    sign = np.array([-1.0 if h.upper() == negative else 1.0 for h in hemispheres])
+    hemi = np.char.upper(texts(log, index, k + 1, 2))
+    sign = np.where(hemi == negative.encode(), -1.0, 1.0)
     return out * sign if out.size else out
 
 

@@ -27,11 +27,15 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from hydrosync_core.importers import nmea_fields as nf
+from hydrosync_core.importers import nmea_kernels as nk
 from hydrosync_core.importers.nmea_lines import LogLines
 
 # Trimble GGK quality -> GGA quality: 0 none, 1 autonomous, 2 RTK float, 3 RTK fixed,
 # 4 DGPS, 5 SBAS, 6 network RTK float, 7 network RTK fixed, 8 2D network float,
 # 9 2D network fixed, 10 OmniSTAR HP/XP, 11 OmniSTAR VBS, 12 Location RTK, 13 beacon DGPS.
+EMPTY_GEOID_KEPT = "empty geoid separation (kept with N = 0)"
+"""Counted while parsing; the import turns it into its warning (not a skip)."""
+
 GGK_TO_GGA = np.array([0, 1, 5, 4, 2, 2, 5, 4, 5, 4, 5, 2, 5, 2], dtype=np.float64)
 
 
@@ -41,58 +45,52 @@ def sentence_kinds(log: LogLines) -> dict[str, np.ndarray]:
     Standard sentences are keyed by their 3-letter type (talker dropped, so a GP↔GN
     flip mid-file changes nothing); proprietary ones by address plus first field.
     """
-    groups: dict[str, list[int]] = {}
-    for i, body in enumerate(log.body):
-        if body.startswith(":"):
-            key = "TSS1"
-        else:
-            parts = body.split(",", 2)
-            addr = parts[0]
-            if addr.startswith("P") and addr in ("PTNL", "PSXN"):
-                key = f"{addr},{parts[1] if len(parts) > 1 else ''}"
-            elif addr.startswith("P"):
-                key = addr
-            else:
-                key = addr[-3:]
-        groups.setdefault(key, []).append(i)
-    return {k: np.asarray(v, dtype=np.int64) for k, v in groups.items()}
+    codes, names = nk.kind_codes(log.buf, log.start, log.end)
+    if len(names) > 64:
+        order = np.argsort(codes, kind="stable")
+        bounds = np.searchsorted(codes[order], np.arange(len(names) + 1))
+        return {name: order[bounds[j]:bounds[j + 1]] for j, name in enumerate(names)
+                if bounds[j + 1] > bounds[j]}
+    return {name: np.flatnonzero(codes == j) for j, name in enumerate(names)}
 
 
 @dataclass
 class DateEvents:
-    """Dates stated by sentences: position in the log, day (since 1970), time of day."""
+    """Dates stated by sentences: position (line number), day (since 1970), time of day."""
 
     position: np.ndarray
     day: np.ndarray
     tod: np.ndarray
     rollover_fixed: int = 0
     rollover_weeks: int = 0
-    warnings: list[str] = field(default_factory=list)
+    far: int = 0
+
+    @property
+    def warnings(self) -> list[str]:
+        return date_warnings(self.rollover_fixed, self.rollover_weeks, self.far)
 
 
 def date_events(log: LogLines, kinds: dict[str, np.ndarray]) -> DateEvents:
     """Collect dates from ZDA, RMC and GGK sentences, week-rollover corrected."""
     pos, day, tod = [], [], []
     if "ZDA" in kinds:
-        rows = nf.rows_of(log.body, kinds["ZDA"])
-        d, _, _ = nf.to_float(nf.column(rows, 2))
-        m, _, _ = nf.to_float(nf.column(rows, 3))
-        y, _, _ = nf.to_float(nf.column(rows, 4))
-        pos.append(kinds["ZDA"])
+        idx = kinds["ZDA"]
+        d, m, y = (nf.floats(log, idx, k)[0] for k in (2, 3, 4))
+        pos.append(idx)
         day.append(nf.day_numbers(d, m, y))
-        tod.append(nf.time_of_day(nf.column(rows, 1)))
+        tod.append(nf.tod_field(log, idx, 1))
     for key, tcol, dcol, order in (("RMC", 1, 9, "dmy"), ("PTNL,GGK", 2, 3, "mdy")):
         if key not in kinds:
             continue
-        rows = nf.rows_of(log.body, kinds[key])
-        v, _, _ = nf.to_float(nf.column(rows, dcol))
+        idx = kinds[key]
+        v = nf.floats(log, idx, dcol)[0]
         a, b, yy = np.floor(v / 10000.0), np.floor(v / 100.0) % 100, v % 100
         dd, mm = (a, b) if order == "dmy" else (b, a)
         # Two-digit years: 80-99 -> 19xx, 00-79 -> 20xx (NMEA convention).
         year = np.where(yy >= 80, 1900 + yy, 2000 + yy)
-        pos.append(kinds[key])
+        pos.append(idx)
         day.append(nf.day_numbers(dd, mm, year))
-        tod.append(nf.time_of_day(nf.column(rows, tcol)))
+        tod.append(nf.tod_field(log, idx, tcol))
     if not pos:
         return DateEvents(np.zeros(0, np.int64), np.zeros(0), np.zeros(0))
     position = np.concatenate(pos)
@@ -100,40 +98,48 @@ def date_events(log: LogLines, kinds: dict[str, np.ndarray]) -> DateEvents:
     tods = np.concatenate(tod)
     ok = np.isfinite(days) & np.isfinite(tods)
     order = np.argsort(position[ok], kind="stable")
-    ev = DateEvents(position[ok][order], days[ok][order], tods[ok][order])
-    tags = log.tag[ev.position]
+    index = position[ok][order]
+    ev = DateEvents(log.line_no[index], days[ok][order], tods[ok][order])
+    tags = log.tag[index]
     if np.isfinite(tags).any():
         logger_day = np.floor(tags / nf.DAY)
         ev.day, ev.rollover_fixed, ev.rollover_weeks = nf.correct_rollover(ev.day, logger_day)
-        if ev.rollover_fixed:
-            ev.warnings.append(
-                f"{ev.rollover_fixed} ZDA/RMC dates were {ev.rollover_weeks} weeks before "
-                f"the logger date (GPS week-number rollover): corrected"
-            )
         off = np.abs(ev.day - logger_day)
-        far = np.count_nonzero(np.isfinite(off) & (off > 1))
-        if far:
-            ev.warnings.append(f"{far} sentence dates differ from the logger date by > 1 day")
+        ev.far = int(np.count_nonzero(np.isfinite(off) & (off > 1)))
     return ev
 
 
+def date_warnings(fixed: int, weeks: int, far: int) -> list[str]:
+    """Warnings about the sentence dates: week rollovers corrected, dates far off."""
+    out = []
+    if fixed:
+        out.append(f"{fixed} ZDA/RMC dates were {weeks} weeks before the logger date "
+                   "(GPS week-number rollover): corrected")
+    if far:
+        out.append(f"{far} sentence dates differ from the logger date by > 1 day")
+    return out
+
+
 def sentence_times(
-    log: LogLines, index: np.ndarray, tod: np.ndarray, events: DateEvents
+    log: LogLines, index: np.ndarray, tod: np.ndarray, events: DateEvents, *,
+    any_tags: bool | None = None, unwrap=None,
 ) -> tuple[np.ndarray, str]:
     """Unix seconds of sentences *index* whose UTC time of day is *tod*.
 
     The date comes from the nearest preceding date sentence (ZDA/RMC/GGK), else from the
     logger tag, else there is none and times count from 00:00 of the first day.
-    Returns the times and a word saying which date source was used.
+    Returns the times and a word saying which date source was used. *any_tags* (whether
+    the file's records carry logger tags) and *unwrap* (a day counter carried over
+    blocks) serve a file read block by block.
     """
     if events.position.size:
-        k = nf.nearest_event(index, events.position)
+        k = nf.nearest_event(log.line_no[index], events.position)
         return nf.day_relative(tod, events.day[k], events.tod[k]), "date sentences"
     tags = log.tag[index]
-    if np.isfinite(tags).any():
+    if any_tags if any_tags is not None else np.isfinite(tags).any():
         tag_day = np.floor(tags / nf.DAY)
         return nf.day_relative(tod, tag_day, tags - tag_day * nf.DAY), "logger date"
-    return nf.unwrap_days(tod), "none"
+    return (unwrap(tod) if unwrap is not None else nf.unwrap_days(tod)), "none"
 
 
 @dataclass
@@ -162,13 +168,12 @@ def parse_gga(
     log: LogLines, index: np.ndarray, *, empty_geoid: str = "zero", min_quality: int = 1
 ) -> GnssRecords:
     """Parse GGA sentences *index*: h = altitude (field 9) + geoid separation (field 11)."""
-    rows = nf.rows_of(log.body, index)
-    q, q_empty, q_bad = nf.to_float(nf.column(rows, 6))
-    alt, alt_empty, alt_bad = nf.to_float(nf.column(rows, 9))
-    sep, sep_empty, sep_bad = nf.to_float(nf.column(rows, 11))
+    q, q_empty, q_bad = nf.floats(log, index, 6)
+    alt, alt_empty, alt_bad = nf.floats(log, index, 9)
+    sep, sep_empty, sep_bad = nf.floats(log, index, 11)
     skipped: dict[str, int] = {}
     warnings: list[str] = []
-    keep = np.ones(len(rows), dtype=bool)
+    keep = np.ones(index.size, dtype=bool)
     nf.drop(skipped, "no fix", q_empty | q_bad | (q < min_quality), keep)
     nf.drop(skipped, "empty altitude", alt_empty, keep)
     nf.drop(skipped, "unparseable field", alt_bad | sep_bad, keep)
@@ -177,67 +182,74 @@ def parse_gga(
     else:
         n = int(np.count_nonzero(sep_empty & keep))
         if n:
-            warnings.append(
-                f"{n} GGA epochs have an empty geoid separation: height = altitude "
-                "(separation taken as 0, so those heights are above the geoid, not "
-                "ellipsoidal; import with --empty-geoid skip to drop them)"
-            )
+            skipped[EMPTY_GEOID_KEPT] = n
         sep = np.where(sep_empty, 0.0, sep)
     # Ellipsoidal height h = H (altitude above geoid) + N (geoid separation).
     height = alt + sep
-    lat = nf.latlon(nf.column(rows, 2), nf.column(rows, 3), "S")
-    lon = nf.latlon(nf.column(rows, 4), nf.column(rows, 5), "W")
+    lat = nf.latlon(log, index, 2, "S")
+    lon = nf.latlon(log, index, 4, "W")
     return GnssRecords(
-        "GGA", index[keep], nf.time_of_day(nf.column(rows, 1))[keep], height[keep],
+        "GGA", index[keep], nf.tod_field(log, index, 1)[keep], height[keep],
         lat[keep], lon[keep], q[keep], np.full(int(keep.sum()), np.nan), skipped, warnings,
     )
 
 
 def parse_ggk(log: LogLines, index: np.ndarray, *, min_quality: int = 1) -> GnssRecords:
     """Parse ``$PTNL,GGK``: ellipsoidal height from the ``EHT…`` field (field 11)."""
-    rows = nf.rows_of(log.body, index)
-    raw_q, q_empty, q_bad = nf.to_float(nf.column(rows, 8))
-    eht_text = nf.column(rows, 11)
-    eht, eht_empty, eht_bad = nf.to_float(
-        [t[3:] if t.upper().startswith("EHT") else t for t in eht_text]
-    )
+    raw_q, q_empty, q_bad = nf.floats(log, index, 8)
+    eht, eht_empty, eht_bad = nf.floats(log, index, 11, eht=True)
     in_table = np.isfinite(raw_q) & (raw_q >= 0) & (raw_q < len(GGK_TO_GGA))
     q = np.full(raw_q.shape, np.nan)
     q[in_table] = GGK_TO_GGA[raw_q[in_table].astype(int)]
     skipped: dict[str, int] = {}
-    keep = np.ones(len(rows), dtype=bool)
+    keep = np.ones(index.size, dtype=bool)
     nf.drop(skipped, "no fix", q_empty | q_bad | ~in_table | ~(q >= min_quality), keep)
     nf.drop(skipped, "empty altitude", eht_empty, keep)
     nf.drop(skipped, "unparseable field", eht_bad, keep)
-    lat = nf.latlon(nf.column(rows, 4), nf.column(rows, 5), "S")
-    lon = nf.latlon(nf.column(rows, 6), nf.column(rows, 7), "W")
+    lat = nf.latlon(log, index, 4, "S")
+    lon = nf.latlon(log, index, 6, "W")
     return GnssRecords(
-        "PTNL,GGK", index[keep], nf.time_of_day(nf.column(rows, 2))[keep], eht[keep],
+        "PTNL,GGK", index[keep], nf.tod_field(log, index, 2)[keep], eht[keep],
         lat[keep], lon[keep], q[keep], np.full(int(keep.sum()), np.nan), skipped, [],
     )
 
 
 def attach_gst(log: LogLines, rec: GnssRecords, gst_index: np.ndarray) -> int:
-    """Fill ``rec.sigma_h`` from GST field 8 (altitude sigma, m); return epochs matched.
-
-    A GST belongs to the epoch with the same time of day; of the candidates the nearest
-    in the file (preceding or following GST) is taken.
-    """
+    """Fill ``rec.sigma_h`` from GST field 8 (altitude sigma, m); return epochs matched."""
     if gst_index.size == 0 or rec.index.size == 0:
         return 0
-    rows = nf.rows_of(log.body, gst_index)
-    g_tod = nf.time_of_day(nf.column(rows, 1))
-    g_sig, _, _ = nf.to_float(nf.column(rows, 8))
-    best = np.full(rec.index.size, -1)
-    best_gap = np.full(rec.index.size, np.inf)
-    k = np.searchsorted(gst_index, rec.index)
+    rec.sigma_h[:] = match_gst(rec.index, rec.tod, gst_index, nf.tod_field(log, gst_index, 1),
+                               nf.floats(log, gst_index, 8)[0])
+    return int(np.count_nonzero(np.isfinite(rec.sigma_h)))
+
+
+def match_gst(pos: np.ndarray, tod: np.ndarray, g_pos: np.ndarray, g_tod: np.ndarray,
+              g_sig: np.ndarray) -> np.ndarray:
+    """GST altitude σ (m) of epochs at sentence positions *pos* with times of day *tod*.
+
+    A GST belongs to the epoch with the same time of day; of the candidates the nearest
+    in the file (preceding or following GST) is taken. NaN where none matches.
+    """
+    out = np.full(pos.size, np.nan)
+    if g_pos.size == 0:
+        return out
+    best = np.full(pos.size, -1)
+    best_gap = np.full(pos.size, np.inf)
+    k = np.searchsorted(g_pos, pos)
     for cand in (k - 1, k):
-        c = np.clip(cand, 0, gst_index.size - 1)
-        same = (np.abs(g_tod[c] - rec.tod) < 1e-3) & (cand >= 0) & (cand < gst_index.size)
-        gap = np.abs(gst_index[c] - rec.index).astype(float)
+        c = np.clip(cand, 0, g_pos.size - 1)
+        same = (np.abs(g_tod[c] - tod) < 1e-3) & (cand >= 0) & (cand < g_pos.size)
+        gap = np.abs(g_pos[c] - pos).astype(float)
         better = same & (gap < best_gap)
         best[better] = c[better]
         best_gap[better] = gap[better]
     hit = best >= 0
-    rec.sigma_h[hit] = g_sig[best[hit]]
-    return int(np.count_nonzero(hit & np.isfinite(rec.sigma_h)))
+    out[hit] = g_sig[best[hit]]
+    return out
+
+
+def empty_geoid_warning(n: int) -> str:
+    """The warning for *n* GGA epochs kept with an empty geoid separation."""
+    return (f"{n} GGA epochs have an empty geoid separation: height = altitude "
+            "(separation taken as 0, so those heights are above the geoid, not "
+            "ellipsoidal; import with --empty-geoid skip to drop them)")

@@ -38,6 +38,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from hydrosync_core.importers import nmea_kernels as nk
 from hydrosync_core.progress import CancelToken, ProgressCallback, check_cancel, report
 
 # A sentence start: `$` or `!`, an address of 3-7 upper-case letters/digits, a comma.
@@ -59,20 +60,22 @@ _DAY0 = _dt.date(1970, 1, 1).toordinal()
 
 
 @dataclass
-class LogLines:
-    """Usable sentences of one log file, in file order.
+class SentenceBlock:
+    """Usable sentences of a block of log lines, in file order, as spans of one buffer.
 
     Attributes
     ----------
     path : str
         File the sentences came from.
+    buf : ndarray of uint8
+        The block's bytes (plus, after them, the bodies the regex splitter found).
+    start, end : ndarray of int64, shape (n,)
+        Byte span in *buf* of each sentence body: the text between ``$``/``!`` and
+        ``*`` (no checksum), e.g. ``GPGGA,000000.70,...``; TSS1 records keep their ``:``.
     line_no : ndarray of int64, shape (n,)
-        1-based line number of each sentence.
+        1-based line number of each sentence in its file.
     tag : ndarray of float64, shape (n,)
         Logger time tag, Unix seconds (UTC); NaN when the line has none.
-    body : list of str
-        Sentence text between ``$``/``!`` and ``*`` (no checksum), e.g.
-        ``"GPGGA,000000.70,..."``; TSS1 records keep their leading ``:``.
     has_checksum : ndarray of bool, shape (n,)
         True when the sentence carried a (valid) checksum.
     counts : dict of str to int
@@ -84,17 +87,57 @@ class LogLines:
     """
 
     path: str
+    buf: np.ndarray
+    start: np.ndarray
+    end: np.ndarray
     line_no: np.ndarray
     tag: np.ndarray
-    body: list[str]
     has_checksum: np.ndarray
     counts: dict[str, int] = field(default_factory=dict)
     tag_style: str | None = None
     no_checksums: bool = False
 
+    @property
+    def body(self) -> list[str]:
+        """Sentence bodies as text (one Python string each: for tests and small logs)."""
+        data = self.buf.tobytes()
+        return [data[a:b].decode("latin-1") for a, b in zip(self.start, self.end, strict=True)]
+
     def address(self) -> list[str]:
         """First field of every sentence (``GPGGA``, ``PSXN``, ``:`` for TSS1)."""
         return [":" if b.startswith(":") else b.split(",", 1)[0] for b in self.body]
+
+
+LogLines = SentenceBlock
+"""The whole file as one block (what :func:`split_log` returns)."""
+
+
+@dataclass
+class RawBlock:
+    """Sentences of a block before the file-wide checksum policy is applied.
+
+    ``cs`` is ``CS_OK``/``CS_BAD``/``CS_NONE`` per sentence, ``tss`` marks TSS1 records
+    (which never carry one); ``counts`` are the lines set aside whatever the policy,
+    ``styles`` the logger tag styles seen and ``odd_prefix`` the sentences preceded by
+    printable text that is no time tag.
+    """
+
+    buf: np.ndarray
+    start: np.ndarray
+    end: np.ndarray
+    line_no: np.ndarray
+    tag: np.ndarray
+    cs: np.ndarray
+    tss: np.ndarray
+    counts: dict[str, int]
+    styles: dict[str, int]
+    odd_prefix: int
+
+    def checksum_census(self) -> tuple[int, int]:
+        """(NMEA sentences with a checksum, without one): what the policy is decided on."""
+        nmea = ~self.tss
+        given = self.cs != nk.CS_NONE
+        return int(np.count_nonzero(nmea & given)), int(np.count_nonzero(nmea & ~given))
 
 
 def _day_number(cache: dict, y: int, m: int, d: int) -> int | None:
@@ -163,121 +206,195 @@ def _find_sentence(text: str) -> tuple[int, str, str | None] | None:
     return None
 
 
+@dataclass
+class _Found:
+    """Sentences the regex splitter found in the lines the kernel handed over."""
+
+    line: list[int] = field(default_factory=list)
+    tag: list[float] = field(default_factory=list)
+    body: list[str] = field(default_factory=list)
+    cs: list[str | None] = field(default_factory=list)
+    counts: dict[str, int] = field(default_factory=dict)
+    styles: dict[str, int] = field(default_factory=dict)
+    odd_prefix: int = 0
+
+    def bump(self, key: str, n: int = 1) -> None:
+        self.counts[key] = self.counts.get(key, 0) + n
+
+
+def _regex_line(raw: str, number: int, found: _Found, cache: dict) -> None:
+    """Split one line the kernel did not call plain (binary, spliced, TSS1, odd tag…)."""
+    line = raw.rstrip("\r\n\t ")
+    stripped = line.lstrip()
+    if not stripped:
+        found.bump("blank")
+        return
+    if stripped[0] in "#{" and not _NONPRINT.search(line):
+        # Printable only: a binary fragment may begin with 0x23 '#' or 0x7B '{'.
+        found.bump("comment" if stripped[0] == "#" else "json")
+        return
+    hit = _find_sentence(line)
+    if hit is None:
+        tss = _TSS1.search(line)
+        if tss is None:
+            found.bump("binary" if _NONPRINT.search(line) else "unparseable")
+            return
+        start, body, cs = tss.start(), tss.group(0), None
+    else:
+        start, body, cs = hit
+    prefix = line[:start]
+    tag = float("nan")
+    fragment = _START.search(prefix)
+    if fragment:
+        # A truncated sentence spliced before this one: drop it, keep any tag.
+        found.bump("spliced fragment")
+        prefix = prefix[: fragment.start()]
+    if prefix.strip():
+        tag, style = parse_tag(prefix.strip(), cache)
+        if style is not None:
+            found.styles[style] = found.styles.get(style, 0) + 1
+        elif _NONPRINT.search(prefix):
+            found.bump("binary before sentence")
+        else:
+            found.odd_prefix += 1
+    found.line.append(number)
+    found.tag.append(tag)
+    found.body.append(body)
+    found.cs.append(cs)
+
+
+def scan_block(buf: np.ndarray, first_line: int = 1) -> RawBlock:
+    """Split a block of whole lines (uint8) into sentences, before the checksum policy.
+
+    Plain lines are split by the compiled kernel (:mod:`nmea_kernels`), every other line
+    by the regex splitter; *first_line* is the file's number of the block's first line.
+    """
+    line_start, line_end, status, b_start, b_end, cs, tag, style = nk.scan_lines(buf)
+    plain = np.flatnonzero(status == nk.PLAIN)
+    counts = {"lines": int(status.size)}
+    blank = int(np.count_nonzero(status == nk.BLANK))
+    found = _Found()
+    if blank:
+        found.bump("blank", blank)
+    odd = np.flatnonzero(status == nk.FALLBACK)
+    cache: dict = {}
+    data = buf.tobytes() if odd.size else b""
+    for i in odd:
+        _regex_line(data[line_start[i]:line_end[i]].decode("latin-1"), int(first_line + i),
+                    found, cache)
+    counts.update(found.counts)
+    styles = found.styles
+    for code in np.unique(style[plain]) if plain.size else ():
+        if code != nk.STYLE_NONE:
+            styles[nk.STYLES[code]] = styles.get(nk.STYLES[code], 0) + int(
+                np.count_nonzero(style[plain] == code))
+    return _merge(buf, plain, first_line, (b_start, b_end, cs, tag), found, counts, styles)
+
+
+def _merge(buf, plain, first_line, kernel, found: _Found, counts, styles) -> RawBlock:
+    """Kernel and regex sentences together, in line order, bodies in one buffer."""
+    b_start, b_end, cs, tag = kernel
+    n_extra = len(found.body)
+    starts = [b_start[plain]]
+    ends = [b_end[plain]]
+    states = [cs[plain]]
+    if n_extra:
+        extra = "".join(found.body).encode("latin-1")
+        lengths = np.fromiter((len(b) for b in found.body), np.int64, n_extra)
+        offs = buf.size + np.concatenate([[0], np.cumsum(lengths)[:-1]])
+        buf = np.concatenate([buf, np.frombuffer(extra, np.uint8)])
+        starts.append(offs)
+        ends.append(offs + lengths)
+        given = np.array([c is not None for c in found.cs], bool)
+        state = np.full(n_extra, nk.CS_NONE, np.int8)
+        with_cs = np.flatnonzero(given)
+        if with_cs.size:
+            computed = _xor_checksums([found.body[i] for i in with_cs])
+            stated = np.array([int(found.cs[i], 16) for i in with_cs], dtype=np.uint8)
+            state[with_cs] = np.where(computed == stated, nk.CS_OK, nk.CS_BAD)
+        states.append(state)
+    line_no = np.concatenate([plain + first_line, np.asarray(found.line, np.int64)])
+    order = np.argsort(line_no, kind="stable") if n_extra else slice(None)
+    tss = np.concatenate([np.zeros(plain.size, bool),
+                          np.array([b.startswith(":") for b in found.body], bool)])
+    return RawBlock(
+        buf=buf, start=np.concatenate(starts)[order], end=np.concatenate(ends)[order],
+        line_no=line_no[order],
+        tag=np.concatenate([tag[plain], np.asarray(found.tag, np.float64)])[order],
+        cs=np.concatenate(states)[order], tss=tss[order], counts=counts, styles=styles,
+        odd_prefix=found.odd_prefix,
+    )
+
+
+def checksum_policy(n_with: int, n_without: int) -> bool:
+    """True (accept sentences without checksum) when most of the file's carry none."""
+    return n_without > 0 and n_without > n_with
+
+
+def apply_policy(raw: RawBlock, no_checksums: bool, path: str = "<bytes>") -> SentenceBlock:
+    """Drop bad checksums and (unless *no_checksums*) NMEA sentences without one.
+
+    The returned block's ``counts`` hold this block's lines set aside, the checksum
+    counts and ``sentences``; ``tag_style`` is left for the caller (file-wide).
+    """
+    counts = dict(raw.counts)
+    keep = raw.cs != nk.CS_BAD
+    bad = int(np.count_nonzero(~keep))
+    if bad:
+        counts["bad checksum"] = counts.get("bad checksum", 0) + bad
+    without = ~raw.tss & (raw.cs == nk.CS_NONE)
+    n_without = int(np.count_nonzero(without))
+    if n_without and not no_checksums:
+        # Most sentences carry a checksum: one without is a truncated fragment.
+        keep &= ~without
+        counts["missing checksum"] = counts.get("missing checksum", 0) + n_without
+    elif n_without:
+        counts["no checksum (accepted)"] = counts.get("no checksum (accepted)", 0) + n_without
+    idx = np.flatnonzero(keep)
+    counts["sentences"] = int(idx.size)
+    return SentenceBlock(
+        path=path, buf=raw.buf, start=raw.start[idx], end=raw.end[idx],
+        line_no=raw.line_no[idx], tag=raw.tag[idx],
+        has_checksum=(raw.cs[idx] != nk.CS_NONE) & ~raw.tss[idx], counts=counts,
+        no_checksums=no_checksums,
+    )
+
+
+def tag_style_of(styles: dict[str, int]) -> str | None:
+    """The file's logger tag style: the most frequent one (None without tags)."""
+    return max(styles, key=styles.get) if styles else None
+
+
+def odd_prefix_reason(tag_style: str | None) -> str:
+    """Printable non-tag text before a sentence: a damaged tag in a tagged file,
+    otherwise stray bytes glued on."""
+    return "bad time tag" if tag_style else "junk before sentence"
+
+
 def split_log(
     data: bytes,
     path: str = "<bytes>",
     *,
     progress: ProgressCallback | None = None,
     cancel: CancelToken | None = None,
-) -> LogLines:
-    """Split raw log bytes into usable sentences and per-reason counts.
+) -> SentenceBlock:
+    """Split raw log bytes (a whole, small file) into usable sentences and counts.
 
-    Parameters
-    ----------
-    data : bytes
-        The whole file. Decoded as Latin-1 so binary bytes never raise.
-    path : str
-        File name used in the result (for messages).
-    progress, cancel
-        Reported / checked every 50 000 lines.
+    Large files are read block by block by :mod:`log_stream`; this is the same split on
+    one block.
 
     Returns
     -------
-    LogLines
+    SentenceBlock
         Sentences with valid (or, in a checksum-free file, absent) checksums.
     """
-    text_all = data.decode("latin-1")
-    lines = text_all.split("\n")
-    if lines and lines[-1] == "":
-        lines.pop()
-    counts: dict[str, int] = {"lines": len(lines)}
-
-    def bump(key: str, n: int = 1) -> None:
-        counts[key] = counts.get(key, 0) + n
-
-    cache: dict = {}
-    rec_line: list[int] = []
-    rec_tag: list[float] = []
-    rec_body: list[str] = []
-    rec_cs: list[str | None] = []
-    styles: dict[str, int] = {}
-    odd_prefix = 0  # printable text before a sentence that is not a time tag
-    for number, raw in enumerate(lines, start=1):
-        if number % 50_000 == 0:
-            check_cancel(cancel)
-            report(progress, 0.5 * number / len(lines), "splitting sentences")
-        line = raw.rstrip("\r\n\t ")
-        stripped = line.lstrip()
-        if not stripped:
-            bump("blank")
-            continue
-        if stripped[0] in "#{" and not _NONPRINT.search(line):
-            # Printable only: a binary fragment may begin with 0x23 '#' or 0x7B '{'.
-            bump("comment" if stripped[0] == "#" else "json")
-            continue
-        found = _find_sentence(line)
-        if found is None:
-            tss = _TSS1.search(line)
-            if tss is None:
-                bump("binary" if _NONPRINT.search(line) else "unparseable")
-                continue
-            start, body, cs = tss.start(), tss.group(0), None
-        else:
-            start, body, cs = found
-        prefix = line[:start]
-        tag = float("nan")
-        fragment = _START.search(prefix)
-        if fragment:
-            # A truncated sentence spliced before this one: drop it, keep any tag.
-            bump("spliced fragment")
-            prefix = prefix[: fragment.start()]
-        if prefix.strip():
-            tag, style = parse_tag(prefix.strip(), cache)
-            if style is not None:
-                styles[style] = styles.get(style, 0) + 1
-            elif _NONPRINT.search(prefix):
-                bump("binary before sentence")
-            else:
-                odd_prefix += 1
-        rec_line.append(number)
-        rec_tag.append(tag)
-        rec_body.append(body)
-        rec_cs.append(cs)
-
-    is_tss = np.array([b.startswith(":") for b in rec_body], dtype=bool)
-    given = np.array([c is not None for c in rec_cs], dtype=bool)
-    keep = np.ones(len(rec_body), dtype=bool)
-    with_cs = np.flatnonzero(given)
-    if with_cs.size:
-        computed = _xor_checksums([rec_body[i] for i in with_cs])
-        stated = np.array([int(rec_cs[i], 16) for i in with_cs], dtype=np.uint8)
-        bad = with_cs[computed != stated]
-        keep[bad] = False
-        if bad.size:
-            bump("bad checksum", int(bad.size))
-    nmea = ~is_tss
-    n_without = int(np.count_nonzero(nmea & ~given))
-    n_with = int(np.count_nonzero(nmea & given))
-    no_checksums = n_without > 0 and n_without > n_with
-    if n_without and not no_checksums:
-        # Most sentences carry a checksum: one without is a truncated fragment.
-        keep[nmea & ~given] = False
-        bump("missing checksum", n_without)
-    elif no_checksums:
-        bump("no checksum (accepted)", n_without)
-    idx = np.flatnonzero(keep)
-    counts["sentences"] = int(idx.size)
-    tag_style = max(styles, key=styles.get) if styles else None
-    if odd_prefix:
-        # In a tagged file it is a damaged tag; otherwise stray bytes glued on.
-        bump("bad time tag" if tag_style else "junk before sentence", odd_prefix)
-    return LogLines(
-        path=path,
-        line_no=np.asarray(rec_line, dtype=np.int64)[idx] if rec_line else np.zeros(0, np.int64),
-        tag=np.asarray(rec_tag, dtype=np.float64)[idx] if rec_tag else np.zeros(0),
-        body=[rec_body[i] for i in idx],
-        has_checksum=given[idx],
-        counts=counts,
-        tag_style=tag_style,
-        no_checksums=no_checksums,
-    )
+    check_cancel(cancel)
+    report(progress, 0.0, "splitting sentences")
+    raw = scan_block(np.frombuffer(data, np.uint8))
+    no_checksums = checksum_policy(*raw.checksum_census())
+    block = apply_policy(raw, no_checksums, path)
+    block.tag_style = tag_style_of(raw.styles)
+    if raw.odd_prefix:
+        reason = odd_prefix_reason(block.tag_style)
+        block.counts[reason] = block.counts.get(reason, 0) + raw.odd_prefix
+    return block

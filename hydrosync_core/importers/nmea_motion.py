@@ -30,13 +30,17 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from hydrosync_core.errors import InputError
 from hydrosync_core.importers import nmea_fields as nf
+from hydrosync_core.importers import nmea_kernels as nk
 from hydrosync_core.importers.nmea_lines import LogLines
+from hydrosync_core.inputs import input_ok
 
 _TSS1 = re.compile(
     r":([0-9A-Fa-f]{2})([0-9A-Fa-f]{4}) ([ +-])(\d{4})([A-Za-z ])([ +-])(\d{4}) ([ +-])(\d{4})"
 )
-_PASHR_TIME = re.compile(r"\d{6}(\.\d*)?\Z")
+TSS1_SETTLING = "flagged settling (kept)"
+"""Counted while parsing; the import turns it into its warning (not a skip)."""
 
 HEAVE_CONVENTION = {"TSS1": "up", "PSXN,23": None, "PASHR": "up"}
 """Heave sign fixed by the format's specification (None: must be given by the user).
@@ -53,7 +57,8 @@ class MotionRecords:
 
     ``index`` sentence indices; ``tod`` UTC seconds of day (NaN when the format has no
     time); roll, pitch, heading in degrees (HydroSync conventions); heave in metres *as
-    written in the file* (sign applied later); ``sigma`` optional dict of σ arrays (deg).
+    written in the file* (sign applied later); ``sigma`` optional dict of σ arrays (deg;
+    not read: no analysis uses the sensor's stated σ).
     """
 
     source: str
@@ -74,61 +79,55 @@ def split_pashr(log: LogLines, index: np.ndarray) -> tuple[np.ndarray, int]:
     Returns the attitude sentence indices and how many Ashtech (non-attitude) ones
     were set aside.
     """
-    rows = nf.rows_of(log.body, index)
-    attitude = np.array(
-        [len(r) > 6 and bool(_PASHR_TIME.match(r[1])) and r[3] == "T" for r in rows],
-        dtype=bool,
-    )
+    attitude = nk.pashr_attitude(log.buf, log.start, log.end, index)
     return index[attitude], int(np.count_nonzero(~attitude))
 
 
 def parse_pashr(log: LogLines, index: np.ndarray) -> MotionRecords:
     """Parse attitude-form ``$PASHR`` sentences (already filtered by :func:`split_pashr`)."""
-    rows = nf.rows_of(log.body, index)
-    heading, h_empty, h_bad = nf.to_float(nf.column(rows, 2))
-    roll, r_empty, r_bad = nf.to_float(nf.column(rows, 4))
-    pitch, p_empty, p_bad = nf.to_float(nf.column(rows, 5))
-    heave, v_empty, v_bad = nf.to_float(nf.column(rows, 6))
-    sig = {name: nf.to_float(nf.column(rows, k))[0]
-           for name, k in (("sigma_roll", 7), ("sigma_pitch", 8), ("sigma_heading", 9))}
-    keep = np.ones(len(rows), dtype=bool)
+    heading, h_empty, h_bad = nf.floats(log, index, 2)
+    roll, r_empty, r_bad = nf.floats(log, index, 4)
+    pitch, p_empty, p_bad = nf.floats(log, index, 5)
+    heave, v_empty, v_bad = nf.floats(log, index, 6)
+    keep = np.ones(index.size, dtype=bool)
     skipped: dict[str, int] = {}
     nf.drop(skipped, "empty attitude field", h_empty | r_empty | p_empty, keep)
     nf.drop(skipped, "empty heave", v_empty, keep)
     nf.drop(skipped, "unparseable field", h_bad | r_bad | p_bad | v_bad, keep)
-    tod = nf.time_of_day(nf.column(rows, 1))
+    tod = nf.tod_field(log, index, 1)
     return MotionRecords(
         "PASHR", index[keep], tod[keep], roll[keep], pitch[keep], heading[keep],
-        heave[keep], {k: v[keep] for k, v in sig.items()}, skipped,
+        heave[keep], {}, skipped,
     )
 
 
 def parse_psxn23(
-    log: LogLines, index: np.ndarray, quality_index: np.ndarray | None = None
+    log: LogLines, index: np.ndarray, quality_index: np.ndarray | None = None,
+    carried_quality: float = np.nan,
 ) -> MotionRecords:
     """Parse ``$PSXN,23,roll,pitch,heading,heave``.
 
     When ``$PSXN,20`` quality sentences are present, epochs whose latest preceding
-    roll/pitch quality (field 5) is 2 = invalid are dropped.
+    roll/pitch quality (field 5) is 2 = invalid are dropped; *carried_quality* is the
+    last one of the blocks before (file read block by block).
     """
-    rows = nf.rows_of(log.body, index)
-    roll, r_empty, r_bad = nf.to_float(nf.column(rows, 2))
-    pitch, p_empty, p_bad = nf.to_float(nf.column(rows, 3))
-    heading, h_empty, h_bad = nf.to_float(nf.column(rows, 4))
-    heave, v_empty, v_bad = nf.to_float(nf.column(rows, 5))
-    keep = np.ones(len(rows), dtype=bool)
+    roll, r_empty, r_bad = nf.floats(log, index, 2)
+    pitch, p_empty, p_bad = nf.floats(log, index, 3)
+    heading, h_empty, h_bad = nf.floats(log, index, 4)
+    heave, v_empty, v_bad = nf.floats(log, index, 5)
+    keep = np.ones(index.size, dtype=bool)
     skipped: dict[str, int] = {}
     nf.drop(skipped, "empty attitude field", r_empty | p_empty | h_empty, keep)
     nf.drop(skipped, "empty heave", v_empty, keep)
     nf.drop(skipped, "unparseable field", r_bad | p_bad | h_bad | v_bad, keep)
-    if quality_index is not None and quality_index.size:
-        qrows = nf.rows_of(log.body, quality_index)
-        rp_quality, _, _ = nf.to_float(nf.column(qrows, 5))
+    if quality_index is None:
+        quality_index = np.zeros(0, np.int64)
+    if quality_index.size or np.isfinite(carried_quality):
+        rp_quality = nf.floats(log, quality_index, 5)[0]
         k = np.searchsorted(quality_index, index, side="right") - 1
-        has = k >= 0
-        invalid = np.zeros(len(rows), dtype=bool)
-        invalid[has] = rp_quality[k[has]] == 2
-        nf.drop(skipped, "roll/pitch quality invalid (PSXN,20)", invalid, keep)
+        latest = np.where(k >= 0, rp_quality[np.maximum(k, 0)] if rp_quality.size else np.nan,
+                          carried_quality)
+        nf.drop(skipped, "roll/pitch quality invalid (PSXN,20)", latest == 2, keep)
     return MotionRecords(
         "PSXN,23", index[keep], np.full(int(keep.sum()), np.nan), roll[keep], pitch[keep],
         heading[keep], heave[keep], {}, skipped,
@@ -139,8 +138,9 @@ def parse_tss1(log: LogLines, index: np.ndarray) -> MotionRecords:
     """Parse TSS1 records: heave (cm -> m, positive up), roll and pitch (0.01° -> °)."""
     heave, roll, pitch = (np.full(index.size, np.nan) for _ in range(3))
     status = []
+    data = log.buf.tobytes()
     for j, i in enumerate(index):
-        m = _TSS1.fullmatch(log.body[i])
+        m = _TSS1.fullmatch(data[log.start[i]:log.end[i]].decode("latin-1"))
         if m is None:
             status.append("")
             continue
@@ -154,25 +154,27 @@ def parse_tss1(log: LogLines, index: np.ndarray) -> MotionRecords:
     skipped: dict[str, int] = {}
     if (~keep).any():
         skipped["unparseable field"] = int(np.count_nonzero(~keep))
-    warnings = []
     settling = sum(1 for s in status if s.islower())
     if settling:
-        warnings.append(f"{settling} TSS1 records flagged settling (lower-case status)")
+        skipped[TSS1_SETTLING] = settling
     return MotionRecords(
         "TSS1", index[keep], np.full(int(keep.sum()), np.nan), roll[keep], pitch[keep],
-        np.full(int(keep.sum()), np.nan), heave[keep], {}, skipped, warnings,
+        np.full(int(keep.sum()), np.nan), heave[keep], {}, skipped,
     )
 
 
-def heading_from_hdt(log: LogLines, hdt_index: np.ndarray, times: np.ndarray,
-                     hdt_times: np.ndarray) -> np.ndarray:
-    """True heading (deg) from ``$--HDT`` sentences, interpolated at *times*.
+def hdt_headings(log: LogLines, hdt_index: np.ndarray) -> np.ndarray:
+    """True heading (deg) of ``$--HDT`` sentences *hdt_index* (NaN where unreadable)."""
+    return nf.floats(log, hdt_index, 1)[0]
+
+
+def heading_from_hdt(hdg: np.ndarray, times: np.ndarray, hdt_times: np.ndarray) -> np.ndarray:
+    """True heading (deg) from ``$--HDT`` headings *hdg* at *hdt_times*, interpolated at
+    *times*.
 
     Headings are unwrapped before linear interpolation so 359° -> 1° does not sweep
     through 180°; outside the HDT time span the result is NaN.
     """
-    rows = nf.rows_of(log.body, hdt_index)
-    hdg, _, _ = nf.to_float(nf.column(rows, 1))
     ok = np.isfinite(hdg) & np.isfinite(hdt_times)
     if np.count_nonzero(ok) < 2:
         return np.full(times.shape, np.nan)
@@ -190,6 +192,10 @@ def sniff_motion_source(path, max_bytes: int = 262_144) -> str | None:
     Cheap enough to call while the user picks a file, so the Import dialog can preselect
     the sentence's documented heave sign for confirmation.
     """
+    try:
+        input_ok(path, "motion log")  # a FIFO would block the sniffing read
+    except InputError:
+        return None
     import re
 
     try:

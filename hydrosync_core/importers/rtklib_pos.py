@@ -212,9 +212,27 @@ def read_pos(path: str | os.PathLike) -> PosData:
         Missing or empty file, no data rows, a row with the wrong number of fields, a
         value that is not a finite number, an unknown Q, a repeated epoch.
     """
-    p = Path(path)
-    name = str(p)
-    text = read_text_file(p, allow_empty=True)
+    name = str(Path(path))
+    header, rows = _header_and_rows(name, read_text_file(Path(path), allow_empty=True))
+    legend = _legend(name, header)
+    names, system = (_infer_names(rows[0][1]), "GPST") if legend is None else legend[:2]
+    form = next((f for f, cols in _FORMS.items() if all(c in names for c in cols)), None)
+    if form is None:
+        raise InputError(name, "the legend names neither lat/lon/height, x/y/z-ecef nor "
+                         "e/n/u-baseline columns", line=legend[2] if legend else None)
+    # dms mode: latitude and longitude take three tokens each.
+    dms = form == "llh" and len(rows[0][1]) == 2 + len(names) + 4
+    weeks, tows, values, formats = _parse_rows(name, rows, names, dms)
+    out, order = _sorted_columns(name, rows, names, weeks, tows, values)
+    ref = _ref_pos(header)
+    _add_positions(name, out, form, ref, [rows[i][0] for i in order])
+    return PosData(name, form, system, formats.pop(), out, ref, legend is not None,
+                   [h for _, h in header])
+
+
+def _header_and_rows(name: str, text: str) -> tuple[list[tuple[int, str]], list]:
+    """``%`` header lines before the first row, and the data rows split into tokens, each
+    with its line number."""
     header: list[tuple[int, str]] = []
     rows: list[tuple[int, list[str]]] = []
     for number, line in enumerate(text.splitlines(), start=1):
@@ -229,20 +247,26 @@ def read_pos(path: str | os.PathLike) -> PosData:
     if not rows:
         raise InputError(name, "no solution rows (only % header lines)" if header
                          else "file is empty")
-    legend = _legend(name, header)
-    legend_found = legend is not None
-    if legend is None:
-        names, system = _infer_names(rows[0][1]), "GPST"
-    else:
-        names, system, _ = legend
-    form = next((f for f, cols in _FORMS.items() if all(c in names for c in cols)), None)
-    if form is None:
-        raise InputError(name, "the legend names neither lat/lon/height, x/y/z-ecef nor "
-                         "e/n/u-baseline columns", line=legend[2] if legend else None)
-    ref = _ref_pos(header)
+    return header, rows
+
+
+def _dms_to_degrees(name: str, number: int, names: list[str], data: list[str]) -> list[str]:
+    """Latitude and longitude written as ``d m s`` (three tokens each) as degrees."""
+    merged = []
+    for k in (0, 3):
+        d, m, s = data[k:k + 3]
+        sign = -1.0 if d.startswith("-") else 1.0
+        try:
+            merged.append(str(sign * (abs(float(d)) + float(m) / 60 + float(s) / 3600)))
+        except ValueError:
+            raise InputError(name, f"{quote(f'{d} {m} {s}')} is not d m s", line=number,
+                             field=names[k // 3]) from None
+    return merged + data[6:]
+
+
+def _parse_rows(name: str, rows: list, names: list[str], dms: bool):
+    """Week, time of week (s), values and the time formats seen, row by row."""
     n_cols = len(names)
-    # dms mode: latitude and longitude take three tokens each.
-    dms = form == "llh" and len(rows[0][1]) == 2 + n_cols + 4
     expected = 2 + n_cols + (4 if dms else 0)
     weeks = np.empty(len(rows), np.int64)
     tows = np.empty(len(rows))
@@ -254,18 +278,7 @@ def read_pos(path: str | os.PathLike) -> PosData:
                              line=number)
         weeks[i], tows[i], fmt = _time_of(name, number, tokens[0], tokens[1])
         formats.add(fmt)
-        data = tokens[2:]
-        if dms:
-            merged = []
-            for k in (0, 3):
-                d, m, s = data[k:k + 3]
-                sign = -1.0 if d.startswith("-") else 1.0
-                try:
-                    merged.append(str(sign * (abs(float(d)) + float(m) / 60 + float(s) / 3600)))
-                except ValueError:
-                    raise InputError(name, f"{quote(f'{d} {m} {s}')} is not d m s", line=number,
-                                     field=names[k // 3]) from None
-            data = merged + data[6:]
+        data = _dms_to_degrees(name, number, names, tokens[2:]) if dms else tokens[2:]
         for j, token in enumerate(data):
             try:
                 values[i, j] = float(token)
@@ -277,8 +290,13 @@ def read_pos(path: str | os.PathLike) -> PosData:
             raise InputError(name, "value is not finite", line=number, field=names[j])
     if len(formats) > 1:
         raise InputError(name, "mixes date/time and week/TOW time tags", field="time")
-    cols = {n: values[:, j] for j, n in enumerate(names)}
-    q = cols["q"]
+    return weeks, tows, values, formats
+
+
+def _sorted_columns(name, rows, names, weeks, tows, values) -> tuple[dict, np.ndarray]:
+    """Columns sorted by GPS time (``time`` = time of week, ``week``, ``gps_s``), Q and
+    satellite counts as integers; a bad Q or a repeated epoch raises."""
+    q = values[:, names.index("q")]
     bad = np.flatnonzero((q != np.round(q)) | (q < 0) | (q > 7))
     if bad.size:
         raise InputError(name, f"quality flag {q[bad[0]]:g} is not one of 0-7",
@@ -293,19 +311,21 @@ def read_pos(path: str | os.PathLike) -> PosData:
                          line=rows[b][0], field="time")
     out: dict[str, np.ndarray] = {"time": tows[order], "week": weeks[order],
                                   "gps_s": sorted_t}
-    for n, v in cols.items():
-        v = v[order]
-        if n == "q":
-            out[n] = v.astype(np.int8)
-        elif n == "ns":
-            out[n] = v.astype(np.int16)
-        else:
-            out[n] = v
+    integer = {"q": np.int8, "ns": np.int16}
+    for j, n in enumerate(names):
+        v = values[order, j]
+        out[n] = v.astype(integer[n]) if n in integer else v
+    return out, order
+
+
+def _add_positions(name: str, out: dict, form: str, ref, lines: list[int]) -> None:
+    """Check the positions and add the other form (ECEF for llh and a referenced enu
+    baseline, geodetic for xyz); *lines* are the sorted rows' line numbers."""
     if form == "llh":
         bad = np.flatnonzero((np.abs(out["lat"]) > 90) | (np.abs(out["lon"]) > 360))
         if bad.size:
-            raise InputError(name, "latitude/longitude out of range",
-                             line=rows[order[bad[0]]][0], field="latitude")
+            raise InputError(name, "latitude/longitude out of range", line=lines[bad[0]],
+                             field="latitude")
         xyz = geodetic_to_ecef(out["lat"], out["lon"], out["height"])
         out["x"], out["y"], out["z"] = xyz[:, 0], xyz[:, 1], xyz[:, 2]
     elif form == "xyz":
@@ -313,7 +333,7 @@ def read_pos(path: str | os.PathLike) -> PosData:
         bad = np.flatnonzero((r < 6.0e6) | (r > 5.0e7))
         if bad.size:
             raise InputError(name, f"ECEF position {r[bad[0]]:.0f} m from the Earth's centre "
-                             "is not near the Earth", line=rows[order[bad[0]]][0], field="x-ecef")
+                             "is not near the Earth", line=lines[bad[0]], field="x-ecef")
         out["lat"], out["lon"], out["height"] = ecef_to_geodetic(
             np.column_stack([out["x"], out["y"], out["z"]]))
     elif ref is not None:  # enu baseline with a reference position: ECEF too
@@ -321,8 +341,6 @@ def read_pos(path: str | os.PathLike) -> PosData:
         ned = np.column_stack([out["n"], out["e"], -out["u"]])
         xyz = geodetic_to_ecef(*ref) + ned @ c
         out["x"], out["y"], out["z"] = xyz[:, 0], xyz[:, 1], xyz[:, 2]
-    return PosData(name, form, system, formats.pop(), out, ref, legend_found,
-                   [h for _, h in header])
 
 
 def _signed_square(sd: np.ndarray) -> np.ndarray:
@@ -361,11 +379,6 @@ def ned_covariance(columns: dict[str, np.ndarray], form: str | None = None) -> n
         rot = ecef_to_ned_matrix(c["lat"], c["lon"])
         return rot @ cov @ np.swapaxes(rot, -1, -2)
     return None
-
-
-def read_pos_table(path: str | os.PathLike) -> dict[str, np.ndarray]:
-    """The columns of :func:`read_pos` (a ``"table"`` data-kind reader)."""
-    return read_pos(path).columns
 
 
 def store_pos(project, target: str, path: Path, **options) -> str:

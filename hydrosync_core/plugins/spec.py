@@ -56,6 +56,9 @@ class DataKind:
         Import options the reader accepts as keyword arguments (``"heave_positive"``);
         ``hydrosync import`` passes those given on its command line, the Import dialog
         asks for them, and they are recorded as attributes of the imported data.
+    repeatable : str
+        Empty when one file fills the target (a second one replaces it); else what each
+        of several files holds (``"one file per antenna"``): ``--help`` says so.
     """
 
     name: str
@@ -64,6 +67,7 @@ class DataKind:
     reader: str
     store: str = "table"
     options: tuple[str, ...] = ()
+    repeatable: str = ""
 
 
 @dataclass(frozen=True)

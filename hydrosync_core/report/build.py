@@ -16,11 +16,12 @@ import os
 import re
 from pathlib import Path
 
-from reportlab.platypus import Flowable, PageBreak
+from reportlab.platypus import CondPageBreak, Flowable
 
 from hydrosync_core import __version__
 from hydrosync_core.atomic import atomic_path
 from hydrosync_core.errors import InputError, clip
+from hydrosync_core.i18n import language, normalise, tr, using
 from hydrosync_core.plugins import plugin_specs
 from hydrosync_core.plugins.spec import PluginSpec, load_object
 from hydrosync_core.progress import check_cancel, report
@@ -33,7 +34,8 @@ from hydrosync_core.report.cover import (
     results_path,
 )
 from hydrosync_core.report.sources import section as sources_section
-from hydrosync_core.report.template import NumberedCanvas, ReportDocTemplate
+from hydrosync_core.report.styles import language_fonts
+from hydrosync_core.report.template import NumberedCanvas, PageLayout, ReportDocTemplate
 
 log = logging.getLogger(__name__)
 
@@ -52,7 +54,12 @@ def failure_reason(exc: BaseException) -> str:
     """Why a section failed, in one line: the input problem, or the exception."""
     if isinstance(exc, InputError):
         return clip(exc.message, 300)
-    return clip(f"{type(exc).__name__}: {exc}", 300)
+    # Not the raw library text ("TypeError: ufunc 'isfinite' …", issue #28): what it
+    # means to the reader; the exception itself goes to the log (-v, HYDROSYNC_DEBUG).
+    log.debug("section failure", exc_info=exc)
+    kind = "damaged" if isinstance(exc, OSError | KeyError) else "not of the expected form"
+    return (f"its stored data are {kind} (run the analysis again; "
+            f"{type(exc).__name__} in the report code)")
 
 
 def _section(project, ctx: ReportContext, status: ModuleStatus,
@@ -92,9 +99,20 @@ def _status_problems(project, statuses: list[ModuleStatus]) -> list[str]:
     return out
 
 
+#: A section starts on a new page unless at least this fraction of the page is still free:
+#: a new page after every section left pages 60 % empty (#26).
+SECTION_ROOM = 0.5
+
+
+def section_break(doc) -> CondPageBreak:
+    """Before a section: a page break only if less than :data:`SECTION_ROOM` is left."""
+    return CondPageBreak(SECTION_ROOM * doc.height)
+
+
 def build_report(project, pdf_path: str | os.PathLike, progress=None, cancel=None, *,
                  specs: list[PluginSpec] | None = None,
-                 problems: list[str] | None = None) -> Path:
+                 problems: list[str] | None = None,
+                 layout: PageLayout | None = None, lang: str | None = None) -> Path:
     """Write the PDF report of *project* to *pdf_path* atomically and return the path.
 
     Parameters
@@ -111,13 +129,30 @@ def build_report(project, pdf_path: str | os.PathLike, progress=None, cancel=Non
     problems : list of str, optional
         Receives one line per part of the report that could not be produced (a damaged
         project); those parts show "could not be produced: <reason>" in the PDF.
+    layout : PageLayout, optional
+        Receives how full each page is and where each section starts (benchmarks and
+        tests check that no page is left nearly empty).
+    lang : str, optional
+        Language of the text (``en``, ``zh_CN``; default: the current
+        :func:`hydrosync_core.i18n.language`). Numbers, units and symbols are the same in
+        every language; Chinese embeds a CJK TrueType font (``fonts-wqy-zenhei``).
 
     Returns
     -------
     pathlib.Path
         *pdf_path*.
     """
-    pdf_path = Path(pdf_path)
+    try:
+        lang = normalise(lang or language())
+    except ValueError as exc:
+        raise InputError("--lang", str(exc)) from None
+    with using(lang), language_fonts(lang):
+        return _build(project, Path(pdf_path), progress, cancel, specs, problems, layout)
+
+
+def _build(project, pdf_path: Path, progress, cancel, specs: list[PluginSpec] | None,
+           problems: list[str] | None, layout: PageLayout | None) -> Path:
+    """:func:`build_report` in the current language."""
     if not pdf_path.parent.is_dir():
         raise InputError(str(pdf_path), "output folder does not exist")
     report(progress, 0.0, "collecting results")
@@ -127,10 +162,10 @@ def build_report(project, pdf_path: str | os.PathLike, progress=None, cancel=Non
     problems += _status_problems(project, statuses)
     check_cancel(cancel)
 
-    doc_title = f"HydroSync report \u2014 {project.name or 'Untitled project'}"
+    doc_title = tr(f"HydroSync report \u2014 {project.name or 'Untitled project'}")
     with atomic_path(pdf_path) as tmp:
         doc = ReportDocTemplate(str(tmp), title=doc_title, author="HydroSync",
-                                subject="Sensor calibration report", progress=progress,
+                                subject=tr("Sensor calibration report"), progress=progress,
                                 cancel=cancel)
         ctx = ReportContext(width=doc.width)
         story: list[Flowable] = cover_page(project, ctx, statuses)
@@ -140,7 +175,7 @@ def build_report(project, pdf_path: str | os.PathLike, progress=None, cancel=Non
             check_cancel(cancel)
             report(progress, 0.1 + 0.6 * i / max(len(with_results), 1),
                    f"section {status.spec.name}")
-            story.append(PageBreak())
+            story.append(section_break(doc))
             section = _section(project, ctx, status, problems)
             if status.stale:
                 # Right under the heading, before any number of the section.
@@ -148,7 +183,7 @@ def build_report(project, pdf_path: str | os.PathLike, progress=None, cancel=Non
                     "OUT OF DATE: these results no longer match the project \u2014 "
                     + "; ".join(status.stale) + ". Run the analysis again before signing.")]
             story += section
-        story.append(PageBreak())
+        story.append(section_break(doc))
         try:
             story += sources_section(project, ctx)
         except Exception as exc:  # a damaged raw group must not sink the report
@@ -174,5 +209,9 @@ def build_report(project, pdf_path: str | os.PathLike, progress=None, cancel=Non
         })
         # Two passes at most: the contents needs the page numbers of the headings.
         doc.multiBuild(story, canvasmaker=canvas, maxPasses=4)
+    if layout is not None:
+        layout.fill[:] = doc.layout.fill
+        layout.section_starts.clear()
+        layout.section_starts.update(doc.layout.section_starts)
     report(progress, 1.0, f"report written to {pdf_path}")
     return pdf_path

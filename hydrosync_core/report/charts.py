@@ -16,12 +16,28 @@ import math
 from dataclasses import dataclass, field
 
 import numpy as np
-from reportlab.graphics.shapes import Circle, Drawing, Group, Line, PolyLine, Rect, String
+from reportlab.graphics.shapes import (
+    Circle,
+    Drawing,
+    Group,
+    Line,
+    Polygon,
+    PolyLine,
+    Rect,
+    String,
+)
 from reportlab.lib import colors
 
+from hydrosync_core.i18n import tr
+from hydrosync_core.report.decimate import RESOLUTION, cloud_indices, line_indices
 from hydrosync_core.report.styles import FONT, GRID, INK, MUTED, SERIES
 
 FONT_SIZE = 7.5
+
+
+def _text_width(text: str) -> float:
+    """Width of *text* in Latin-letter units: a Chinese character is about two."""
+    return sum(2.0 if ord(ch) > 0x2E80 else 1.0 for ch in text)
 
 
 def nice_ticks(lo: float, hi: float, target: int = 6) -> np.ndarray:
@@ -49,7 +65,7 @@ def tick_label(value: float, step: float) -> str:
 
 @dataclass
 class _Series:
-    kind: str  # "line", "points", "vline", "hline", "vspan"
+    kind: str  # "line", "points", "vline", "hline", "vspan", "band"
     x: np.ndarray
     y: np.ndarray
     color: colors.Color
@@ -58,6 +74,7 @@ class _Series:
     size: float = 1.5
     dash: tuple | None = None
     marker: str = "circle"
+    y2: np.ndarray | None = None  # upper edge of a "band" (y is the lower)
 
 
 @dataclass
@@ -105,6 +122,47 @@ class Chart:
                                    self._color(color), label, size=size, marker=marker))
         return self
 
+    def envelope(self, x, y, *, color=None, label=None, bins: int = 150,
+                 width: float = 0.8) -> Chart:
+        """A long, noisy series as what a printed page can show: the range (min to max)
+        of each of *bins* equal slices of x as a light band, and their median as a line.
+
+        Drawn sample by sample, a day of a ±0.4° noisy angle is a solid block of ink
+        that hides its trend and the series drawn under it. Empty slices break both.
+        """
+        x, y = np.asarray(x, float), np.asarray(y, float)
+        ok = np.isfinite(x) & np.isfinite(y)
+        x, y = x[ok], y[ok]
+        colour = self._color(color)
+        if x.size < 2 * bins:  # few samples: each one can be seen
+            return self.line(x, y, color=colour, label=label, width=width)
+        edges = np.linspace(x.min(), x.max(), bins + 1)
+        which = np.clip(np.searchsorted(edges, x, side="right") - 1, 0, bins - 1)
+        order = np.lexsort((y, which))
+        which, ys = which[order], y[order]
+        starts = np.searchsorted(which, np.arange(bins), side="left")
+        ends = np.searchsorted(which, np.arange(bins), side="right")
+        filled = ends > starts
+        lo = np.full(bins, np.nan)
+        hi = np.full(bins, np.nan)
+        mid = np.full(bins, np.nan)
+        lo[filled] = ys[starts[filled]]
+        hi[filled] = ys[ends[filled] - 1]
+        mid[filled] = ys[(starts[filled] + ends[filled] - 1) // 2]  # sorted: the median
+        centre = (edges[:-1] + edges[1:]) / 2
+        self.band(centre, lo, hi, color=colour)
+        return self.line(centre, mid, color=colour, label=label, width=width)
+
+    def band(self, x, lo, hi, *, color=None, label=None, alpha: float = 0.28) -> Chart:
+        """A shaded band from *lo* to *hi* over *x* (NaN breaks it), e.g. the spread of
+        many curves: 500 R curves drawn one by one printed as a solid block; their
+        min–max band and a median curve show the same at a glance."""
+        colour = self._color(color)
+        light = colors.Color(colour.red, colour.green, colour.blue, alpha=alpha)
+        self.series.append(_Series("band", np.asarray(x, float), np.asarray(lo, float), light,
+                                   label, y2=np.asarray(hi, float)))
+        return self
+
     def polygon(self, x, y, *, color=MUTED, width=0.5, label=None) -> Chart:
         """A closed outline (e.g. a design face)."""
         x, y = np.asarray(x, float), np.asarray(y, float)
@@ -129,8 +187,10 @@ class Chart:
 
     # ------------------------------------------------------------------ layout
     def _data_limits(self) -> tuple[float, float, float, float]:
-        xs = [s.x for s in self.series if s.kind in ("line", "points", "vline", "vspan")]
-        ys = [s.y for s in self.series if s.kind in ("line", "points", "hline")]
+        xs = [s.x for s in self.series
+              if s.kind in ("line", "points", "vline", "vspan", "band")]
+        ys = [s.y for s in self.series if s.kind in ("line", "points", "hline", "band")]
+        ys += [s.y2 for s in self.series if s.kind == "band"]
         x = np.concatenate(xs) if xs else np.array([0.0, 1.0])
         y = np.concatenate(ys) if ys else np.array([0.0, 1.0])
         x, y = x[np.isfinite(x)], y[np.isfinite(y)]
@@ -210,9 +270,9 @@ class Chart:
             d.add(Line(left - 3, y, left, y, strokeColor=INK, strokeWidth=0.6))
             d.add(String(left - 5, y - 2.5, tick_label(v, ystep), fontName=FONT,
                          fontSize=FONT_SIZE, fillColor=INK, textAnchor="end"))
-        d.add(String(left + box_w / 2, bottom - 23, self.xlabel, fontName=FONT,
+        d.add(String(left + box_w / 2, bottom - 23, tr(self.xlabel), fontName=FONT,
                      fontSize=FONT_SIZE + 0.5, fillColor=INK, textAnchor="middle"))
-        ylabel = String(0, 0, self.ylabel, fontName=FONT, fontSize=FONT_SIZE + 0.5,
+        ylabel = String(0, 0, tr(self.ylabel), fontName=FONT, fontSize=FONT_SIZE + 0.5,
                         fillColor=INK, textAnchor="middle")
         g = Group(ylabel)
         g.translate(9, bottom + box_h / 2)
@@ -225,7 +285,19 @@ class Chart:
             return ((xv >= left - 0.5) & (xv <= left + box_w + 0.5)
                     & (yv >= bottom - 0.5) & (yv <= bottom + box_h + 0.5))
 
-        if s.kind == "vspan":
+        if s.kind == "band":
+            xv = np.clip(px(s.x), left, left + box_w)
+            lo = np.clip(py(s.y), bottom, bottom + box_h)
+            hi = np.clip(py(s.y2), bottom, bottom + box_h)
+            ok = np.isfinite(lo) & np.isfinite(hi)
+            breaks = np.flatnonzero(np.diff(ok.astype(int)) != 0) + 1
+            for seg in np.split(np.arange(len(xv)), breaks):
+                if len(seg) < 2 or not ok[seg[0]]:
+                    continue
+                ring = np.concatenate([np.column_stack([xv[seg], hi[seg]]),
+                                       np.column_stack([xv[seg], lo[seg]])[::-1]])
+                g.add(Polygon(ring.ravel().tolist(), fillColor=s.color, strokeColor=None))
+        elif s.kind == "vspan":
             a, b = sorted(np.clip(px(s.x), left, left + box_w))
             g.add(Rect(a, bottom, b - a, box_h, fillColor=s.color, strokeColor=None))
         elif s.kind == "vline":
@@ -242,7 +314,10 @@ class Chart:
             xv, yv = px(s.x), py(s.y)
             keep = np.isfinite(xv) & np.isfinite(yv) & inside(xv, yv)
             r = s.size
-            for a, b in zip(xv[keep].tolist(), yv[keep].tolist(), strict=True):
+            xv, yv = xv[keep], yv[keep]
+            # Markers hidden under others add bytes and layout time, nothing to see.
+            shown = cloud_indices(xv, yv, max(RESOLUTION, r / 2))
+            for a, b in zip(xv[shown].tolist(), yv[shown].tolist(), strict=True):
                 if s.marker == "square":
                     g.add(Rect(a - r, b - r, 2 * r, 2 * r, fillColor=s.color, strokeColor=None))
                 else:
@@ -258,6 +333,9 @@ class Chart:
                 seg = seg[ok[seg]] if len(seg) else seg
                 if len(seg) < 2:
                     continue
+                # A long series as its per-column envelope: the same ink, a fraction of
+                # the vertices (a survey day drew as a solid block of 10⁵ segments).
+                seg = seg[line_indices(xv[seg], yv[seg])]
                 pts = np.column_stack([xv[seg], yv[seg]]).ravel().tolist()
                 g.add(PolyLine(pts, strokeColor=s.color, strokeWidth=s.width,
                                strokeDashArray=s.dash, strokeLineJoin=1))
@@ -267,7 +345,7 @@ class Chart:
         rows: list[list[tuple[_Series, float]]] = [[]]
         used = 46.0
         for s in legend:
-            w = 22 + 4.2 * len(s.label or "")
+            w = 22 + 4.2 * _text_width(tr(s.label or ""))
             if rows[-1] and used + w > self.width - 8:
                 rows.append([])
                 used = 46.0
@@ -287,11 +365,11 @@ class Chart:
                 elif s.kind == "points":
                     d.add(Circle(x + 7, y + 3, max(s.size, 2.0), fillColor=s.color,
                                  strokeColor=None))
-                elif s.kind == "vspan":
+                elif s.kind in ("vspan", "band"):
                     d.add(Rect(x + 1, y - 1, 12, 8, fillColor=s.color, strokeColor=None))
                 else:
                     d.add(Line(x, y + 3, x + 14, y + 3, strokeColor=s.color,
                                strokeWidth=max(s.width, 1.0), strokeDashArray=s.dash))
-                d.add(String(x + 18, y, s.label, fontName=FONT, fontSize=FONT_SIZE,
+                d.add(String(x + 18, y, tr(s.label), fontName=FONT, fontSize=FONT_SIZE,
                              fillColor=MUTED if s.kind == "vspan" else INK))
                 x += w

@@ -24,8 +24,10 @@ from reportlab.platypus import (
 )
 from reportlab.platypus.flowables import HRFlowable
 
+from hydrosync_core.i18n import language, tr
 from hydrosync_core.report.charts import Chart
-from hydrosync_core.report.styles import FONT_BOLD, RULE, stylesheet, table_style
+from hydrosync_core.report.colwidths import cell_need, fit_widths, shrink_factor
+from hydrosync_core.report.styles import FONT, FONT_BOLD, RULE, stylesheet, table_style
 
 
 class Figure(Flowable):
@@ -54,6 +56,17 @@ class Figure(Flowable):
     def draw(self) -> None:
         self.caption.drawOn(self.canv, 0, 0)
         self.drawing.drawOn(self.canv, 0, self._cap_h)
+
+
+def _translated_cell(cell):
+    """A table cell in the report's language: text and Paragraphs through the catalogue
+    (numbers have no entry and pass unchanged); other flowables as they are."""
+    if isinstance(cell, Paragraph):
+        source = getattr(cell, "text", None)
+        if isinstance(source, str) and tr(source) != source:
+            return Paragraph(tr(source), cell.style)
+        return cell
+    return cell if isinstance(cell, Flowable) else tr(str(cell))
 
 
 def markup(text: str) -> str:
@@ -125,21 +138,21 @@ class ReportContext:
     """
 
     width: float
-    styles: object = field(default_factory=stylesheet)
+    styles: object = field(default_factory=lambda: stylesheet(cjk=language() == "zh_CN"))
     figure_count: int = 0
     table_count: int = 0
 
     # ------------------------------------------------------------------ text
     def heading(self, text: str, level: int = 1) -> Paragraph:
         """A section (level 1) or sub-section (level 2) heading; appears in the outline."""
-        return Paragraph(esc(text), self.styles["H1" if level == 1 else "H2"])
+        return Paragraph(esc(tr(text)), self.styles["H1" if level == 1 else "H2"])
 
     def para(self, text: str, style: str = "Body") -> Paragraph:
         """A paragraph; *text* may use reportlab mark-up (``<b>``, ``<i>``, ``<sub>``)."""
-        return Paragraph(markup(text), self.styles[style])
+        return Paragraph(markup(tr(text)), self.styles[style])
 
     def warning(self, text: str) -> Paragraph:
-        return Paragraph(f"<b>Warning:</b> {esc(text)}", self.styles["Warning"])
+        return Paragraph(f"<b>{tr('Warning:')}</b> {esc(tr(text))}", self.styles["Warning"])
 
     def rule(self) -> HRFlowable:
         return HRFlowable(width="100%", thickness=0.5, color=RULE, spaceBefore=2, spaceAfter=6)
@@ -179,16 +192,18 @@ class ReportContext:
         """
         n_cols = len(header)
         fractions = col_widths or [1.0 / n_cols] * n_cols
-        widths = [f * self.width for f in fractions]
-        head_style = self.styles["CellBold"]
-        if font_size != head_style.fontSize:
-            head_style = ParagraphStyle("CellBoldSmall", parent=head_style, fontSize=font_size,
-                                        leading=font_size + 2)
-        head_right = ParagraphStyle("CellBoldRight", parent=head_style, alignment=TA_RIGHT)
-        right = [i >= numeric_from and i not in left_columns for i in range(n_cols)]
-        head = [Paragraph(markup(h), head_right if right[i] else head_style)
-                for i, h in enumerate(header)]
-        data = [head] + [[c if isinstance(c, Flowable) else str(c) for c in r] for r in rows]
+        asked = [f * self.width for f in fractions]
+        cells = [[_translated_cell(c if isinstance(c, Flowable) else str(c)) for c in r]
+                 for r in rows]
+        head, needs = self._head_and_needs(header, cells, font_size, numeric_from,
+                                           left_columns, highlight_rows)
+        factor = shrink_factor(sum(asked), needs)
+        if factor < 1.0:  # too many words for the page: a smaller font, then fit again
+            font_size = math.floor(font_size * factor * 4) / 4
+            head, needs = self._head_and_needs(header, cells, font_size, numeric_from,
+                                               left_columns, highlight_rows)
+        widths = fit_widths(asked, needs)
+        data = [head] + cells
         style = table_style(len(data), numeric_from=numeric_from, zebra=zebra,
                             font_size=font_size)
         style += [("ALIGN", (c, 0), (c, -1), "LEFT") for c in left_columns]
@@ -201,30 +216,56 @@ class ReportContext:
         if caption:
             self.table_count += 1
             # TableCaption keeps with the table (at least its first rows).
-            out.append(Paragraph(f"<b>Table {self.table_count}.</b> {markup(caption)}",
+            out.append(Paragraph(f"<b>{tr(f'Table {self.table_count}.')}</b> "
+                                 f"{markup(tr(caption))}",
                                  self.styles["TableCaption"]))
         out.append(table)
         out.append(Spacer(1, 8))
         return out
 
+    def _head_and_needs(self, header, cells, font_size, numeric_from, left_columns,
+                        highlight_rows) -> tuple[list[Paragraph], list[float]]:
+        """Header paragraphs at *font_size*, and the width each column needs (points,
+        padding included) so that no header word breaks and no plain cell overflows."""
+        head_style = self.styles["CellBold"]
+        if font_size != head_style.fontSize:
+            head_style = ParagraphStyle("CellBoldSmall", parent=head_style, fontSize=font_size,
+                                        leading=font_size + 2)
+        head_right = ParagraphStyle("CellBoldRight", parent=head_style, alignment=TA_RIGHT)
+        head = [Paragraph(markup(tr(h)), head_right if i >= numeric_from and i not in left_columns
+                          else head_style) for i, h in enumerate(header)]
+        pad = 2 * (4 if font_size >= 8.5 else 2.5) + 1.0
+        bold = set(highlight_rows)
+        needs = []
+        for c, title in enumerate(head):
+            body = (cell_need(r[c], FONT_BOLD if i in bold else FONT, font_size)
+                    for i, r in enumerate(cells) if c < len(r))
+            needs.append(max(float(title.minWidth()), *body, 0.0) + pad)
+        return head, needs
+
     def key_values(self, pairs: Sequence[tuple[str, str]], caption: str | None = None,
                    key_width: float = 0.38) -> list[Flowable]:
         """A two-column table of labelled values (no numeric alignment)."""
-        rows = [[Paragraph(esc(k), self.styles["Cell"]), Paragraph(esc(v), self.styles["Cell"])]
-                for k, v in pairs]
+        rows = [[Paragraph(esc(tr(k)), self.styles["Cell"]),
+                 Paragraph(esc(tr(v)), self.styles["Cell"])] for k, v in pairs]
         return self.table(["Item", "Value"], rows, col_widths=[key_width, 1 - key_width],
                           numeric_from=2, caption=caption)
 
-    def params_table(self, params, caption: str) -> list[Flowable]:
+    def params_table(self, params, caption: str,
+                     blank: dict[str, str] | None = None) -> list[Flowable]:
         """Every processing parameter of *params* (a ``Params`` instance) with its unit.
 
         Labels, units and the meaning of "not set" come from the analysis's parameter
-        schema, so the report lists exactly what the method was run with.
+        schema, so the report lists exactly what the method was run with. A value that
+        prints empty (an empty text parameter) shows ``blank[name]`` — what the analysis
+        did instead — or "(empty)": a blank cell reads as a fault.
         """
         from hydrosync_core.params import describe
 
-        rows = [[Paragraph(esc(label), self.styles["Cell"]),
-                 Paragraph(esc(value), self.styles["Cell"]),
+        blank = blank or {}
+        rows = [[Paragraph(esc(tr(label)), self.styles["Cell"]),
+                 Paragraph(esc(tr(value) if value.strip() else tr(blank.get(name, "(empty)"))),
+                           self.styles["Cell"]),
                  Paragraph(f"<font face='Courier' size='7'>{esc(name)}</font>",
                            self.styles["Cell"])]
                 for label, value, name in describe(type(params), params.to_dict())]
@@ -253,6 +294,6 @@ class ReportContext:
                 x += chart.width
         else:
             drawing = content.drawing() if isinstance(content, Chart) else content
-        cap = Paragraph(f"<b>Figure {self.figure_count}.</b> {markup(caption)}",
+        cap = Paragraph(f"<b>{tr(f'Figure {self.figure_count}.')}</b> {markup(tr(caption))}",
                         self.styles["Caption"])
         return Figure(drawing, cap)

@@ -19,6 +19,7 @@ from reportlab.platypus.tableofcontents import TableOfContents
 
 from hydrosync_core import __version__
 from hydrosync_core.errors import InputError
+from hydrosync_core.i18n import tr
 from hydrosync_core.plugins.spec import PluginSpec, load_object
 from hydrosync_core.project.vessel import vessel_config
 from hydrosync_core.provenance import OUT_OF_DATE, stale_reasons
@@ -40,6 +41,12 @@ class ModuleStatus:
     rows: tuple[tuple[str, str], ...]
     #: Why the stored result no longer matches its inputs (empty: up to date).
     stale: tuple[str, ...] = ()
+    #: (quantity, reason) of the summary rows the analysis flags (its ``flags()``).
+    flags: tuple[tuple[str, str], ...] = ()
+
+    def flag(self, quantity: str) -> str:
+        """Why *quantity* is flagged ("" if it is not)."""
+        return dict(self.flags).get(quantity, "")
 
 
 def results_path(spec: PluginSpec) -> str:
@@ -66,12 +73,28 @@ def module_status(project, spec: PluginSpec) -> ModuleStatus:
         except Exception as exc:  # a plugin's summary must not sink the whole report
             log.error("summary of %s failed: %s", spec.id, exc)
             rows = (("summary unavailable", f"{type(exc).__name__}: {exc}"),)
+    flags = _flags(project, spec)
     try:
         stale = tuple(stale_reasons(project, path))
     except InputError as exc:  # a damaged project: flag the results, the report goes on
         stale = (f"whether they are up to date cannot be checked ({exc.message})",)
     return ModuleStatus(spec, True, "run", str(attrs.get("run_utc", "")),
-                        str(attrs.get("software_version", "")), rows, stale)
+                        str(attrs.get("software_version", "")), rows, stale, flags)
+
+
+def _flags(project, spec: PluginSpec) -> tuple[tuple[str, str], ...]:
+    """The analysis's flagged summary quantities (its optional ``flags(project)``)."""
+    if not spec.report_section:
+        return ()
+    try:
+        found = load_object(f"{spec.report_section.partition(':')[0]}:flags")
+    except AttributeError:
+        return ()
+    try:
+        return tuple((str(k), str(v)) for k, v in dict(found(project)).items())
+    except Exception as exc:  # a faulty flag check: say so in the summary, go on
+        log.error("flags of %s failed: %s", spec.id, exc)
+        return (("(flags)", f"could not be checked: {type(exc).__name__}: {exc}"),)
 
 
 def file_sha256(path: Path | None) -> str:
@@ -94,7 +117,7 @@ def cover_page(project, ctx: ReportContext, statuses: list[ModuleStatus]) -> lis
         vessel = f"(the vessel sheet could not be read: {exc.message})"
     now = datetime.now(UTC).strftime("%Y-%m-%d %H:%M:%S UTC")
     path = project.path
-    run = [s.spec.name for s in statuses if s.has_results]
+    run = [tr(s.spec.name) for s in statuses if s.has_results]
     pairs = [
         ("Project", project.name or "(unnamed)"),
         ("Vessel", vessel),
@@ -110,11 +133,11 @@ def cover_page(project, ctx: ReportContext, statuses: list[ModuleStatus]) -> lis
     ]
     out: list[Flowable] = [
         Spacer(1, 30 * mm),
-        Paragraph("Sensor calibration report", ctx.styles["Title"]),
-        Paragraph(esc(project.name or "Untitled project"), ctx.styles["Subtitle"]),
+        Paragraph(tr("Sensor calibration report"), ctx.styles["Title"]),
+        Paragraph(esc(project.name or tr("Untitled project")), ctx.styles["Subtitle"]),
     ]
-    rows = [[Paragraph(f"<b>{esc(k)}</b>", ctx.styles["Cell"]),
-             Paragraph(esc(v), ctx.styles["Cell"])] for k, v in pairs]
+    rows = [[Paragraph(f"<b>{esc(tr(k))}</b>", ctx.styles["Cell"]),
+             Paragraph(esc(tr(v)), ctx.styles["Cell"])] for k, v in pairs]
     info = Table(rows, colWidths=[0.26 * ctx.width, 0.74 * ctx.width], hAlign="LEFT")
     info.setStyle(TableStyle([
         ("VALIGN", (0, 0), (-1, -1), "TOP"),
@@ -128,8 +151,9 @@ def cover_page(project, ctx: ReportContext, statuses: list[ModuleStatus]) -> lis
 
 
 def _signoff(ctx: ReportContext) -> Table:
-    head = ["", "Name", "Signature", "Date"]
-    rows = [head] + [[role, "", "", ""] for role in ("Prepared by", "Checked by", "Approved by")]
+    head = ["", tr("Name", context="signoff"), tr("Signature"), tr("Date")]
+    rows = [head] + [[tr(role), "", "", ""]
+                     for role in ("Prepared by", "Checked by", "Approved by")]
     table = Table(rows, colWidths=[0.2 * ctx.width, 0.3 * ctx.width, 0.3 * ctx.width,
                                    0.2 * ctx.width], rowHeights=[14] + [26] * 3, hAlign="LEFT")
     table.setStyle(TableStyle([
@@ -147,27 +171,40 @@ def contents_and_summary(ctx: ReportContext, statuses: list[ModuleStatus]) -> li
     toc = TableOfContents()
     toc.levelStyles = [ctx.styles["TOC1"], ctx.styles["TOC2"]]
     toc.dotsMinLevel = 0
-    out: list[Flowable] = [Paragraph("Contents", ctx.styles["ContentsTitle"]), toc, Spacer(1, 10),
-                           ctx.heading("Summary of results")]
+    out: list[Flowable] = [Paragraph(tr("Contents"), ctx.styles["ContentsTitle"]), toc,
+                           Spacer(1, 10), ctx.heading("Summary of results")]
     if not statuses:
         out.append(ctx.para("No analysis module is installed."))
         return out
     rows = []
     separators = []
+    flagged = 0
     for s in statuses:
         if rows:
             separators.append(("LINEABOVE", (0, len(rows) + 1), (-1, len(rows) + 1), 0.5, RULE))
-        name = Paragraph(f"<b>{esc(s.spec.name)}</b>"
-                         + (f"<br/><font color='#b00000'><b>{OUT_OF_DATE.upper()}</b></font>"
+        name = Paragraph(f"<b>{esc(tr(s.spec.name))}</b>"
+                         + (f"<br/><font color='#b00000'><b>{tr(OUT_OF_DATE.upper())}</b></font>"
                             if s.stale else ""), ctx.styles["Cell"])
         if not s.has_results:
-            rows.append([name, Paragraph(esc(s.reason), ctx.styles["Cell"]), "", ""])
+            rows.append([name, Paragraph(esc(tr(s.reason)), ctx.styles["Cell"]), "", ""])
             continue
-        if not s.rows:
+        summary_rows = list(s.rows)
+        # A flag whose quantity has no summary row still shows (never silently dropped).
+        summary_rows += [(q, "\u2014") for q, _ in s.flags if q not in dict(s.rows)]
+        if not summary_rows:
             rows.append([name, "results stored", "see section", ""])
-        for i, (quantity, value) in enumerate(s.rows):
-            rows.append([name if i == 0 else "", Paragraph(esc(quantity), ctx.styles["Cell"]),
-                         Paragraph(esc(value), ctx.styles["Cell"]),
+        for i, (quantity, value) in enumerate(summary_rows):
+            reason = s.flag(quantity)
+            if reason:  # as the panel flags it: red, with why
+                flagged += 1
+                quantity_text = f"<font color='#a32020'><b>\u2691 {esc(tr(quantity))}</b></font>"
+                value_text = (f"<font color='#a32020'><b>{esc(value)}</b></font><br/>"
+                              f"<font size='7' color='#a32020'>{esc(tr('flagged'))}: "
+                              f"{esc(tr(reason))}</font>")
+            else:
+                quantity_text, value_text = esc(tr(quantity)), esc(tr(value))
+            rows.append([name if i == 0 else "", Paragraph(quantity_text, ctx.styles["Cell"]),
+                         Paragraph(value_text, ctx.styles["Cell"]),
                          Paragraph(f"{esc(utc_text(s.run_utc))}<br/>HydroSync "
                                    f"{esc(s.software_version)}" if i == 0 else "",
                                    ctx.styles["Small"])])
@@ -175,7 +212,9 @@ def contents_and_summary(ctx: ReportContext, statuses: list[ModuleStatus]) -> li
                      col_widths=[0.17, 0.31, 0.28, 0.24], numeric_from=4, zebra=False,
                      extra_style=[("VALIGN", (0, 1), (-1, -1), "TOP"), *separators],
                      caption="Key results of every module. Values are the final, corrected "
-                     "values; uncertainties are one standard deviation unless stated.")
+                     "values; uncertainties are one standard deviation unless stated."
+                     + (" \u2691 marks a value the analysis flags (in red, with why)."
+                        if flagged else ""))
     for s in statuses:
         if s.stale:
             out.append(ctx.warning(f"{s.spec.name} results are {OUT_OF_DATE}: "

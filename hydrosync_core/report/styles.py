@@ -9,8 +9,11 @@ the fallback if the font files cannot be found.
 
 from __future__ import annotations
 
+import contextlib
 import logging
 import os
+import threading
+from collections.abc import Iterator
 
 from reportlab.lib import colors
 from reportlab.lib.enums import TA_CENTER, TA_LEFT
@@ -64,12 +67,97 @@ def _register_fonts() -> tuple[str, str]:
 
 FONT, FONT_BOLD = _register_fonts()
 
+#: Where the CJK font may be (Debian's fonts-wqy-zenhei, fonts-noto-cjk); the first found
+#: is used. ``HYDROSYNC_CJK_FONT`` names another TrueType file (.ttf/.ttc).
+CJK_FONT_FILES = (
+    "/usr/share/fonts/truetype/wqy/wqy-zenhei.ttc",
+    "/usr/share/fonts/opentype/noto/NotoSansCJK-Regular.ttc",
+    "/usr/share/fonts/truetype/noto/NotoSansCJK-Regular.ttc",
+)
+_FONT_SWAP = threading.Lock()
 
-def stylesheet() -> StyleSheet1:
-    """Return the report's paragraph styles (``Title``, ``H1``, ``H2``, ``Body``, …)."""
+
+def cjk_font_file() -> str:
+    """The TrueType file used for Chinese text.
+
+    Raises
+    ------
+    hydrosync_core.errors.InputError
+        No CJK font is installed (one line that says which package to install).
+    """
+    from hydrosync_core.errors import InputError
+
+    wanted = os.environ.get("HYDROSYNC_CJK_FONT")
+    for path in ((wanted,) if wanted else CJK_FONT_FILES):
+        if path and os.path.isfile(path):
+            return path
+    raise InputError(wanted or CJK_FONT_FILES[0],
+                     "no Chinese (CJK) font found for the zh_CN report: install the Debian "
+                     "package fonts-wqy-zenhei (scripts/install-system-packages.sh) or set "
+                     "HYDROSYNC_CJK_FONT to a .ttf/.ttc file")
+
+
+def _cjk_font(name: str, mono: bool = False) -> TTFont:
+    # Only TrueType outlines: reportlab embeds (subsets) them, unlike its built-in CID
+    # fonts, which each viewer substitutes differently. WenQuanYi Zen Hei carries Latin,
+    # Greek (σ, Δ) and the signs ± ° → as well, so one face serves the whole page.
+    path = cjk_font_file()
+    # WenQuanYi Zen Hei's collection holds the proportional face first, the mono second.
+    index = 1 if mono and path.endswith("wqy-zenhei.ttc") else 0
+    font = TTFont(name, path, subfontIndex=index)
+    glyphs, widths = font.face.charToGlyph, font.face.charWidths
+    for missing, stand_in in _STAND_INS.items():
+        if missing not in glyphs and stand_in in glyphs:  # a look-alike, not a tofu box
+            glyphs[missing], widths[missing] = glyphs[stand_in], widths[stand_in]
+    return font
+
+
+#: Signs the CJK face lacks, drawn with a look-alike it has: minus sign → hyphen-minus,
+#: check mark → √ (the tick of Chinese forms).
+_STAND_INS = {0x2212: ord("-"), 0x2713: 0x221A, 0x2717: 0x00D7}
+
+
+@contextlib.contextmanager
+def language_fonts(lang: str) -> Iterator[None]:
+    """Draw the report's text in the face *lang* needs while the block runs.
+
+    Every style, table and chart names :data:`FONT` / :data:`FONT_BOLD`; for Chinese those
+    names are pointed at the CJK face for the duration of one build (under a lock, so two
+    reports built at once cannot mix faces) and restored afterwards. English is untouched.
+    """
+    if lang == "en" or FONT == "Helvetica":
+        yield
+        return
+    if lang != "zh_CN":
+        raise ValueError(f"no report fonts for language '{lang}'")
+    face = _cjk_font(FONT)  # one face for every style: the font has no bold or italic
+    # Helvetica and Courier too: they have no Chinese glyphs and are not embedded, and a
+    # section may name them directly (a bold cell, parameter names in Courier).
+    faces = dict.fromkeys((FONT, FONT_BOLD, "DejaVuSans-Oblique", "DejaVuSans-BoldOblique",
+                           "Helvetica", "Helvetica-Bold", "Helvetica-Oblique"), face)
+    faces["Courier"] = _cjk_font("Courier", mono=True)
+    with _FONT_SWAP:
+        saved = {name: pdfmetrics._fonts.get(name) for name in faces}
+        try:
+            pdfmetrics._fonts.update(faces)
+            yield
+        finally:
+            for name, font in saved.items():
+                if font is None:
+                    pdfmetrics._fonts.pop(name, None)
+                else:
+                    pdfmetrics._fonts[name] = font
+
+
+def stylesheet(cjk: bool = False) -> StyleSheet1:
+    """Return the report's paragraph styles (``Title``, ``H1``, ``H2``, ``Body``, …).
+
+    *cjk*: break running text between any two Chinese characters (Chinese has no
+    spaces); table cells still break at spaces and split only words wider than the column.
+    """
     ss = StyleSheet1()
     base = ParagraphStyle("Body", fontName=FONT, fontSize=9.5, leading=12.5,
-                          textColor=INK, spaceAfter=4)
+                          textColor=INK, spaceAfter=4, wordWrap="CJK" if cjk else None)
     ss.add(base)
     ss.add(ParagraphStyle("Small", parent=base, fontSize=8, leading=10, textColor=MUTED))
     ss.add(ParagraphStyle("Caption", parent=base, fontSize=8.5, leading=10.5,
@@ -86,7 +174,11 @@ def stylesheet() -> StyleSheet1:
     ss.add(ParagraphStyle("H2", parent=base, fontName=FONT_BOLD, fontSize=11.5,
                           leading=15, textColor=ACCENT, spaceBefore=10, spaceAfter=4,
                           keepWithNext=1))
-    ss.add(ParagraphStyle("Cell", parent=base, fontSize=8.5, leading=10.5, spaceAfter=0))
+    # Table cells keep breaking at spaces (reportlab splits a word only when it is longer
+    # than the column): CJK breaking, good for running Chinese text, would also cut a
+    # unit or a name in a narrow column ("RM|S [mm]").
+    ss.add(ParagraphStyle("Cell", parent=base, fontSize=8.5, leading=10.5, spaceAfter=0,
+                          wordWrap=None))
     ss.add(ParagraphStyle("CellBold", parent=ss["Cell"], fontName=FONT_BOLD))
     ss.add(ParagraphStyle("CellCenter", parent=ss["Cell"], alignment=TA_CENTER))
     ss.add(ParagraphStyle("Warning", parent=base, backColor=WARN_FILL, borderPadding=4,

@@ -7,11 +7,14 @@ page's drawing state and paints the footers at save time, when the page count is
 
 from __future__ import annotations
 
+from dataclasses import dataclass, field
+
 from reportlab.lib.pagesizes import A4
 from reportlab.lib.units import mm
 from reportlab.pdfgen import canvas as rl_canvas
 from reportlab.platypus import BaseDocTemplate, Frame, KeepTogether, PageTemplate, Paragraph, Table
 
+from hydrosync_core.i18n import tr
 from hydrosync_core.progress import check_cancel, report
 from hydrosync_core.report.styles import ACCENT, FONT, MUTED, PAGE_MARGIN, RULE
 
@@ -48,7 +51,7 @@ class NumberedCanvas(rl_canvas.Canvas):
         self.saveState()
         self.setFont(FONT, 8)
         self.setFillColor(MUTED)
-        self.drawRightString(width - PAGE_MARGIN, 10 * mm, f"page {page} of {total}")
+        self.drawRightString(width - PAGE_MARGIN, 10 * mm, tr(f"page {page} of {total}"))
         self.drawString(PAGE_MARGIN, 10 * mm, self.footer_left[:110])
         if page > 1:  # the cover carries its own title block
             self.drawString(PAGE_MARGIN, height - 11 * mm, self.header_text[:120])
@@ -81,6 +84,29 @@ class KeepWithStart(KeepTogether):
         return super().split(aW, aH)
 
 
+@dataclass
+class PageLayout:
+    """How full each page of a built report is, and where its sections start.
+
+    Attributes
+    ----------
+    fill : list of float
+        Per page (index 0 = page 1): the fraction of the body frame's height used.
+    section_starts : set of int
+        Pages (1-based) on which a top-level (H1) heading is placed.
+    """
+
+    fill: list[float] = field(default_factory=list)
+    section_starts: set[int] = field(default_factory=set)
+
+    def sparse_pages(self, threshold: float = 0.4) -> list[int]:
+        """Pages (1-based) filled below *threshold* that do not end a section (the page
+        after them starts one, or they are the last page)."""
+        last = len(self.fill)
+        return [page for page, used in enumerate(self.fill, 1)
+                if used < threshold and page != last and page + 1 not in self.section_starts]
+
+
 class ReportDocTemplate(BaseDocTemplate):
     """A4 document with one body frame; headings H1/H2 become PDF outline entries."""
 
@@ -98,9 +124,13 @@ class ReportDocTemplate(BaseDocTemplate):
         self._outline_count = 0
         self._progress = progress
         self._cancel = cancel
+        self.layout = PageLayout()
 
     def afterPage(self) -> None:  # noqa: N802 (reportlab API)
-        """Let a long layout be followed and cancelled page by page."""
+        """Note how full the page is; let a long layout be followed and cancelled page by
+        page."""
+        frame = self.frame
+        self.layout.fill.append((frame._y2 - frame._y) / frame._height)
         check_cancel(self._cancel)
         report(self._progress, 0.8, f"laying out page {self.page}")
 
@@ -112,6 +142,8 @@ class ReportDocTemplate(BaseDocTemplate):
         if style not in ("H1", "H2"):
             return
         level = 0 if style == "H1" else 1
+        if level == 0:
+            self.layout.section_starts.add(self.page)
         text = flowable.getPlainText()
         key = f"h{self._outline_count}"
         self._outline_count += 1
@@ -121,7 +153,8 @@ class ReportDocTemplate(BaseDocTemplate):
 
     def handle_documentBegin(self) -> None:  # noqa: N802 (reportlab API)
         self._outline_count = 0
+        self.layout = PageLayout()  # each layout pass starts again
         super().handle_documentBegin()
 
 
-__all__ = ["ACCENT", "NumberedCanvas", "ReportDocTemplate"]
+__all__ = ["ACCENT", "NumberedCanvas", "PageLayout", "ReportDocTemplate"]

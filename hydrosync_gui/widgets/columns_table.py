@@ -20,10 +20,26 @@ from __future__ import annotations
 from collections.abc import Mapping
 
 import numpy as np
-from PySide6.QtCore import QAbstractTableModel, QModelIndex, QPersistentModelIndex, Qt
+from PySide6.QtCore import QAbstractTableModel, QEvent, QModelIndex, QPersistentModelIndex, Qt
 from PySide6.QtWidgets import QAbstractItemView, QHeaderView, QTableView, QWidget
 
+from hydrosync_gui.i18n import tr
+
 _Index = QModelIndex | QPersistentModelIndex
+
+
+def wrap_header(text: str, width: int = 14) -> str:
+    """*text* on two lines, broken at the space nearest its middle, if longer than *width*
+    characters ("predicted σ heading [°]" → "predicted σ\nheading [°]"): a wide header
+    made a column of four-digit numbers 170 px wide and pushed the table into a
+    horizontal scroll. A unit in brackets stays with the word before it."""
+    if len(text) <= width:
+        return text
+    spaces = [i for i, c in enumerate(text) if c == " " and text[i + 1:i + 2] != "["]
+    if not spaces:
+        return text
+    cut = min(spaces, key=lambda i: abs(i - len(text) / 2))
+    return f"{text[:cut]}\n{text[cut + 1:]}"
 
 
 def _default_format(value) -> str:
@@ -37,8 +53,9 @@ def _default_format(value) -> str:
 class ColumnsTableModel(QAbstractTableModel):
     """Qt model over ``{name: 1-D array}``; headers ``name [unit]``."""
 
-    def __init__(self, parent=None) -> None:
+    def __init__(self, parent=None, wrap_headers: bool = False) -> None:
         super().__init__(parent)
+        self.wrap_headers = wrap_headers
         self._names: list[str] = []
         self._columns: list[np.ndarray] = []
         self._headers: list[str] = []
@@ -91,7 +108,11 @@ class ColumnsTableModel(QAbstractTableModel):
         if isinstance(value, float | np.floating) and np.isnan(value):
             return self._missing[column]  # a missing value: blank unless stated
         pattern = self._formats[column]
-        return pattern.format(value) if pattern else _default_format(value)
+        if pattern:
+            return pattern.format(value)
+        text = _default_format(value)
+        # Words (a method, a role) in the workbench's language; numbers have no entry.
+        return tr(text) if self._columns[column].dtype.kind in "USO" else text
 
     def data(self, index: _Index, role: int = Qt.ItemDataRole.DisplayRole):
         if not index.isValid():
@@ -107,24 +128,32 @@ class ColumnsTableModel(QAbstractTableModel):
     def headerData(self, section: int, orientation, role=Qt.ItemDataRole.DisplayRole):  # noqa: N802
         horizontal = orientation == Qt.Orientation.Horizontal
         if role == Qt.ItemDataRole.ToolTipRole and horizontal and section < len(self._tips):
-            return self._tips[section] or None
+            return tr(self._tips[section]) or None
         if role != Qt.ItemDataRole.DisplayRole:
             return None
         if horizontal:
-            return self._headers[section] if section < len(self._headers) else None
+            if section >= len(self._headers):
+                return None
+            text = tr(self._headers[section])
+            return wrap_header(text) if self.wrap_headers else text
         return str(section + 1)
 
     def header(self, column: int) -> str:
-        """The displayed header of *column* (label and unit)."""
-        return self._headers[column]
+        """The header of *column* (label and unit, in the workbench's language) on one
+        line."""
+        return tr(self._headers[column])
 
 
 class ColumnsTable(QTableView):
-    """Read-only, sortable-looking table view; see :meth:`set_columns`."""
+    """Read-only, sortable-looking table view; see :meth:`set_columns`.
 
-    def __init__(self, parent: QWidget | None = None) -> None:
+    *wrap_headers*: long headers go on two lines (:func:`wrap_header`), so columns are as
+    narrow as their numbers.
+    """
+
+    def __init__(self, parent: QWidget | None = None, wrap_headers: bool = False) -> None:
         super().__init__(parent)
-        self.table_model = ColumnsTableModel(self)
+        self.table_model = ColumnsTableModel(self, wrap_headers=wrap_headers)
         self.setModel(self.table_model)
         self.setEditTriggers(QAbstractItemView.EditTrigger.NoEditTriggers)
         self.setSelectionBehavior(QAbstractItemView.SelectionBehavior.SelectRows)
@@ -132,6 +161,12 @@ class ColumnsTable(QTableView):
         self.verticalHeader().setDefaultSectionSize(20)
         self.horizontalHeader().setSectionResizeMode(QHeaderView.ResizeMode.Interactive)
         self.horizontalHeader().setStretchLastSection(True)
+
+    def changeEvent(self, event) -> None:  # noqa: N802 (Qt API)
+        if event.type() == QEvent.Type.LanguageChange and self.table_model.columnCount():
+            self.table_model.headerDataChanged.emit(Qt.Orientation.Horizontal, 0,
+                                                    self.table_model.columnCount() - 1)
+        super().changeEvent(event)
 
     def set_columns(
         self,

@@ -19,11 +19,13 @@ SPEC = PluginSpec(
     data_kinds=(
         DataKind("pos", "RTKLIB solution file .pos of one antenna (llh/xyz/enu; the file "
                  "stem names the antenna)", "raw/gnss_attitude/pos",
-                 "hydrosync_core.importers.rtklib_pos:store_pos", "custom"),
+                 "hydrosync_core.importers.rtklib_pos:store_pos", "custom",
+                 repeatable="one .pos per antenna"),
         DataKind("geo", "position file .geo of one antenna (calendar time, lat, lon, h, "
                  "3 sigma; no quality flag; the file stem names the antenna)",
                  "raw/gnss_attitude/pos",
-                 "hydrosync_core.importers.geo_positions:store_geo", "custom"),
+                 "hydrosync_core.importers.geo_positions:store_geo", "custom",
+                 repeatable="one .geo per antenna"),
         DataKind("antenna_csv", "antenna_positions.csv: time, antenna, x, y, z (ECEF m), "
                  "quality (GGA) of every antenna of the array",
                  "raw/gnss_attitude/pos",

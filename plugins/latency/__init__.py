@@ -9,6 +9,8 @@ from hydrosync_core.plugins.spec import DataKind, PluginSpec, Trend, TrendSeries
 
 CORE = "hydrosync_core.methods.latency"
 READERS = "hydrosync_core.importers"
+SEVERAL_LOGS = ("several logs of one kind, also a quoted glob such as 'day/*.log', become "
+                "one table in time order")
 
 SPEC = PluginSpec(
     id="latency",
@@ -27,11 +29,11 @@ SPEC = PluginSpec(
                  f"{READERS}.survey_csv:read_lines_csv"),
         DataKind("gnss_log", "NMEA GNSS log (GGA / PTNL,GGK [+GST, ZDA]; logger time tags "
                  "allowed)", "raw/gnss", f"{READERS}.log_import:store_gnss_log", "custom",
-                 options=("empty_geoid",)),
+                 options=("empty_geoid",), repeatable=SEVERAL_LOGS),
         DataKind("attitude_log", "NMEA motion log (PASHR / PSXN,23 / TSS1; see "
                  "--heave-positive)", "raw/attitude",
                  f"{READERS}.log_import:store_attitude_log", "custom",
-                 options=("heave_positive",)),
+                 options=("heave_positive",), repeatable=SEVERAL_LOGS),
     ),
     requires=("raw/gnss", "raw/attitude", "raw/lines"),
     icon="latency.svg",

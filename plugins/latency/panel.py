@@ -9,10 +9,10 @@ A thin view over :mod:`hydrosync_core.methods.latency`: the run happens in a wor
 from __future__ import annotations
 
 import json
-import threading
+from html import escape
 
 import numpy as np
-from PySide6.QtCore import Qt, Signal
+from PySide6.QtCore import Qt
 from PySide6.QtWidgets import (
     QGroupBox,
     QLabel,
@@ -23,9 +23,10 @@ from PySide6.QtWidgets import (
 )
 
 from hydrosync_core.errors import InputError
-from hydrosync_core.methods.latency.api import line_series
 from hydrosync_core.methods.latency.params import LatencyParams, estimator_label
 from hydrosync_core.methods.latency.project_run import RESULT, recombine, run, stored_params
+from hydrosync_core.methods.latency.series import line_series
+from hydrosync_core.methods.latency.texts import interval_text, latency_text
 from hydrosync_core.project.vessel import lever_arm as vessel_lever_arm
 from hydrosync_gui.plugin_panel import PluginPanel
 from hydrosync_gui.widgets.param_form import ParamForm
@@ -34,10 +35,6 @@ from plugins.latency.views import CorrelationPlot, LineTable, SeriesPlot
 
 class LatencyPanel(PluginPanel):
     """Latency between GNSS heights and attitude (Qi et al. 2010)."""
-
-    sig_series_ready = Signal(object, int, object, str, str)
-    """(project, row, series or None, title, error): a line's series computed off the GUI
-    thread."""
 
     def __init__(self, spec=None, parent: QWidget | None = None) -> None:
         if spec is None:
@@ -79,7 +76,6 @@ class LatencyPanel(PluginPanel):
         self._table: dict | None = None
         self._bound_project = None
         self._loading = False
-        self.sig_series_ready.connect(self._on_series_ready)
 
     # ------------------------------------------------------------- parameters
     def params(self) -> LatencyParams | None:
@@ -99,10 +95,10 @@ class LatencyPanel(PluginPanel):
     def _show_sheet_arm(self) -> None:
         """With no lever arm set, show the vessel sheet's (what a run would use)."""
         try:
-            arm = vessel_lever_arm(self.project, "gnss", "motion")
+            arm = tuple(float(v) for v in vessel_lever_arm(self.project, "gnss", "motion"))
         except InputError:
-            return
-        self.form.show_unset("lever_arm_m", tuple(float(v) for v in arm))
+            arm = (0.0, 0.0, 0.0)  # not the previous project's arm; a run asks for one
+        self.form.show_unset("lever_arm_m", arm)
 
     # ---------------------------------------------------------------- drawing
     def refresh(self) -> None:
@@ -119,14 +115,14 @@ class LatencyPanel(PluginPanel):
             self.summary.setText("Needs data: " + ", ".join(f"/{m}" for m in missing)
                                  + ". Import GNSS, attitude and lines files (or create demo data).")
             self.table.setRowCount(0)
-            self.r_plot.clear()
+            self.r_plot.clear_curves()
             self.series_plot.show_series(None)
             return
         if not project.exists(f"{RESULT}/lines"):
             self._table = None
             self.summary.setText("Data ready. Check the lever arm and press Run.")
             self.table.setRowCount(0)
-            self.r_plot.clear()
+            self.r_plot.clear_curves()
             self.series_plot.show_series(None)
             return
         self._table = project.get_table(f"{RESULT}/lines")
@@ -134,7 +130,14 @@ class LatencyPanel(PluginPanel):
         self._update_summary()
         self._draw_curves()
         if self.table.rowCount():
+            # The series plot is redrawn whether or not the selected row changes: after a
+            # re-run the same row carries a new Δt.
+            blocked = self.table.blockSignals(True)
             self.table.selectRow(self._best_row())
+            self.table.blockSignals(blocked)
+            self._on_selection()
+        else:
+            self.series_plot.show_series(None)
 
     def _best_row(self) -> int:
         r = np.nan_to_num(self._table["r_max"], nan=-2.0)
@@ -148,15 +151,17 @@ class LatencyPanel(PluginPanel):
         a = self.project.attrs(RESULT)
         warnings = json.loads(a.get("warnings", "[]"))
         if np.isfinite(a["latency_s"]):
-            text = (f"<b>Δt = {a['latency_s']:.3f} s</b> ± {a['uncertainty_s']:.3f} s<br>"
-                    f"95 % interval {a['ci95_low']:.3f} … {a['ci95_high']:.3f} s<br>"
-                    f"Estimator: {estimator_label(a.get('estimator', 'qi2010'))}<br>"
-                    f"{a['message']}")
+            sigma = a["uncertainty_s"]
+            text = (f"<b>Δt = {escape(latency_text(a['latency_s'], sigma))}</b><br>"
+                    "95 % interval "
+                    f"{escape(interval_text(a['ci95_low'], a['ci95_high'], sigma))}<br>"
+                    f"Estimator: {escape(estimator_label(a.get('estimator', 'qi2010')))}<br>"
+                    f"{escape(str(a['message']))}")
         else:
-            text = f"<b>No latency</b>: {a['message']}"
+            text = f"<b>No latency</b>: {escape(str(a['message']))}"
         if warnings:
             text += "<br><span style='color:#a05000'>" + "<br>".join(
-                f"⚠ {w}" for w in warnings[:6]) + "</span>"
+                f"⚠ {escape(w)}" for w in warnings[:6]) + "</span>"
         self.summary.setText(text)
 
     def _draw_curves(self) -> None:
@@ -183,7 +188,8 @@ class LatencyPanel(PluginPanel):
         final = a["latency_s"] if np.isfinite(a["latency_s"]) else 0.0
         return (json.loads(a["lever_arm_m"]), float(self._table["start"][row]),
                 float(self._table["end"][row]), final, stored_params(self.project),
-                f"line {self._table['name'][row]}: before and after Δt = {final:.3f} s")
+                f"line {self._table['name'][row]}: before and after Δt = "
+                f"{latency_text(final, a['uncertainty_s'])}")
 
     def _show_series(self, row: int) -> None:
         """The series plot of *row*: at once when the raw tables are in memory, else read
@@ -197,17 +203,17 @@ class LatencyPanel(PluginPanel):
             return  # the thread running draws the selected line when it is done
         self._loading = True
 
-        def load() -> None:
-            title = request[-1]
+        def load(progress, cancel) -> tuple:
             try:
-                self.sig_series_ready.emit(project, row, _line_series(project, request), title,
-                                           "")
+                return project, row, _line_series(project, request), request[-1], ""
             except Exception as exc:  # shown in the plot's title, never a traceback
-                self.sig_series_ready.emit(project, row, None, title, str(exc))
+                return project, row, None, request[-1], str(exc)
 
-        threading.Thread(target=load, name="latency-series", daemon=True).start()
+        self.start_side_task(load, self._on_series_ready)
 
-    def _on_series_ready(self, project, row: int, series, title: str, error: str) -> None:
+    def _on_series_ready(self, ready: tuple) -> None:
+        """*ready*: (project, row, series or None, title, error) of :meth:`_show_series`."""
+        project, row, series, title, error = ready
         self._loading = False
         if project is not self.project or self._table is None:
             return

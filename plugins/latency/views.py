@@ -7,6 +7,8 @@ import pyqtgraph as pg
 from PySide6.QtCore import Qt, Signal
 from PySide6.QtWidgets import QAbstractItemView, QHeaderView, QTableWidget, QTableWidgetItem
 
+from hydrosync_core.methods.latency.texts import line_cells
+
 COLUMNS = ("Line", "Epochs", "R max", "Δt [s]", "± [s]", "σ0 before [m]", "σ0 after [m]", "Used")
 USED_COLUMN = COLUMNS.index("Used")
 RIGHT = Qt.AlignmentFlag.AlignRight | Qt.AlignmentFlag.AlignVCenter
@@ -42,9 +44,10 @@ class LineTable(QTableWidget):
         names = table["name"]
         self.setRowCount(len(names))
         for row in range(len(names)):
+            dt, sigma = line_cells(table["latency_s"][row], table["uncertainty_s"][row])
             cells = (str(names[row]), str(int(table["epochs"][row])),
-                     _fmt(table["r_max"][row], 4), _fmt(table["latency_s"][row], 3),
-                     _fmt(table["uncertainty_s"][row], 3), _fmt(table["sigma0_before_m"][row], 3),
+                     _fmt(table["r_max"][row], 4), dt, sigma,
+                     _fmt(table["sigma0_before_m"][row], 3),
                      _fmt(table["sigma0_after_m"][row], 3))
             for col, text in enumerate(cells):
                 item = QTableWidgetItem(text)
@@ -94,15 +97,25 @@ class CorrelationPlot(pg.PlotWidget):
         self.threshold = pg.InfiniteLine(
             angle=0, pen=pg.mkPen((120, 120, 120), style=Qt.PenStyle.DashLine))
 
-    def clear(self) -> None:
+    def clear_curves(self) -> None:
+        """Remove every curve and marker.
+
+        Not named ``clear``: pg.PlotWidget sets its plot item's ``clear`` as an instance
+        attribute, which hides a method of that name, and the curves (added to the view
+        directly) would then stay and pile up under the next ones.
+        """
         box = self.getViewBox()
         for item in self.curves:
             box.removeItem(item)
         self.plotItem.clear()
         self.curves = []
 
+    def item_count(self) -> int:
+        """Items drawn in the view (curves, peaks, reference lines), for checks."""
+        return len(self.getViewBox().addedItems)
+
     def show_curves(self, grid, curves, table, final: float, min_r: float, selected: int) -> None:
-        self.clear()
+        self.clear_curves()
         self._styles: list[tuple] = []
         self._selected = selected
         n = len(curves)

@@ -10,6 +10,7 @@ import pytest
 from hydrosync_core.cli import main
 from hydrosync_core.methods.latency.demo import fill_demo
 from hydrosync_core.methods.latency.simulate import DayConfig, simulate_day, write_day_csv
+from hydrosync_core.methods.latency.texts import latency_text
 from hydrosync_core.project import Project
 
 CFG = DayConfig(latency_s=-0.15, n_lines=4, line_s=90.0, turn_s=20.0, run_in_s=5.0,
@@ -42,7 +43,9 @@ def test_cli_csv_writes_result_json(csv_dir, tmp_path, capsys):
                 "used"} <= set(line)
     assert doc["params"]["range_s"] == [-0.5, 0.5]
     table = capsys.readouterr().out
-    assert "L01" in table and f"latency {doc['latency_s']:.3f}" in table
+    shown = latency_text(doc["latency_s"], doc["uncertainty_s"])
+    assert "L01" in table and f"latency {shown}" in table
+    assert "0.000" not in shown
     assert doc["estimator"] in ("qi2010", "weighted") and doc["params"]["estimator"] == "auto"
 
 

@@ -13,12 +13,15 @@ import pytest
 from hydrosync_core.errors import InputError
 from hydrosync_core.importers import fastcsv as shared_fastcsv
 from hydrosync_core.importers import survey_csv
-from hydrosync_core.methods.latency import api, fastcsv, fastscan
+from hydrosync_core.methods.latency import fastscan, passes, readers, weighted
 from hydrosync_core.methods.latency.correlation import (
     correlation_curve,
     correlation_curve_direct,
 )
+from hydrosync_core.methods.latency.estimate import estimate_latency
 from hydrosync_core.methods.latency.heave import total_heave, total_heave_at, total_heave_deg
+from hydrosync_core.methods.latency.heave_windows import HeaveWindows
+from hydrosync_core.methods.latency.inputs import set_up
 from hydrosync_core.methods.latency.lines import attitude_window, line_epochs, line_slice
 from hydrosync_core.methods.latency.simulate import DayConfig, simulate_day, write_day_csv
 
@@ -137,10 +140,10 @@ def test_compiled_total_heave_equals_numpy():
 def test_estimate_equals_the_straightforward_method(day, monkeypatch):
     """The whole estimate with the closed-form scan equals the pre-v2 direct scan."""
     params = {"step_s": 0.002}
-    fast = api.estimate_latency(day["gnss"], day["attitude"], day["lines"], DAY.lever_arm_m,
+    fast = estimate_latency(day["gnss"], day["attitude"], day["lines"], DAY.lever_arm_m,
                                 params)
     monkeypatch.setattr(fastscan, "available", lambda: False)
-    slow = api.estimate_latency(day["gnss"], day["attitude"], day["lines"], DAY.lever_arm_m,
+    slow = estimate_latency(day["gnss"], day["attitude"], day["lines"], DAY.lever_arm_m,
                                 params)
     assert fast.latency_s == pytest.approx(slow.latency_s, abs=1e-7)
     for a, b in zip(fast.lines, slow.lines, strict=True):
@@ -154,12 +157,12 @@ def test_estimate_equals_the_straightforward_method(day, monkeypatch):
 def test_fast_csv_reads_what_the_generic_reader_reads(day, tmp_path):
     write_day_csv(day, tmp_path)
     for name in ("gnss", "attitude"):
-        fast = getattr(fastcsv, f"read_{name}_csv")(tmp_path / f"{name}.csv")
+        fast = getattr(readers, f"read_{name}_csv")(tmp_path / f"{name}.csv")
         slow = getattr(survey_csv, f"read_{name}_csv")(tmp_path / f"{name}.csv")
         assert list(fast) == list(slow)
         for key in slow:
             np.testing.assert_array_equal(fast[key], slow[key])
-    down = fastcsv.read_attitude_csv(tmp_path / "attitude.csv", "down", ("time", "heave"))
+    down = readers.read_attitude_csv(tmp_path / "attitude.csv", "down", ("time", "heave"))
     assert list(down) == ["time", "heave"]
     np.testing.assert_array_equal(down["heave"], -slow["heave"])
 
@@ -170,7 +173,7 @@ def test_fast_csv_small_pieces_and_optional_columns(tmp_path, monkeypatch):
     rows = "".join(f"{100 + i * 0.1:.1f},{42 + 0.001 * i:.3f},7,x,{i % 5}\r\n"
                    for i in range(300))
     path.write_text("Time,height,extra,note,quality\r\n" + rows + "\r\n", newline="")
-    fast = fastcsv.read_gnss_csv(path)
+    fast = readers.read_gnss_csv(path)
     slow = survey_csv.read_gnss_csv(path)
     assert list(fast) == list(slow) == ["time", "height", "quality"]
     for key in slow:
@@ -201,7 +204,7 @@ def test_compiled_csv_parser_returns_the_generic_readers_doubles(tmp_path, monke
     slow = survey_csv.read_attitude_csv(path)
     for key in keep:
         np.testing.assert_array_equal(compiled[key], slow[key])
-    fast = fastcsv.read_attitude_csv(path)
+    fast = readers.read_attitude_csv(path)
     assert list(fast) == list(slow)
     for key in slow:
         np.testing.assert_array_equal(fast[key], slow[key])
@@ -221,7 +224,7 @@ def test_compiled_csv_parser_leaves_other_shapes_to_the_general_readers(tmp_path
     from hydrosync_core import plausible
     assert shared_fastcsv._read_compiled(path, names, header, ["time", "height"],
                                   ["time", "height"], plausible.GNSS, 2) is None
-    fast, slow = fastcsv.read_gnss_csv(path), survey_csv.read_gnss_csv(path)
+    fast, slow = readers.read_gnss_csv(path), survey_csv.read_gnss_csv(path)
     for key in slow:
         np.testing.assert_array_equal(fast[key], slow[key])
 
@@ -240,7 +243,7 @@ def test_fast_csv_bad_files_give_the_generic_error(tmp_path, body, where):
     with pytest.raises(InputError) as slow:
         survey_csv.read_gnss_csv(path)
     with pytest.raises(InputError) as fast:
-        fastcsv.read_gnss_csv(path)
+        readers.read_gnss_csv(path)
     assert fast.value.one_line() == slow.value.one_line()
     assert where in fast.value.one_line()
 
@@ -248,7 +251,7 @@ def test_fast_csv_bad_files_give_the_generic_error(tmp_path, body, where):
 def test_fast_csv_unsorted_and_commented_files_match(tmp_path):
     path = tmp_path / "gnss.csv"
     path.write_text("# logger export\ntime,height\n3,42.3\n1,42.1\n2,42.2\n")
-    fast, slow = fastcsv.read_gnss_csv(path), survey_csv.read_gnss_csv(path)
+    fast, slow = readers.read_gnss_csv(path), survey_csv.read_gnss_csv(path)
     np.testing.assert_array_equal(fast["time"], [1, 2, 3])
     np.testing.assert_array_equal(fast["height"], slow["height"])
 
@@ -258,12 +261,12 @@ def test_cli_on_quiet_day_is_unchanged(tmp_path):
     cfg = replace(DAY, latency_s=0.21)
     d = simulate_day(cfg, seed=9)
     write_day_csv(d, tmp_path)
-    g = fastcsv.read_gnss_csv(tmp_path / "gnss.csv")
-    a = fastcsv.read_attitude_csv(tmp_path / "attitude.csv", "up", ("time", "roll", "pitch",
+    g = readers.read_gnss_csv(tmp_path / "gnss.csv")
+    a = readers.read_attitude_csv(tmp_path / "attitude.csv", "up", ("time", "roll", "pitch",
                                                                     "heave"))
-    res = api.estimate_latency(g, a, survey_csv.read_lines_csv(tmp_path / "lines.csv"),
+    res = estimate_latency(g, a, survey_csv.read_lines_csv(tmp_path / "lines.csv"),
                                cfg.lever_arm_m)
-    ref = api.estimate_latency(survey_csv.read_gnss_csv(tmp_path / "gnss.csv"),
+    ref = estimate_latency(survey_csv.read_gnss_csv(tmp_path / "gnss.csv"),
                                survey_csv.read_attitude_csv(tmp_path / "attitude.csv"),
                                survey_csv.read_lines_csv(tmp_path / "lines.csv"),
                                cfg.lever_arm_m)
@@ -272,7 +275,7 @@ def test_cli_on_quiet_day_is_unchanged(tmp_path):
 
 def test_total_heave_at_times_equals_whole_record_interpolation(day):
     att = day["attitude"]
-    source = api._Attitude(att, np.asarray(DAY.lever_arm_m))
+    source = HeaveWindows(att, np.asarray(DAY.lever_arm_m))
     full = total_heave_deg(att["heave"], att["roll"], att["pitch"], DAY.lever_arm_m)
     rng = np.random.default_rng(5)
     times = np.concatenate([rng.uniform(att["time"][0] - 1, att["time"][-1] + 1, 500),
@@ -329,7 +332,7 @@ def test_filter_steps_equal_fft_filter():
             spec = prefilter.spectrum(x)
             gains = prefilter.response_gains(response, spec.size, 0.01)
             np.testing.assert_array_equal(prefilter.filtered(spec, gains, crop), ref[crop])
-        keep = api._band_bins(spec.size, 0.01, 0.1)
+        keep = passes.band_bins(spec.size, 0.01, 0.1)
         head = spec.head(keep)
         assert n < 4 or head.bins.size == keep < spec.bins.size
         gains = prefilter.response_gains(weighting.response, spec.size, 0.01)
@@ -345,7 +348,7 @@ def test_filter_steps_equal_fft_filter():
         np.testing.assert_array_equal(spec.bins, np.fft.rfft(np.pad(
             d, (spec.left, spec.size - n - spec.left), mode="symmetric")))
     spec = prefilter.spectrum(np.cumsum(rng.standard_normal(18231)))
-    head = spec.head(api._band_bins(spec.size, 0.01, 0.1))
+    head = spec.head(passes.band_bins(spec.size, 0.01, 0.1))
     # A response beyond the kept bins is refused, not silently cut.
     gains = prefilter.response_gains(lambda f: prefilter.antialias_response(f, 4.0),
                                      spec.size, 0.01)
@@ -369,13 +372,13 @@ def test_first_pass_windows_equal_per_line_filtering():
     cfg = replace(DAY, n_lines=4, gnss_hz=5.0)
     d = simulate_day(cfg, seed=12)
     p = LatencyParams.from_dict({"estimator": "weighted"})
-    setup = api._setup(d["gnss"], d["attitude"], d["lines"], cfg.lever_arm_m, p)
-    passes = api._first_passes(setup, p, False, True, None, None, aa_sigma=False, keep=True)
-    setup.prepared, peaks, works = passes.aa_lines, passes.aa_peaks, passes.works
+    setup = set_up(d["gnss"], d["attitude"], d["lines"], cfg.lever_arm_m, p)
+    scans = passes.first_passes(setup, p, False, True, None, None, aa_sigma=False, keep=True)
+    setup.prepared, peaks, works = scans.aa_lines, scans.aa_peaks, scans.works
     att, arm, t = setup.att, np.asarray(cfg.lever_arm_m), setup.att["time"]
     pad = int(round(prefilter.PAD_S / setup.a_int))
     cutoff = prefilter.ANTIALIAS_FRACTION * 0.5 / setup.g_int
-    weighting = api._pooled_weighting(setup.prepared, peaks, works, t, p.min_r, setup.g_int)
+    weighting = weighted.pooled_weighting(setup.prepared, peaks, works, t, p.min_r, setup.g_int)
     assert weighting is not None
     dt0 = float(np.median([pk.latency_s for pk in peaks]))
     lo, hi = float(setup.dts[0]), float(setup.dts[-1])
@@ -644,41 +647,44 @@ def test_sincos_in_degrees_is_accurate_to_the_last_bits():
         total_heave_at(t, t, np.zeros(4), turned, np.zeros(4), (0.0, 1.0, 0.0)))
 
 
-def test_compiled_filter_steps_give_numpys_numbers_to_the_last_bit(monkeypatch):
-    """prefilter.spectrum/filtered with the compiled element-wise steps (fastfilter)
-    against its numpy expressions: every window length parity, padding wider than the
-    series, kept bins, crops and an output buffer."""
-    from hydrosync_core.methods.latency import fastfilter, prefilter
+def test_compiled_filter_steps_give_numpys_numbers_to_the_last_bit():
+    """prefilter.spectrum/filtered (compiled element-wise steps, fastfilter) against the
+    numpy expressions they replace, written out here: every window length parity,
+    padding wider than the series, kept bins, crops and an output buffer."""
+    from hydrosync_core.methods.latency import prefilter
+
+    def numpy_bins(x, spec):
+        kc = np.arange(x.size, dtype=float) - 0.5 * (x.size - 1)
+        left = spec.left
+        y = np.pad(x - (spec.intercept + spec.slope * kc), (left, spec.size - x.size - left),
+                   mode="symmetric")
+        return np.fft.rfft(y)
+
+    def numpy_filtered(spec, gains, crop=slice(None)):
+        lo, hi, _ = crop.indices(spec.n)
+        product = spec.bins * gains[0][:spec.bins.size]
+        series = np.fft.irfft(product, spec.size)[spec.left + lo:spec.left + hi]
+        kc = np.arange(lo, hi, dtype=float) - 0.5 * (spec.n - 1)
+        return series + (spec.intercept + spec.slope * kc) * gains[1]
 
     rng = np.random.default_rng(21)
-    cases = []
     for n in (4, 5, 7, 64, 1199, 1200, 18001, 36450, 70001):
         x = np.cumsum(rng.normal(size=n)) + 0.3 * np.arange(n)
         g = prefilter.response_gains(lambda f: prefilter.antialias_response(f, 3.0),
                                      prefilter.next_fast_len(2 * n), 0.01)
-        cases.append((x, g, slice(n // 5, n - n // 7)))
-
-    def run():
-        out = []
-        for x, g, crop in cases:
-            spec = prefilter.spectrum(x)
-            out.append(spec.bins.copy())
-            out.append(prefilter.filtered(spec, g))
-            out.append(prefilter.filtered(spec, g, crop).copy())
-            buf = np.full(x.size + 3, 7.0)
-            out.append(prefilter.filtered(spec, g, crop, out=buf).copy())
-            head = spec.head(min(spec.bins.size, int(0.6 * spec.bins.size) + 1))
-            cut = (g[0] * (np.arange(g[0].size) < head.bins.size), g[1])
-            out.append(prefilter.filtered(head, cut, crop).copy())
-            out.append(np.array([spec.intercept, spec.slope]))
-        return out
-
-    assert fastfilter.available()
-    compiled = run()
-    monkeypatch.setattr(fastfilter, "available", lambda: False)
-    plain = run()
-    for a, b in zip(compiled, plain, strict=True):
-        np.testing.assert_array_equal(a, b)
+        crop = slice(n // 5, n - n // 7)
+        spec = prefilter.spectrum(x)
+        np.testing.assert_array_equal(spec.bins, numpy_bins(x, spec))
+        np.testing.assert_array_equal(prefilter.filtered(spec, g), numpy_filtered(spec, g))
+        np.testing.assert_array_equal(prefilter.filtered(spec, g, crop),
+                                      numpy_filtered(spec, g, crop))
+        buf = np.full(x.size + 3, 7.0)
+        np.testing.assert_array_equal(prefilter.filtered(spec, g, crop, out=buf),
+                                      numpy_filtered(spec, g, crop))
+        head = spec.head(min(spec.bins.size, int(0.6 * spec.bins.size) + 1))
+        cut = (g[0] * (np.arange(g[0].size) < head.bins.size), g[1])
+        np.testing.assert_array_equal(prefilter.filtered(head, cut, crop),
+                                      numpy_filtered(head, cut, crop))
     assert prefilter._sum_of_squares(1199) == float((prefilter._centred_index(1199) ** 2).sum())
     assert prefilter._sum_of_squares(1200) == float((prefilter._centred_index(1200) ** 2).sum())
 

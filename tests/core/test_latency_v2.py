@@ -9,8 +9,8 @@ import numpy as np
 import pytest
 
 from hydrosync_core.methods.latency import estimate_latency, prefilter
-from hydrosync_core.methods.latency.api import implausible_uncertainty
 from hydrosync_core.methods.latency.demo import fill_demo
+from hydrosync_core.methods.latency.outcome import implausible_uncertainty
 from hydrosync_core.methods.latency.params import ESTIMATOR_CHOICES, LatencyParams
 from hydrosync_core.methods.latency.project_run import run, stored_params
 from hydrosync_core.methods.latency.report_section import summary
@@ -34,10 +34,15 @@ def test_implausible_uncertainties_are_flagged():
 def test_lines_with_incredible_sigma_are_not_used_with_a_warning():
     cfg = scenario("paper", gnss_hz=2.0, attitude_hz=20.0, **SHORT)
     day = simulate_day(cfg, seed=1)
+    # The credibility rule is the extended screening (issue #29: the published method,
+    # and qi2010 inside auto, apply the paper's rule only).
     res = estimate_latency(day["gnss"], day["attitude"], day["lines"], cfg.lever_arm_m,
-                           {"max_line_sigma_s": 1e-5})
+                           {"max_line_sigma_s": 1e-5, "screening": "extended"})
     assert not res.converged and res.n_used == 0
     assert all("not credible" in " ".join(ln.warnings) for ln in res.lines)
+    paper = estimate_latency(day["gnss"], day["attitude"], day["lines"], cfg.lever_arm_m,
+                             {"max_line_sigma_s": 1e-5, "estimator": "qi2010"})
+    assert paper.converged and not any("not credible" in w for w in paper.warnings)
     ok = estimate_latency(day["gnss"], day["attitude"], day["lines"], cfg.lever_arm_m)
     assert ok.converged and ok.ci95_high - ok.ci95_low < 0.1
 

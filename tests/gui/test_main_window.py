@@ -382,3 +382,76 @@ def test_status_bar_names_the_panel_once(qtbot, make_window):
     assert window.statusBar().currentMessage() == f"{name} started"
     panel.sig_status.emit("3 of 4 lines used")
     assert window.statusBar().currentMessage() == f"{name}: 3 of 4 lines used"
+
+
+def test_save_as_names_an_untitled_project_after_its_file(qtbot, make_window, tmp_path, ui):
+    """"Untitled" went on the title and the report cover after Save As (#26); a named
+    project keeps its name, and a failed save gives the placeholder back."""
+    window = make_window()
+    window.project.put_json("raw/note", {"a": 1})
+    ui.save_path = str(tmp_path / "no_such_dir" / "harbour.h5")
+    window._on_save_as()
+    qtbot.waitUntil(lambda: not window.busy, timeout=5000)
+    assert window.project.name == "Untitled"
+    ui.save_path = str(tmp_path / "harbour-2026-11.h5")
+    window._on_save_as()
+    qtbot.waitUntil(lambda: not window.busy, timeout=5000)
+    assert window.project.name == "harbour-2026-11"
+    assert window.windowTitle() == "HydroSync — harbour-2026-11[*]"
+    assert Project.open(tmp_path / "harbour-2026-11.h5", readonly=True).name \
+        == "harbour-2026-11"
+    ui.save_path = str(tmp_path / "copy.h5")
+    window._on_save_as()
+    qtbot.waitUntil(lambda: not window.busy, timeout=5000)
+    assert window.project.name == "harbour-2026-11"  # a real name is the user's: kept
+
+
+@pytest.mark.parametrize(("available", "wanted", "expected"), [
+    # 1366×768 laptop, nothing saved: 1280 wide, as tall as the screen allows, centred.
+    ((0, 0, 1366, 768), None, (43, 32, 1280, 728)),
+    # A geometry saved on a 1920×1080 monitor, restored on the laptop: shrunk and moved.
+    ((0, 0, 1366, 768), (300, 200, 1800, 1000), (8, 32, 1350, 728)),
+    # A window partly off the right edge moves in; one that fits stays where it was.
+    ((0, 0, 1920, 1080), (1500, 100, 1000, 700), (912, 100, 1000, 700)),
+    ((0, 0, 1920, 1080), (100, 100, 1000, 700), (100, 100, 1000, 700)),
+    # A second screen to the left (negative coordinates) with a task bar on top.
+    ((-1366, 30, 1366, 738), (-2000, 0, 800, 600), (-1358, 62, 800, 600)),
+])
+def test_window_rectangle_fits_the_available_screen(available, wanted, expected):
+    from PySide6.QtCore import QRect
+
+    from hydrosync_gui.window_geometry import FRAME_ALLOWANCE, fit_rect
+
+    area = QRect(*available)
+    rect = fit_rect(area, QRect(*wanted) if wanted else None)
+    assert (rect.x(), rect.y(), rect.width(), rect.height()) == expected
+    frame = rect.adjusted(-FRAME_ALLOWANCE.width() // 2,
+                          -(FRAME_ALLOWANCE.height() - FRAME_ALLOWANCE.width() // 2),
+                          FRAME_ALLOWANCE.width() // 2, FRAME_ALLOWANCE.width() // 2)
+    assert area.contains(frame), (frame, area)
+
+
+def test_window_opens_inside_the_screen_and_restored_geometry_is_clamped(
+        qtbot, make_window, settings):
+    """The default 1280×800 put the status bar off a 768-pixel-high screen (#26)."""
+    window = make_window()
+    screen = window.screen().availableGeometry()
+    assert screen.contains(window.geometry()), (window.geometry(), screen)
+    assert window.statusBar().isVisible()
+    window.setGeometry(50, 50, 4000, 3000)  # as if saved on a much larger monitor
+    window.close_without_prompt()
+    again = make_window()
+    assert screen.contains(again.geometry()), (again.geometry(), screen)
+    bar = again.statusBar()
+    bottom_left = bar.mapTo(again, bar.rect().bottomLeft())
+    assert again.geometry().top() + bottom_left.y() <= screen.bottom()
+
+
+def test_project_dock_starts_narrow_on_a_small_screen():
+    from PySide6.QtCore import QRect
+
+    from hydrosync_gui.window_geometry import DOCK_WIDTH_NARROW, DOCK_WIDTH_WIDE, dock_width
+
+    assert dock_width(QRect(0, 0, 1280, 720)) == DOCK_WIDTH_NARROW
+    assert dock_width(QRect(0, 0, 1366, 736)) == DOCK_WIDTH_NARROW
+    assert dock_width(QRect(0, 0, 1920, 1080)) == DOCK_WIDTH_WIDE

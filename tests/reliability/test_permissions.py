@@ -14,7 +14,6 @@ import os
 import shutil
 import stat
 import tempfile
-import time
 from contextlib import contextmanager
 from pathlib import Path
 
@@ -79,12 +78,10 @@ def _project(path: Path, mode: int) -> Path:
 def test_read_only_file_is_not_replaced(tmp_path, faults):
     path = _project(tmp_path / "ro.h5", 0o444)
     before = _digest(path)
-    t0 = time.monotonic()
     done = run_cli("vessel", path, "--set", "gnss", 1, 2, 3)
     lines = stderr_lines(done.stderr)
     ok = (done.returncode == 2 and len(lines) == 1 and "read-only (mode 444" in lines[0]
-          and _digest(path) == before and stat.S_IMODE(path.stat().st_mode) == 0o444
-          and time.monotonic() - t0 < 5)
+          and _digest(path) == before and stat.S_IMODE(path.stat().st_mode) == 0o444)
     faults.record("read-only project written", ok, done.stderr)
     assert ok, done.stderr
     with pytest.raises(ProjectReadOnlyError):
@@ -144,10 +141,8 @@ def test_unwritable_folder_fails_before_any_work(shared_folder, faults, capsys):
     path = _project(folder / "P.h5", 0o666)
     os.chown(path, uid, gid)
     folder.chmod(0o555)
-    t0 = time.monotonic()
     code, lines = _main_as_nobody(capsys, "vessel", path, "--set", "gnss", 1, 2, 3)
-    elapsed = time.monotonic() - t0
-    ok = code == 2 and len(lines) == 1 and "cannot be written" in lines[0] and elapsed < 5
+    ok = code == 2 and len(lines) == 1 and "cannot be written" in lines[0]
     faults.record("unwritable project folder", ok, str(lines))
     assert ok, lines
     # A new project in that folder: refused before reading any input.

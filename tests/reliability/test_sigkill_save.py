@@ -10,7 +10,7 @@ import shutil
 import signal
 import time
 
-from hydrosync_core.atomic import clean_stale_temporaries
+from hydrosync_core.atomic import clean_stale_temporaries, machine_tag
 from hydrosync_core.project import Project
 from tests.reliability.conftest import (
     SCALE,
@@ -65,15 +65,16 @@ def test_stale_temporaries_cleaned_only_when_their_process_is_gone(tmp_path):
     target = tmp_path / "P.h5"
     Project.new("x").save(target)
     dead = 2 ** 22 + 12345  # above pid_max: no such process
-    stale = tmp_path / f".P.h5.abcd1234.{dead}.tmp"
+    tag = machine_tag()  # written on this machine: the pid can be judged here
+    stale = tmp_path / f".P.h5.abcd1234.{tag}-{dead}.tmp"
     stale.write_bytes(b"x" * 1000)
-    alive = tmp_path / f".P.h5.efgh5678.{os.getppid()}.tmp"
+    alive = tmp_path / f".P.h5.efgh5678.{tag}-{os.getppid()}.tmp"
     alive.write_bytes(b"y")
     legacy = tmp_path / "P.h5.tmp"
     legacy.write_bytes(b"z" * 10)
     old = time.time() - 3600
     os.utime(legacy, (old, old))
-    other = tmp_path / f".Q.h5.abcd1234.{dead}.tmp"  # another project's: untouched
+    other = tmp_path / f".Q.h5.abcd1234.{tag}-{dead}.tmp"  # another project's: untouched
     other.write_bytes(b"q")
     with Project.open(target) as project:  # open for writing: legacy name too
         assert any(f"process {dead}" in n for n in project.notices)

@@ -18,13 +18,17 @@ import argparse
 from pathlib import Path
 
 from hydrosync_core.errors import InputError
-from hydrosync_core.methods.gins_smoother.params import GinsParams
+from hydrosync_core.methods.gins_smoother.params import RAN, GinsParams
 from hydrosync_core.params import add_cli_arguments, from_cli
 
 
 def _check_out(path: Path | None, option: str) -> None:
+    from hydrosync_core.atomic import check_writable
+
     if path is not None and not path.parent.resolve().is_dir():
         raise InputError(str(path), f"folder of {option} does not exist")
+    if path is not None:
+        check_writable(path, option)  # not a device, FIFO or /proc file; writable
 
 
 def _write(res, out: Path, forward_only: bool) -> None:
@@ -52,8 +56,11 @@ def _summary(res, ev: dict) -> dict:
 
 def _print(doc: dict) -> None:
     c = doc["counts"]
+    smoothed = c.get("ran", RAN[True]) == RAN[True]
+    print(f"ran: {c.get('ran', RAN[True])}")
     print(f"{c['imu_epochs']} IMU epochs, {c['gnss_used']} of {c['gnss_epochs']} GNSS fixes "
-          f"used, {c['states']} states, {c['nodes']} smoother nodes; alignment: "
+          f"used, {c['states']} states, {c['nodes']} "
+          f"{'smoother' if smoothed else 'filter'} nodes; alignment: "
           f"{doc['alignment'].get('method')}")
     if doc.get("gnss_model", {}).get("summary"):
         print(f"σ computed from: {doc['gnss_model']['summary']}")
@@ -75,6 +82,17 @@ def _print(doc: dict) -> None:
                                         ("vn", "ve", "vd"))
                 + " %, roll/pitch/yaw " + " ".join(f"{100 * c[k]['within_95']:.0f}" for k in
                                                    ("roll", "pitch", "yaw")) + " %")
+        off = ev.get("constant_offset")
+        c0 = ev.get("coverage", {}).get("offset_removed", {})
+        if off and c0.get("yaw"):
+            print(f"{'':<9} constant offset from the reference roll/pitch/yaw "
+                  + "/".join(f"{off[k]:+.2f}" for k in ("roll", "pitch", "yaw"))
+                  + " deg, N/E/D " + "/".join(f"{off[k]:+.2f}" for k in ("north", "east",
+                                                                        "down"))
+                  + " m (the reference's own axes and point: not independent, mounting "
+                  "unknown); within 1.96σ with it removed: roll/pitch/yaw "
+                  + " ".join(f"{100 * c0[k]['within_95']:.0f}" for k in ("roll", "pitch",
+                                                                        "yaw")) + " %")
 
 
 def _run_files(args, params: GinsParams) -> int:
@@ -96,6 +114,8 @@ def _run_files(args, params: GinsParams) -> int:
         if not args.out:
             raise InputError(None, "missing option --out")
     else:
+        if args.clock_offset is not None:
+            raise InputError(None, "--clock-offset applies to --recording only")
         missing = [o for o, v in (("--imu", args.imu), ("--gnss", args.gnss),
                                   ("--config", args.config), ("--out", args.out)) if not v]
         if missing:
@@ -112,17 +132,23 @@ def _run_files(args, params: GinsParams) -> int:
         )
 
         rec = read_recording(args.recording)
-        shift, _ = estimate_time_shift(rec)
+        # the recording's options replace the options the user did not give (a value
+        # given equal to the schema default still wins over the recording's), in every
+        # step from the clock offset on
+        params = GinsParams.from_dict({**rec.params, **_given(args, params)})
+        if args.clock_offset is not None:
+            shift = args.clock_offset
+            print(f"{rec.name}: GNSS−IMU clock offset {shift:+.3f} s given and applied")
+        else:
+            shift, est = estimate_time_shift(rec, params.to_dict())
+            print(f"{rec.name}: " + (f"{est.text()}; applied" if est is not None else
+                                     "GNSS−IMU clock offset: the recording's own timing"))
         rec = shifted(rec, shift)
-        print(f"{rec.name}: GNSS−IMU clock offset {shift:+.3f} s estimated and applied")
         for note in rec.notes:
             print(f"  {note}")
         cfg = read_config(args.config) if args.config else rec.config
         imu, gnss = rec.imu, rec.gnss
         truth = truth if truth is not None else rec.reference
-        # the recording's options replace the options the user did not give (a value
-        # given equal to the schema default still wins over the recording's)
-        params = GinsParams.from_dict({**rec.params, **_given(args, params)})
     else:
         cfg = read_config(args.config)
         imu = read_imu(args.imu, cfg.imu_rate_hz)
@@ -137,9 +163,13 @@ def _run_files(args, params: GinsParams) -> int:
     if args.json is not None:
         write_json_atomic(args.json, doc)
     _print(doc)
-    print(f"{'forward' if args.forward_only else 'smoothed'} trajectory written to "
-          f"{args.out} (standard deviations in {args.out.stem}_std{args.out.suffix or '.nav'})")
+    print(f"{_which(res, args.forward_only)} trajectory written to {args.out} (standard "
+          f"deviations in {args.out.stem}_std{args.out.suffix or '.nav'})")
     return 0
+
+
+def _which(res, forward_only: bool) -> str:
+    return "forward" if forward_only or res.smoothed is None else "smoothed"
 
 
 def _given(args, params: GinsParams) -> dict:
@@ -156,9 +186,9 @@ def _run_project(args, params: GinsParams) -> int:
     from hydrosync_core.methods.gins_smoother.project_run import run
     from hydrosync_core.project import Project
 
-    if args.imu or args.gnss or args.config or args.recording:
+    if args.imu or args.gnss or args.config or args.recording or args.clock_offset is not None:
         raise InputError(str(args.project), "give either a project file or --imu/--gnss/"
-                         "--config/--recording")
+                         "--config/--recording/--clock-offset")
     _check_out(args.out, "--out")
     _check_out(args.json, "--json")
     project = Project.open(args.project)
@@ -180,6 +210,8 @@ def _run_project(args, params: GinsParams) -> int:
         write_json_atomic(args.json, doc)
     project.save()
     _print(doc)
+    if args.out is not None:
+        print(f"{_which(res, args.forward_only)} trajectory written to {args.out}")
     print(f"results stored in {args.project} under /results/gins_smoother")
     return 0
 
@@ -211,6 +243,9 @@ def register(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--recording", type=Path, help="a real recording folder instead of "
                    "--imu/--gnss: comma2k19 segment or rtklibexplorer drive/walk (its IMU "
                    "grade, lever arm, options and reference are used unless given)")
+    p.add_argument("--clock-offset", type=float, metavar="S", help="with --recording: the "
+                   "GNSS−IMU clock offset (s, the GNSS epoch tagged t happened at IMU time "
+                   "t + S) instead of estimating it from the turns")
     p.add_argument("--forward-only", action="store_true", help="write the forward filter "
                    "solution, skip smoothing")
     p.add_argument("--truth", type=Path, help="reference .nav for error statistics")

@@ -21,15 +21,16 @@ import numpy as np
 
 from hydrosync_core.errors import InputError
 from hydrosync_core.methods.gins_smoother import kernel as K  # noqa: N812
+from hydrosync_core.methods.gins_smoother.alignment import initial_state
 from hydrosync_core.methods.gins_smoother.config import (
-    D2R,
     SensorConfig,
     initial_covariance,
     noise_densities,
 )
 from hydrosync_core.methods.gins_smoother.io import GnssData, ImuData
-from hydrosync_core.methods.gins_smoother.params import GinsParams
+from hydrosync_core.methods.gins_smoother.params import RAN, GinsParams
 from hydrosync_core.progress import check_cancel, report
+from hydrosync_core.rotations import euler_zyx_matrix
 
 CHUNK_S = 60.0  # seconds of IMU data per compiled chunk (progress / cancel granularity)
 
@@ -127,222 +128,6 @@ def detect_static(imu: ImuData, window_s: float, acc_std: float, gyro_dps: float
     return (var < acc_std ** 2) & (wm < math.radians(gyro_dps))
 
 
-def _initial_state(imu: ImuData, gnss: GnssData, cfg: SensorConfig, i0: int,
-                   static: np.ndarray, p: GinsParams) -> tuple[int, np.ndarray, SensorConfig,
-                                                               dict]:
-    """Start index, total state and the config with alignment std (module :mod:`.kernel`).
-
-    Given (config ``initpos``/``initatt``) or from the data: static coarse alignment
-    (levelling from the mean specific force, heading by gyrocompassing when the gyro bias
-    instability is below 1 deg/h) or, for lower-grade gyros or a moving start, roll and
-    pitch 0 and heading from the GNSS course at the first epoch faster than
-    ``align_speed``.
-    """
-    info: dict = {}
-    x = np.zeros(K.NX)
-    x[10:13] = cfg.init_gyro_bias
-    x[13:16] = cfg.init_acc_bias
-    x[16:19] = cfg.init_gyro_scale
-    x[19:22] = cfg.init_acc_scale
-    if cfg.init_pos is not None and cfg.init_att is not None:
-        x[0:3] = cfg.init_pos
-        x[3:6] = cfg.init_vel if cfg.init_vel is not None else (0.0, 0.0, 0.0)
-        x[6:10] = euler_to_quat(*cfg.init_att)
-        info["method"] = "given"
-        return i0, x, cfg, info
-    t = imu.time
-    g_after = np.flatnonzero(gnss.time >= t[i0])
-    if g_after.size < 3:
-        raise InputError(gnss.source, "fewer than three GNSS epochs after the start: "
-                         "cannot align (give initpos/initatt in the configuration)")
-    lever = np.asarray(cfg.lever_arm_m)
-    # static start: quiet IMU over the alignment window at the start
-    n_al = int(p.align_time_s * imu.rate_hz)
-    gb_dph = max(cfg.noise.gb_std) * 3600 / D2R
-    if i0 + n_al < t.size and static[i0:i0 + n_al].all():
-        seg = slice(i0, i0 + n_al)
-        T = t[i0 + n_al - 1] - t[i0] + 1.0 / imu.rate_hz
-        f = imu.inc[seg, 3:6].sum(axis=0) / T
-        w = imu.inc[seg, 0:3].sum(axis=0) / T
-        roll = math.atan2(-f[1], -f[2])
-        pitch = math.atan2(f[0], math.hypot(f[1], f[2]))
-        lev = euler_matrix(roll, pitch, 0.0)
-        wl = lev @ w
-        if gb_dph < 1.0:
-            yaw = math.atan2(-wl[1], wl[0])
-            lat = math.radians(gnss.llh[g_after[0], 0])
-            yaw_std = max(cfg.noise.gb_std) / (K.WIE * math.cos(lat)) + 0.002
-            info["method"] = "static levelling + gyrocompassing"
-        else:
-            yaw, yaw_std = None, None
-        i_start = i0 + n_al - 1
-        if yaw is not None:
-            C = euler_matrix(roll, pitch, yaw)
-            gi = g_after[0]
-            lat, lon = np.radians(gnss.llh[gi, :2])
-            rm, rn = K.radii(lat)
-            la = C @ lever
-            x[0:3] = (lat - la[0] / (rm + gnss.llh[gi, 2]),
-                      lon - la[1] / ((rn + gnss.llh[gi, 2]) * math.cos(lat)),
-                      gnss.llh[gi, 2] + la[2])
-            x[3:6] = 0.0
-            x[6:10] = euler_to_quat(roll, pitch, yaw)
-            acc_std = max(cfg.noise.ab_std) / 9.8
-            cfg = cfg.with_(init_att_std=(acc_std + 1e-3, acc_std + 1e-3, yaw_std),
-                            init_vel_std=(0.01, 0.01, 0.01),
-                            init_pos_std=tuple(gnss.std[gi] + 0.01))
-            info.update(roll_deg=math.degrees(roll), pitch_deg=math.degrees(pitch),
-                        yaw_deg=math.degrees(yaw) % 360, start_time=float(t[i_start]))
-            return i_start, x, cfg, info
-    # moving alignment: heading from the GNSS course
-    vg = _gnss_velocity(gnss)
-    gt, llh = gnss.time, gnss.llh
-    c_vb = euler_matrix(*np.radians(np.asarray(p.mounting_deg, float)))  # vehicle ← body
-    for k in range(1, gt.size - 1):
-        if gt[k] < t[i0] or not np.isfinite(vg[k]).all():
-            continue
-        v = vg[k]
-        speed = float(np.linalg.norm(v[:2]))
-        if speed < p.align_speed:
-            continue
-        i_start = int(np.searchsorted(t, gt[k]))
-        if i_start >= t.size - 1:
-            break
-        # vehicle attitude from the course (roll 0), then the body by the mounting
-        c_vn = euler_matrix(0.0, math.atan2(-v[2], speed), math.atan2(v[1], v[0]))
-        roll, pitch, yaw = _euler_of(c_vn @ c_vb)
-        info["levelling"] = "GNSS course and mounting angles"
-        lev = _moving_levelling(imu, gt, vg, i_start, yaw, gnss.llh[k])
-        if lev is not None:
-            roll, pitch = lev
-            info["levelling"] = "accelerometers minus GNSS acceleration (±0.5 s)"
-        C = euler_matrix(roll, pitch, yaw)
-        la = C @ lever
-        lat, lon = np.radians(llh[k, :2])
-        rmk, rnk = K.radii(lat)
-        dtg = t[i_start] - gt[k]
-        x[0:3] = (lat + (v[0] * dtg - la[0]) / (rmk + llh[k, 2]),
-                  lon + (v[1] * dtg - la[1]) / ((rnk + llh[k, 2]) * math.cos(lat)),
-                  llh[k, 2] - v[2] * dtg + la[2])
-        x[3:6] = v
-        x[6:10] = euler_to_quat(roll, pitch, yaw)
-        sd = math.radians(p.align_att_std_deg)
-        cfg = cfg.with_(init_att_std=(sd, sd, max(sd, 3 * float(gnss.std[k, 0]) / speed)),
-                        init_vel_std=(0.1, 0.1, 0.1),
-                        init_pos_std=tuple(gnss.std[k] + 0.05 + float(np.linalg.norm(lever))))
-        bias = None if np.any(cfg.init_gyro_bias) else _static_gyro_bias(imu, gt, vg, i0,
-                                                                          i_start, llh[k])
-        if bias is not None:
-            x[10:13], sd_b = bias
-            cfg = cfg.with_(init_bg_std=tuple(min(a, sd_b) for a in
-                                              (cfg.init_bg_std or cfg.noise.gb_std)))
-            info["static_gyro_bias_dph"] = [float(b) * 3600 / D2R for b in x[10:13]]
-        info.update(method="GNSS course (moving)", roll_deg=math.degrees(roll),
-                    pitch_deg=math.degrees(pitch), yaw_deg=math.degrees(yaw) % 360,
-                    start_time=float(t[i_start]), speed_mps=speed)
-        return i_start, x, cfg, info
-    raise InputError(gnss.source, f"cannot align: never faster than {p.align_speed} m/s and "
-                     "no static start usable for gyrocompassing (give initatt)")
-
-
-def _euler_of(c: np.ndarray) -> tuple[float, float, float]:
-    """Roll, pitch, yaw (rad) of ``C_b^n = Rz·Ry·Rx``."""
-    return (math.atan2(c[2, 1], c[2, 2]), math.asin(max(-1.0, min(1.0, -c[2, 0]))),
-            math.atan2(c[1, 0], c[0, 0]))
-
-
-def _gnss_velocity(gnss: GnssData) -> np.ndarray:
-    """NED velocity (m/s) at each GNSS epoch: the receiver's where given (finite), else
-    central differences of the positions (NaN across gaps over 3 s)."""
-    gt, llh = gnss.time, gnss.llh
-    out = np.full((gt.size, 3), np.nan)
-    if gt.size >= 3:
-        lat0 = math.radians(llh[0, 0])
-        rm, rn = K.radii(lat0)
-        ned = np.column_stack([np.radians(llh[:, 0] - llh[0, 0]) * (rm + llh[:, 2]),
-                               np.radians(llh[:, 1] - llh[0, 1]) * (rn + llh[:, 2])
-                               * math.cos(lat0), -(llh[:, 2] - llh[0, 2])])
-        span = gt[2:] - gt[:-2]
-        ok = (span > 0) & (span <= 3.0)
-        out[1:-1][ok] = ((ned[2:] - ned[:-2]) / np.where(span > 0, span, 1)[:, None])[ok]
-    if gnss.vel is not None:
-        given = np.isfinite(gnss.vel)
-        out[given] = gnss.vel[given]
-    return out
-
-
-def _moving_levelling(imu: ImuData, gt, vg, j: int, yaw: float, llh_deg,
-                      half_s: float = 0.5):
-    """Roll and pitch (rad) from the mean specific force over ±*half_s* around IMU epoch
-    *j*, the GNSS acceleration over the same span removed: ``C_b^n f^b = a^n − g^n``
-    solved for roll and pitch at the given heading. None without the data."""
-    t = imu.time
-    a, b = np.searchsorted(t, [t[j] - half_s, t[j] + half_s])
-    if b - a < 5 or b > t.size:
-        return None
-    fb = imu.inc[a:b, 3:6].sum(axis=0) / (t[b - 1] - t[a - 1] if a > 0 else
-                                          (b - a) / imu.rate_hz)
-    ok = np.isfinite(vg).all(axis=1)
-    if ok.sum() < 3:
-        return None
-    t0, t1 = t[a], t[b - 1]
-    if t0 < gt[ok][0] or t1 > gt[ok][-1]:
-        return None
-    v0 = np.array([np.interp(t0, gt[ok], vg[ok, c]) for c in range(3)])
-    v1 = np.array([np.interp(t1, gt[ok], vg[ok, c]) for c in range(3)])
-    an = (v1 - v0) / (t1 - t0)
-    g = K.gravity(math.radians(float(llh_deg[0])), float(llh_deg[2]))
-    cy, sy = math.cos(yaw), math.sin(yaw)
-    fh = np.array([cy * an[0] + sy * an[1], -sy * an[0] + cy * an[1], an[2] - g])
-    if not np.all(np.isfinite(fh)) or np.linalg.norm(an[:2]) > 5.0:
-        return None
-    roll = math.atan2(-fb[1], -fb[2])
-    pitch = math.atan2(fb[0], math.hypot(fb[1], fb[2]))
-    for _ in range(8):  # Gauss-Newton on Ry(pitch)·Rx(roll)·fb = fh
-        def res(r, q):
-            return euler_matrix(r, q, 0.0) @ fb - fh
-        e = res(roll, pitch)
-        h = 1e-6
-        J = np.column_stack([(res(roll + h, pitch) - e) / h, (res(roll, pitch + h) - e) / h])
-        step = np.linalg.lstsq(J, -e, rcond=None)[0]
-        roll += step[0]
-        pitch += step[1]
-        if np.max(np.abs(step)) < 1e-9:
-            break
-    return roll, pitch
-
-
-def _static_gyro_bias(imu: ImuData, gt, vg, i0: int, i_start: int, llh_deg):
-    """Gyro bias (rad/s) and its std from a standstill before the moving alignment.
-
-    The standstill is where the GNSS speed stays below 0.1 m/s (the IMU statistics are not
-    trusted: a running engine shakes a car); its last second is left out. The earth rate is
-    removed with roll and pitch from levelling; its horizontal part, of unknown direction
-    before the heading is known, is left in the std (≤ 15 °/h). None if shorter than 5 s.
-    """
-    ok = np.isfinite(vg).all(axis=1)
-    moving = gt[ok][np.linalg.norm(vg[ok], axis=1) > 0.1]
-    t = imu.time
-    end_t = min(t[i_start], moving[moving > t[i0]][0] if (moving > t[i0]).any() else t[i_start])
-    first_g = gt[ok][0] if ok.any() else t[i0]
-    start_t = max(t[i0], first_g)
-    end_t -= 1.0
-    if end_t - start_t < 5.0:
-        return None
-    a, b = np.searchsorted(t, [start_t, end_t])
-    T = t[b - 1] - t[a - 1] if a > 0 else (b - a) / imu.rate_hz
-    w = imu.inc[a:b, 0:3].sum(axis=0) / T
-    f = imu.inc[a:b, 3:6].sum(axis=0) / T
-    roll = math.atan2(-f[1], -f[2])
-    pitch = math.atan2(f[0], math.hypot(f[1], f[2]))
-    lat = math.radians(float(llh_deg[0]))
-    c_nb = euler_matrix(roll, pitch, 0.0).T
-    w_vert = c_nb @ np.array([0.0, 0.0, -K.WIE * math.sin(lat)])
-    rate_sd = float(np.std(imu.inc[a:b, 0:3] / (T / (b - a)), axis=0).max())
-    sd = math.hypot(K.WIE * math.cos(lat), rate_sd / math.sqrt(b - a)) + 2e-5
-    return w - w_vert, sd
-
-
 def _std_from_diag(d: np.ndarray, yaw_deg: np.ndarray) -> tuple:
     pos = np.sqrt(np.maximum(d[:, 0:3], 0))
     vel = np.sqrt(np.maximum(d[:, 3:6], 0))
@@ -411,18 +196,7 @@ def gnss_residuals(gnss: GnssData, traj: Trajectory, lever) -> np.ndarray:
 
 
 def _lever_vec(att_rad: np.ndarray, lever) -> np.ndarray:
-    r, p, y = att_rad[:, 0], att_rad[:, 1], att_rad[:, 2]
-    cr, sr, cp, sp, cy, sy = np.cos(r), np.sin(r), np.cos(p), np.sin(p), np.cos(y), np.sin(y)
-    C = np.empty((r.size, 3, 3))
-    C[:, 0, 0] = cy * cp
-    C[:, 0, 1] = cy * sp * sr - sy * cr
-    C[:, 0, 2] = cy * sp * cr + sy * sr
-    C[:, 1, 0] = sy * cp
-    C[:, 1, 1] = sy * sp * sr + cy * cr
-    C[:, 1, 2] = sy * sp * cr - cy * sr
-    C[:, 2, 0] = -sp
-    C[:, 2, 1] = cp * sr
-    C[:, 2, 2] = cp * cr
+    C = euler_zyx_matrix(att_rad[:, 0], att_rad[:, 1], att_rad[:, 2])
     return C @ np.asarray(lever, float)
 
 
@@ -454,6 +228,10 @@ K_WHITE_MIN = 0.9
 #: GNSS correlation times (s) tried, by maximum likelihood of the innovations.
 IMU_SCALE_RANGE = (1.0 / 16.0, 64.0)
 TAU_GRID = (3.0, 10.0, 30.0, 100.0, 300.0, 1000.0, 3000.0)
+#: Lags (fix to fix) of the Ljung–Box whiteness test of the innovations, and the p-value
+#: below which they are reported as still correlated.
+LB_LAGS = 10
+LB_ALPHA = 0.01
 
 
 def _lag_pairs(tt: np.ndarray, lag_s: float) -> tuple[np.ndarray, np.ndarray]:
@@ -488,8 +266,29 @@ def innovation_check(gnss_out: dict, lag_s: float = 1.0) -> dict:
            if i.size > 3 else None for c in range(3)]
     _sign, logdet = np.linalg.slogdet(S)
     m = np.einsum("ki,kij,kj->k", nu, np.linalg.inv(S), nu)
+    lb = [ljung_box(u[:, c]) for c in range(3)]
     return {"fixes": int(nu.shape[0]), "rms": np.sqrt(np.mean(u * u, axis=0)).tolist(),
-            "rho_1s": rho, "nll": float(np.mean(0.5 * (logdet + m)))}
+            "rho_1s": rho, "nll": float(np.mean(0.5 * (logdet + m))),
+            "rho_lag1": [r[0] for r in lb], "ljung_box_p": [r[1] for r in lb],
+            "ljung_box_lags": lb[0][2]}
+
+
+def ljung_box(u: np.ndarray, max_lags: int = LB_LAGS) -> tuple[float, float, int]:
+    """Whiteness of a series of normalised innovations (consecutive fixes): the
+    autocorrelation at lag 1 and the Ljung–Box p-value over ``L = min(max_lags, n/5)``
+    lags, ``Q = n(n+2) Σ ρ_l²/(n−l)`` against χ²(L) (small p: correlated — a Kalman
+    filter with the right model has white innovations)."""
+    from scipy.stats import chi2
+
+    n = u.size
+    L = int(min(max_lags, n // 5))
+    if L < 1:
+        return float("nan"), float("nan"), 0
+    e = u - u.mean()
+    v = float(e @ e)
+    rho = np.array([float(e[:-k] @ e[k:]) / v for k in range(1, L + 1)])
+    q = n * (n + 2) * float(np.sum(rho ** 2 / (n - np.arange(1, L + 1))))
+    return float(rho[0]), float(chi2.sf(q, L)), L
 
 
 def _consistent(check: dict) -> bool:
@@ -559,14 +358,14 @@ def run_gins(imu: ImuData, gnss: GnssData, cfg: SensorConfig, params: GinsParams
     if gnss.time[-1] < t[i0] or gnss.time[0] > t[i1]:
         raise InputError(gnss.source, "no GNSS epoch inside the IMU time span (same time "
                          "scale, GPS seconds of week?)", field="time")
-    static = (detect_static(imu, p.zupt_window_s, p.zupt_acc_std, p.zupt_gyro_dps)
-              if p.zupt else np.zeros(t.size, bool))
-    i0, x0, cfg, align = _initial_state(imu, gnss, cfg, i0, static, p)
+    quiet = detect_static(imu, p.zupt_window_s, p.zupt_acc_std, p.zupt_gyro_dps)
+    i0, x0, cfg, align = initial_state(imu, gnss, cfg, i0, quiet, p)
+    static = quiet if p.zupt else np.zeros(t.size, bool)
     base_std = np.asarray(gnss.std, float) * p.gnss_std_scale
     ctx = (imu, gnss, cfg, p, i0, i1, x0, static, align, base_std)
     model = NoiseModel(np.ones(3), np.zeros(3))
     adapt = p.gnss_noise == "auto"
-    res = _pass(ctx, model, p.smooth or adapt, progress, cancel)
+    res = _pass(ctx, model, p.smooth, progress, cancel)
     first = check = innovation_check(res.gnss)
     estimated = False
     if p.gnss_corr_time_s > 0 or (adapt and not _consistent(check)):
@@ -574,10 +373,6 @@ def run_gins(imu: ImuData, gnss: GnssData, cfg: SensorConfig, params: GinsParams
         res = _pass(ctx, model, p.smooth, progress, cancel)
         check = innovation_check(res.gnss)
         estimated = True
-    elif not p.smooth and res.smoothed is not None:
-        res.smoothed = None
-        res.imu_errors_smoothed = None
-        res.gnss.pop("residual", None)
     info = {"mode": p.gnss_noise, "file_std_median_m": np.median(base_std, axis=0).tolist(),
             "gnss_std_scale": p.gnss_std_scale, "estimated": estimated,
             "model": "gauss-markov" if model.correlated else "white",
@@ -599,8 +394,16 @@ def _model_summary(info: dict) -> str:
         if chk.get("rms") is None:
             return "no GNSS innovations to check"
         rho = [r for r in chk["rho_1s"] if r is not None]
-        return (f"normalised GNSS innovations RMS N/E/D {f3(chk['rms'])}"
+        text = (f"normalised GNSS innovations RMS N/E/D {f3(chk['rms'])}"
                 + (f", autocorrelation at 1 s ≤ {max(rho):.2f}" if rho else ""))
+        p = [x for x in chk.get("ljung_box_p", []) if x == x]
+        if p and min(p) < LB_ALPHA:
+            text += (f", still correlated fix to fix (lag 1 {f3(chk['rho_lag1'])}, "
+                     f"Ljung–Box p {'/'.join(f'{x:.0e}' for x in chk['ljung_box_p'])}: σ may "
+                     "be optimistic)")
+        elif p:
+            text += f", white (Ljung–Box p ≥ {min(p):.2g})"
+        return text
     if not info["estimated"]:
         return ("GNSS σ from the file" + (f" ×{info['gnss_std_scale']:g}"
                                           if info["gnss_std_scale"] != 1 else "")
@@ -772,6 +575,7 @@ def _pass(ctx: tuple, model: NoiseModel, smooth: bool, progress, cancel) -> Gins
     gnss_out = {"time": gnss.time, "innovation": innov, "innovation_cov": innov_cov,
                 "used": used}
     counts = {"imu_epochs": int(n_traj), "nodes": nn, "states": ns,
+              "ran": RAN[smooth],
               "gnss_epochs": int(g_in.sum()), "gnss_used": int(used.sum()),
               "static_epochs": int(static[i0:i1 + 1].sum())}
     smoothed = err_s = None

@@ -13,6 +13,9 @@ from typing import ClassVar
 from hydrosync_core.errors import InputError
 from hydrosync_core.params import Params, param
 
+#: What a run did, by whether it smoothed (``counts["ran"]`` of a result; CLI, panel, PDF).
+RAN = {True: "forward EKF and RTS smoother", False: "forward EKF only (no smoothing)"}
+
 
 @dataclass(frozen=True)
 class GinsParams(Params):
@@ -106,19 +109,45 @@ class GinsParams(Params):
         decimals=2, advanced=True,
         help="longest time between stored smoother nodes (the smoothed correction is "
              "interpolated between nodes)")
+    align_mode: str = param(
+        "auto", label="Alignment", choices=("auto", "static", "moving", "given"),
+        group="Alignment",
+        help="static: level at the rest at the start, heading by gyrocompassing (gyro "
+             "better than 1 °/h), the given heading or the GNSS track once moving (walks, "
+             "boats at the quay); moving: heading from the GNSS course above the alignment "
+             "speed; given: the initial attitude given; auto: the configuration's or given "
+             "attitude, gyrocompassing, moving, else static with the track's heading")
+    initial_attitude_deg: tuple[float, float, float] | None = param(
+        None, label="Initial attitude", unit="°", metavar=("ROLL", "PITCH", "YAW"),
+        group="Alignment", none_label="from the data",
+        help="roll, pitch, yaw of the body at the first GNSS epoch (C_b^n = "
+             "Rz(yaw)·Ry(pitch)·Rx(roll)); used as given")
+    initial_heading_deg: float | None = param(
+        None, label="Initial heading", unit="°", minimum=-360.0, maximum=360.0, decimals=2,
+        group="Alignment", none_label="from the data",
+        help="static alignment: the body's heading at the end of the rest (roll and pitch "
+             "still from levelling)")
     align_time_s: float = param(
         30.0, label="Static alignment time", unit="s", minimum=1.0, maximum=600.0,
-        decimals=1, advanced=True,
-        help="without an initial attitude in the configuration: length of the quiet start "
-             "used for levelling and gyrocompassing")
+        decimals=1, advanced=True, group="Alignment",
+        help="longest part of the quiet start used for levelling and gyrocompassing (at "
+             "least 2 s of rest are needed)")
     align_speed: float = param(
         3.0, label="Moving alignment speed", unit="m/s", minimum=0.1, maximum=100.0,
-        decimals=2, advanced=True,
-        help="without an initial attitude and no usable static start: the heading is the "
-             "GNSS course at the first epoch faster than this")
+        decimals=2, advanced=True, group="Alignment",
+        help="moving alignment: the heading is the GNSS course at the first epoch faster "
+             "than this")
+    track_speed: float = param(
+        0.5, label="Track heading speed", unit="m/s", minimum=0.05, maximum=100.0,
+        decimals=2, advanced=True, group="Alignment",
+        help="static alignment without gyrocompassing or a given heading: the heading is "
+             "the GNSS course at the first epoch after the rest faster than this, carried "
+             "back by the gyro")
     align_att_std_deg: float = param(
         2.0, label="Moving alignment σ", unit="°", minimum=0.01, maximum=30.0, decimals=2,
-        advanced=True, help="initial roll/pitch/heading std of a moving alignment")
+        advanced=True, group="Alignment",
+        help="initial roll/pitch/heading std of a moving alignment (and of a given "
+             "attitude or heading)")
 
     def validate(self) -> None:
         if self.max_node_interval_s < self.propagation_interval_s:

@@ -83,9 +83,9 @@ def store_recording(project, target: str, path, **_options) -> str:
     segment or rtklibexplorer drive/walk, :mod:`.recordings`) → ``raw/gins/imu``,
     ``gnss``, ``config`` and, when the recording has one, ``reference``.
 
-    The GNSS-minus-IMU clock offset is estimated from the data
-    (:func:`.recordings.estimate_time_shift`) and applied; it and the recording's notes
-    are stored as attributes of ``raw/gins``.
+    The GNSS-minus-IMU clock offset is estimated from the turns
+    (:func:`.recordings.estimate_time_shift`, no filter pass) and applied; it, its σ and
+    the recording's notes are stored as attributes of ``raw/gins``.
     """
     from hydrosync_core.methods.gins_smoother.recordings import (
         estimate_time_shift,
@@ -94,7 +94,7 @@ def store_recording(project, target: str, path, **_options) -> str:
     )
 
     rec = read_recording(path)
-    shift, _grid = estimate_time_shift(rec)
+    shift, est = estimate_time_shift(rec)
     rec = shifted(rec, shift)
     imu = {"time": rec.imu.time}
     imu.update({c: rec.imu.inc[:, i] for i, c in enumerate(IMU_COLS)})
@@ -110,12 +110,14 @@ def store_recording(project, target: str, path, **_options) -> str:
     project.put_json(f"{target}/config", rec.config.to_dict())
     if rec.reference is not None:
         project.put_table(f"{target}/reference", nav_columns(rec.reference), source=str(path))
-    project.set_attrs(target, recording=rec.name, time_shift_s=shift,
+    clock = est.text() if est is not None else "the recording's own timing"
+    project.set_attrs(target, recording=rec.name, time_shift_s=shift, time_shift=clock,
+                      time_shift_sigma_s=est.sigma_s if est is not None else float("nan"),
                       notes=json.dumps(rec.notes), recommended_params=json.dumps(rec.params))
     return (f"{Path(path).name} -> /{target}: {rec.name}, {rec.imu.time.size} IMU epochs "
             f"({rec.imu.rate_hz:.0f} Hz), {g.time.size} GNSS fixes"
             + (", reference" if rec.reference is not None else "")
-            + f"; GNSS−IMU clock offset {shift:+.3f} s estimated and applied")
+            + f"; {clock}, applied")
 
 
 def nav_columns(nav) -> dict:

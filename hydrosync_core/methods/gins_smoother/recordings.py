@@ -109,6 +109,9 @@ class Recording:
     params: dict
     reference: NavData | None = None
     notes: list[str] = field(default_factory=list)
+    #: False for a hand-held IMU: the walker turns the device before the track turns, so
+    #: the turns do not time the clocks (:func:`estimate_time_shift` keeps the author's).
+    clock_from_turns: bool = True
 
     def sliced(self, start: float, end: float) -> Recording:
         """The recording between GPS times *start* and *end* (s)."""
@@ -125,7 +128,7 @@ class Recording:
             ref = NavData(r.time[mr], r.llh[mr], r.vel[mr], r.att[mr], r.source)
         return Recording(self.name, ImuData(self.imu.time[mi], self.imu.inc[mi],
                                             self.imu.source), g, self.config, self.params,
-                         ref, self.notes)
+                         ref, self.notes, self.clock_from_turns)
 
 
 def increments_from_rates(t: np.ndarray, gyro_rad_s: np.ndarray, acc_ms2: np.ndarray,
@@ -389,16 +392,48 @@ def read_rtkexplorer(folder, imu_time_shift_s: float | None = None) -> Recording
     params = {"nhc": kind == "drive", "zupt": True, "scale_factors": False,
               "zupt_acc_std": 0.5, "zupt_gyro_dps": 3.0, "zupt_speed": 0.2,
               "align_speed": 2.0}
-    return Recording(f"rtklibexplorer {folder.name}", imu, gnss, cfg, params, None, notes)
+    if kind == "walk":
+        notes.append("hand-held: the clock offset is not estimated from the turns (the "
+                     "walker turns the IMU before the track turns); the author's timing is "
+                     "kept unless --clock-offset is given")
+    return Recording(f"rtklibexplorer {folder.name}", imu, gnss, cfg, params, None, notes,
+                     clock_from_turns=kind != "walk")
+
+
+def recording_kind(folder) -> str | None:
+    """``"comma2k19"``, ``"rtklibexplorer"`` or None for a folder that is neither."""
+    folder = Path(folder)
+    if (folder / "processed_log").is_dir() and (folder / "global_pose").is_dir():
+        return "comma2k19"
+    if any(folder.glob("imu_*.csv")) and any(folder.glob("gnss_*_sf.pos")):
+        return "rtklibexplorer"
+    return None
+
+
+def recordings_in(folder) -> list[Path]:
+    """The recording folders directly inside *folder*, sorted by name."""
+    folder = Path(folder)
+    if not folder.is_dir():
+        return []
+    return sorted(p for p in folder.iterdir() if p.is_dir() and recording_kind(p))
 
 
 def read_recording(folder) -> Recording:
-    """Recognise a recording folder: comma2k19 segment or rtklibexplorer recording."""
+    """Recognise a recording folder: comma2k19 segment or rtklibexplorer recording. A
+    folder of recordings is refused with the list of the recordings in it."""
     folder = Path(folder)
-    if (folder / "processed_log").is_dir() and (folder / "global_pose").is_dir():
+    if not folder.is_dir():
+        raise InputError(str(folder), "not a folder (give a recording folder)")
+    kind = recording_kind(folder)
+    if kind == "comma2k19":
         return read_comma2k19(folder)
-    if any(folder.glob("imu_*.csv")) and any(folder.glob("gnss_*_sf.pos")):
+    if kind == "rtklibexplorer":
         return read_rtkexplorer(folder)
+    inside = recordings_in(folder)
+    if inside:
+        raise InputError(str(folder), f"a folder of {len(inside)} recordings, give one of "
+                         "them: " + ", ".join(f"{p.name} ({recording_kind(p)})"
+                                              for p in inside))
     raise InputError(str(folder), "not a known recording folder (comma2k19 segment with "
                      "processed_log/ and global_pose/, or rtklibexplorer imu_*.csv + "
                      "gnss_*_sf.pos)")
@@ -417,28 +452,42 @@ def shifted(rec: Recording, seconds: float) -> Recording:
         g = rec.gnss
         gnss = GnssData(g.time + seconds, g.llh, g.std, g.source, g.vel)
         return Recording(rec.name, rec.imu, gnss, rec.config, rec.params, rec.reference,
-                         rec.notes)
+                         rec.notes, rec.clock_from_turns)
     imu = ImuData(rec.imu.time - seconds, rec.imu.inc, rec.imu.source)
     return Recording(rec.name, imu, rec.gnss, rec.config, rec.params, rec.reference,
-                     rec.notes)
+                     rec.notes, rec.clock_from_turns)
 
 
-def estimate_time_shift(rec: Recording, half_range_s: float = 0.3, step_s: float = 0.05
-                        ) -> tuple[float, list[tuple[float, float]]]:
-    """GNSS-minus-IMU clock offset (s) that minimises the smoothed GNSS residuals.
+def estimate_time_shift(rec: Recording, params: dict | None = None):
+    """GNSS-minus-IMU clock offset of *rec* from its turns (:mod:`.clock`, no filter pass):
+    ``(offset_s, ClockOffset)``; ``(0.0, None)`` — the recording's own timing — for a
+    hand-held IMU (:attr:`Recording.clock_from_turns`). *params* (the options in force,
+    the user's over the recording's) give the mounting, whose forward axis the speed
+    signal uses."""
+    from hydrosync_core.methods.gins_smoother.clock import estimate_clock_offset
+    from hydrosync_core.methods.gins_smoother.params import GinsParams
 
-    A loosely coupled filter fed fixes that are late by δ puts the trajectory v·δ behind;
-    the speed changes of a real drive make that visible in the residuals, so the offset is
-    found from the recording itself (no reference; the GNSS noise model of the file, not
-    re-estimated per offset): a grid of smoothed runs over
-    ±*half_range_s*, refined by a parabola through the best three. Returns the offset and
-    the (offset, horizontal residual RMS m) grid.
-    """
+    if not rec.clock_from_turns:
+        return 0.0, None
+    p = GinsParams.from_dict({**rec.params, **(params or {})})
+    c_vb = euler_dcm(*p.mounting_deg)  # vehicle ← body
+    est = estimate_clock_offset(rec.imu, rec.gnss, forward_b=c_vb[0, :],
+                                lever_arm_m=rec.config.lever_arm_m)
+    return est.offset_s, est
+
+
+def time_shift_by_residuals(rec: Recording, params: dict | None = None,
+                            half_range_s: float = 0.3, step_s: float = 0.05
+                            ) -> tuple[float, list[tuple[float, float]]]:
+    """Second opinion on the clock offset (benchmarks only: 13 smoother runs): the offset
+    that minimises the smoothed horizontal GNSS residuals over a grid of ±*half_range_s*,
+    refined by a parabola through the best three. Returns the offset and the (offset,
+    residual RMS m) grid. *params* are the user's options (over the recording's)."""
     from hydrosync_core.methods.gins_smoother.filter import run_gins
     from hydrosync_core.methods.gins_smoother.params import GinsParams
 
-    p = GinsParams.from_dict({**rec.params, "smooth": True, "gnss_noise": "file",
-                              "gnss_corr_time_s": 0.0})
+    p = GinsParams.from_dict({**rec.params, **(params or {}), "smooth": True,
+                              "gnss_noise": "file", "gnss_corr_time_s": 0.0})
     grid = []
     for d in np.arange(-half_range_s, half_range_s + 1e-9, step_s):
         r = shifted(rec, float(d))
@@ -509,10 +558,10 @@ def moving_windows(rec: Recording, length_s: float, every_s: float, min_speed: f
                    margin_s: float = 10.0) -> list[tuple[float, float]]:
     """Outage windows of *length_s* every *every_s* where the GNSS says the vehicle moves
     faster than *min_speed* throughout, *margin_s* clear of the ends."""
-    from hydrosync_core.methods.gins_smoother.filter import _gnss_velocity
+    from hydrosync_core.methods.gins_smoother.alignment import gnss_velocity
 
     g = rec.gnss
-    v = _gnss_velocity(g)
+    v = gnss_velocity(g)
     speed = np.hypot(v[:, 0], v[:, 1])
     t0 = max(g.time[0], rec.imu.time[0]) + margin_s
     t1 = min(g.time[-1], rec.imu.time[-1]) - margin_s

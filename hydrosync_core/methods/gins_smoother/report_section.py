@@ -11,7 +11,7 @@ import json
 
 import numpy as np
 
-from hydrosync_core.methods.gins_smoother.params import GinsParams
+from hydrosync_core.methods.gins_smoother.params import RAN, GinsParams
 from hydrosync_core.methods.gins_smoother.project_run import GNSS, RESULT
 from hydrosync_core.params import stored
 from hydrosync_core.report.context import fmt
@@ -87,6 +87,7 @@ def error_figures(project, ctx, t0: float) -> list:
 def section(project, ctx) -> list:
     attrs = project.attrs(RESULT)
     counts = json.loads(attrs["counts"])
+    smoothed = counts.get("ran", RAN[True]) == RAN[True]
     ev = json.loads(attrs["evaluation"])
     align = json.loads(attrs["alignment"])
     params = stored(GinsParams, project, RESULT)
@@ -96,12 +97,14 @@ def section(project, ctx) -> list:
         "the local-level frame (earth rate, transport rate, normal gravity, coning and "
         "sculling), an error-state Kalman filter with "
         f"{counts['states']} states, GNSS position updates with the antenna lever arm, "
-        "optional non-holonomic and zero-velocity constraints, closed-loop feedback, and a "
-        "Rauch-Tung-Striebel smoother on the total state. Angles in degrees, NED metres."))
+        "optional non-holonomic and zero-velocity constraints, closed-loop feedback"
+        + (", and a Rauch-Tung-Striebel smoother on the total state" if smoothed else
+           " (no smoothing in this run)") + ". Angles in degrees, NED metres."))
     out += ctx.key_values(
         [("IMU epochs", str(counts["imu_epochs"])),
          ("GNSS fixes in span / used", f"{counts['gnss_epochs']} / {counts['gnss_used']}"),
-         ("Smoother nodes", str(counts["nodes"])),
+         ("What ran", counts.get("ran", RAN[True])),
+         ("Smoother nodes" if smoothed else "Filter nodes", str(counts["nodes"])),
          ("Alignment", str(align.get("method"))),
          ("Noise model (what the σ are computed from)",
           json.loads(attrs.get("gnss_model", "{}")).get("summary", "not recorded"))],

@@ -21,6 +21,7 @@ from hydrosync_core.report.context import fmt
 HEADING = "Attitude from a GNSS antenna array"
 LABELS = {"lsq": "least squares", "direct": "direct (3 antennas)", "wahba": "Wahba (closed form)"}
 MAX_POINTS = 1500
+ENVELOPE_BINS = 60  # slices of the record in a third-page-wide angle plot
 #: Why the measured scatter is not given without a static interval (panel and PDF).
 MOVING_REASON = ("the measured scatter of a moving platform is its motion, so only the "
                  "prediction is given; set a static interval (static_start_s/static_end_s) "
@@ -95,16 +96,21 @@ def section(project, ctx) -> list:
                      "0.092°/0.216°/0.297° (3 antennas, direct) on a static car.")
     lsq = project.get_table(f"{RESULT}/lsq")
     direct = project.get_table(f"{RESULT}/direct")
-    idx = _thin(lsq["time"].size)
     t0 = float(np.nanmin(lsq["time"])) if lsq["time"].size else 0.0
     charts = []
     for a in ("heading", "pitch", "roll"):
         ch = ctx.chart(height=150, fraction=1 / 3, xlabel="time [s]", ylabel=f"{a} [°]")
-        ch.line(direct["time"][idx] - t0, direct[a][idx], label="direct")
-        ch.line(lsq["time"][idx] - t0, lsq[a][idx], label="LSQ")
+        # Every epoch, as the range and median of each 1/60 of the record: epoch by
+        # epoch the noisy pitch and roll of a long record printed as solid blocks.
+        ch.envelope(direct["time"] - t0, direct[a], label=LABELS["direct"],
+                    bins=ENVELOPE_BINS)
+        ch.envelope(lsq["time"] - t0, lsq[a], label=LABELS["lsq"], bins=ENVELOPE_BINS)
         charts.append(ch)
     out.append(ctx.figure(charts, "Heading, pitch and roll: direct method (three antennas) "
-                          "and least squares overlaid (time from the first epoch)."))
+                          "and least squares overlaid (time from the first epoch). Where "
+                          f"the record has more than {2 * ENVELOPE_BINS} epochs, each "
+                          f"1/{ENVELOPE_BINS} of it is drawn as its median (line) and its "
+                          "range (band)."))
     res = project.get_table(f"{RESULT}/baseline_residuals")
     ch = ctx.chart(height=170, xlabel="time [s]", ylabel="length residual [mm]")
     ri = _thin(res["time"].size)
@@ -123,5 +129,7 @@ def section(project, ctx) -> list:
                           f"layout scaled, with σ = {1000 * params.sigma_horizontal_m:g} mm "
                           f"horizontal and {1000 * params.sigma_vertical_m:g} mm vertical per "
                           "antenna (cf. Liu et al., fig. 15)."))
-    out += ctx.params_table(params, "GNSS attitude: processing parameters.")
+    out += ctx.params_table(params, "GNSS attitude: processing parameters.", blank={
+        "direct_antennas": "automatic: the largest triangle of the antennas present at "
+                           "each epoch"})
     return out

@@ -2,7 +2,10 @@
 
 Qi et al. (2010), *Synchronization model between positioning and attitude data based on
 correlative approximation*. The package holds everything headless about the analysis:
-``params`` (the parameter schema), ``api`` (the method), ``project_run`` (project I/O),
+``params`` (the parameter schema), ``estimate`` (the method's entry point; its steps in
+``inputs``, ``passes``, ``weighted``, ``outcome``, ``threads``), ``synchronised`` (the
+synchronised data set), ``series`` (one line's plot series), ``readers`` (the CSV files),
+``project_run`` (project I/O),
 ``simulate`` (the simulator), ``demo``, ``report_section`` and ``cli``.
 
 The public names below are loaded on first use, so importing the package (or its
@@ -18,7 +21,7 @@ VERSION = "1.2.0"
 
 _PUBLIC = {
     "LatencyParams": "params", "LatencyResult": "result", "LineResult": "result",
-    "estimate_latency": "api", "line_series": "api", "synchronise": "api",
+    "estimate_latency": "estimate", "line_series": "series", "synchronise": "synchronised",
 }
 __all__ = sorted(_PUBLIC)
 

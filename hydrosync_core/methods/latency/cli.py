@@ -19,14 +19,18 @@ def _params(args: argparse.Namespace) -> LatencyParams:
 
 
 def _print_table(result) -> None:
-    print(f"{'line':<10} {'epochs':>6} {'R max':>7} {'dt [s]':>8} {'+-[s]':>7} "
+    from hydrosync_core.methods.latency.texts import interval_text, latency_text, line_cells
+
+    print(f"{'line':<10} {'epochs':>6} {'R max':>7} {'dt [s]':>9} {'+-[s]':>8} "
           f"{'s0 bef[m]':>9} {'s0 aft[m]':>9}  used")
     for ln in result.lines:
-        print(f"{ln.name:<10} {ln.epochs:>6d} {ln.r_max:>7.4f} {ln.latency_s:>8.3f} "
-              f"{ln.uncertainty_s:>7.3f} {ln.sigma0_before_m:>9.3f} {ln.sigma0_after_m:>9.3f}  "
+        dt, sigma = line_cells(ln.latency_s, ln.uncertainty_s)
+        print(f"{ln.name:<10} {ln.epochs:>6d} {ln.r_max:>7.4f} {dt:>9} {sigma:>8} "
+              f"{ln.sigma0_before_m:>9.3f} {ln.sigma0_after_m:>9.3f}  "
               f"{'yes' if ln.used else 'no'}")
-    print(f"latency {result.latency_s:.3f} s  (95 % interval {result.ci95_low:.3f} .. "
-          f"{result.ci95_high:.3f} s; {result.message})")
+    sigma = result.uncertainty_s
+    print(f"latency {latency_text(result.latency_s, sigma)}  (95 % interval "
+          f"{interval_text(result.ci95_low, result.ci95_high, sigma)}; {result.message})")
     for warning in result.warnings:
         print(f"warning: {warning}")
 
@@ -58,7 +62,7 @@ def _import_in_background(name: str):
 
 def _run_csv(args: argparse.Namespace) -> int:
     from hydrosync_core.importers.survey_csv import read_lines_csv
-    from hydrosync_core.methods.latency.fastcsv import (
+    from hydrosync_core.methods.latency.readers import (
         prescan_attitude,
         prescan_gnss,
         read_attitude_csv,
@@ -86,7 +90,7 @@ def _run_csv(args: argparse.Namespace) -> int:
             gnss = read_gnss_csv(args.gnss, scans[0])
             attitude = read_attitude_csv(args.attitude, args.heave_positive, columns, scans[1])
             lines = read_lines_csv(args.lines)
-            from hydrosync_core.methods.latency.api import estimate_latency
+            from hydrosync_core.methods.latency.estimate import estimate_latency
 
             # The line combination needs scipy.special (t quantile): 0.13 s of import that
             # would otherwise run alone after the scans; during them the compiled scan
@@ -104,7 +108,7 @@ def _run_csv(args: argparse.Namespace) -> int:
             raise InputError(args.lines, f"{result.message}; " + "; ".join(result.warnings[-2:]))
         out.write_json(args.json, result.to_dict())
         if args.sync_csv is not None:
-            from hydrosync_core.methods.latency.api import synchronise
+            from hydrosync_core.methods.latency.synchronised import synchronise
 
             _write_sync(out, args.sync_csv, synchronise(gnss, attitude, params.lever_arm_m,
                                                         result.latency_s))

@@ -3,12 +3,8 @@
 from __future__ import annotations
 
 import numpy as np
+from numba import njit
 from numpy.polynomial import polynomial as npoly
-
-try:  # numba is a dependency; the numpy expressions remain if it cannot load
-    from numba import njit
-except ImportError:  # pragma: no cover
-    njit = None
 
 
 def detrend(time: np.ndarray, height: np.ndarray, degree: int = 1) -> tuple[np.ndarray, np.ndarray]:
@@ -32,7 +28,7 @@ def detrend(time: np.ndarray, height: np.ndarray, degree: int = 1) -> tuple[np.n
     """
     if degree < 0:
         raise ValueError("detrend degree must be >= 0")
-    if (degree <= 1 and time.size > degree and _linear_fit is not None
+    if (degree <= 1 and time.size > degree
             and time.dtype == np.float64 and np.asarray(height).dtype == np.float64):
         residual = np.empty(time.size)
         coef = _linear_fit(np.ascontiguousarray(time), np.ascontiguousarray(height), degree,
@@ -174,10 +170,8 @@ def _linear_fit_py(time, height, degree, residual):  # pragma: no cover - compil
     return mean_h - slope * tc_mean, slope
 
 
-if njit is not None:
-    _leaf = njit(cache=True, nogil=True)(_leaf_py)
-    _pairwise = njit(cache=True, nogil=True)(_pairwise_py)
-    _sum = njit(cache=True, nogil=True)(_sum_py)
-    _linear_fit = njit(cache=True, nogil=True)(_linear_fit_py)
-else:  # pragma: no cover
-    _linear_fit = None
+_leaf = njit(cache=True, nogil=True)(_leaf_py)
+_pairwise = njit(cache=True, nogil=True)(_pairwise_py)
+_sum = njit(cache=True, nogil=True)(_sum_py)
+_linear_fit = njit(cache=True, nogil=True)(_linear_fit_py)
+

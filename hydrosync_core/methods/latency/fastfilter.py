@@ -1,4 +1,4 @@
-"""Compiled element-wise steps of :mod:`.prefilter`'s FFT filtering (numba, optional).
+"""Compiled element-wise steps of :mod:`.prefilter`'s FFT filtering (numba).
 
 A survey day filters ~1500 windows of 10⁴–10⁵ samples. Around each FFT, numpy spent
 about as long again on element-wise steps (the trend taken out and the mirrored copy, the
@@ -9,16 +9,12 @@ the two scan threads share. Here each step is one loop that releases it.
 Every loop performs the same floating-point operations in the same order as the numpy
 expressions it replaces, so the results are the same to the last bit (tests compare
 them); the sums (mean, slope) stay with numpy, whose pairwise summation they would
-otherwise change at the rounding level. Without numba :mod:`.prefilter` keeps its numpy
-expressions.
+otherwise change at the rounding level.
 """
 
 from __future__ import annotations
 
-try:  # numba is a dependency; prefilter's numpy expressions remain if it cannot load
-    from numba import njit
-except ImportError:  # pragma: no cover
-    njit = None
+from numba import njit
 
 
 def _mirror_detrended_py(x, intercept, slope, left, y):  # pragma: no cover - compiled
@@ -51,14 +47,7 @@ def _plus_trend_py(series, start, lo, n, intercept, slope, g0, out):  # pragma: 
         out[j] = series[start + j] + (intercept + slope * (float(lo + j) - c)) * g0
 
 
-if njit is not None:
-    mirror_detrended = njit(cache=True, nogil=True)(_mirror_detrended_py)
-    scaled = njit(cache=True, nogil=True)(_scaled_py)
-    plus_trend = njit(cache=True, nogil=True)(_plus_trend_py)
-else:  # pragma: no cover
-    mirror_detrended = scaled = plus_trend = None
+mirror_detrended = njit(cache=True, nogil=True)(_mirror_detrended_py)
+scaled = njit(cache=True, nogil=True)(_scaled_py)
+plus_trend = njit(cache=True, nogil=True)(_plus_trend_py)
 
-
-def available() -> bool:
-    """True when the compiled steps can be used."""
-    return mirror_detrended is not None

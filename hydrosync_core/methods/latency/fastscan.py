@@ -25,11 +25,7 @@ tests keep the two equal to rounding).
 from __future__ import annotations
 
 import numpy as np
-
-try:  # numba is a dependency; the direct numpy evaluation remains if it cannot load
-    from numba import njit
-except ImportError:  # pragma: no cover
-    njit = None
+from numba import njit
 
 
 def _sums_py(tags, w, ta, ha, dts, step):  # pragma: no cover - compiled below
@@ -103,7 +99,7 @@ def _sums_py(tags, w, ta, ha, dts, step):  # pragma: no cover - compiled below
     return F, S1, S2
 
 
-_sums = njit(cache=True, nogil=True)(_sums_py) if njit is not None else None
+_sums = njit(cache=True, nogil=True)(_sums_py)
 
 
 def _row_py(acc, c0, c1, c2, c3, v0, v1, v2, v3, n):  # pragma: no cover - compiled below
@@ -125,10 +121,10 @@ def _combine_py(tf, t1, t2, a, u, g, off, n):  # pragma: no cover - compiled bel
                     + g * g * a4[li - 1] + 2.0 * g * a5[li - 1] + a6[li - 1])
 
 
-if njit is not None:
-    # Inlined: a call per row would cost more than the row on short grids.
-    _row = njit(nogil=True, inline="always")(_row_py)
-    _combine = njit(nogil=True, inline="always")(_combine_py)
+# Inlined: a call per row would cost more than the row on short grids.
+_row = njit(nogil=True, inline="always")(_row_py)
+_combine = njit(nogil=True, inline="always")(_combine_py)
+
 
 SPLIT_MIN_LAGS = 16
 """Lags from which :func:`_lattice_sums_py` updates each accumulator row in its own loop.
@@ -320,8 +316,7 @@ def _lattice_sums_py(x, w, H, L, K, split_min):  # pragma: no cover - compiled b
     return F, S1, S2
 
 
-_lattice_sums = (njit(cache=True, nogil=True)(_lattice_sums_py) if njit is not None
-                 else None)
+_lattice_sums = njit(cache=True, nogil=True)(_lattice_sums_py)
 
 
 def _departure_py(ta, interval):  # pragma: no cover - compiled below
@@ -334,7 +329,7 @@ def _departure_py(ta, interval):  # pragma: no cover - compiled below
     return worst
 
 
-_departure = njit(cache=True, nogil=True)(_departure_py) if njit is not None else None
+_departure = njit(cache=True, nogil=True)(_departure_py)
 
 
 def _departs_py(ta, interval, limit):  # pragma: no cover - compiled below
@@ -386,8 +381,8 @@ def _lattice_py(tags, ta, d0, step, K, tolerance):  # pragma: no cover - compile
     return x, L
 
 
-_departs = njit(nogil=True, inline="always")(_departs_py) if njit is not None else _departs_py
-_lattice_nb = njit(cache=True, nogil=True)(_lattice_py) if njit is not None else None
+_departs = njit(nogil=True, inline="always")(_departs_py)
+_lattice_nb = njit(cache=True, nogil=True)(_lattice_py)
 
 
 def _lattice(tags, ta, dts, step):
@@ -403,9 +398,14 @@ def _lattice(tags, ta, dts, step):
     return (x, L) if L else None
 
 
+COMPILED = True
+"""False makes :func:`scan_core` and :func:`line_sigma` decline, so that the scan takes its
+Python steps (the benchmark's reference evaluation; the tests keep the two equal)."""
+
+
 def available() -> bool:
-    """True when the compiled kernel can be used."""
-    return _sums is not None
+    """True when the compiled kernel is to be used (:data:`COMPILED`)."""
+    return COMPILED
 
 
 def _largest_step_py(t):  # pragma: no cover - compiled below
@@ -418,13 +418,13 @@ def _largest_step_py(t):  # pragma: no cover - compiled below
     return best
 
 
-_largest_step = njit(cache=True, nogil=True)(_largest_step_py) if njit is not None else None
+_largest_step = njit(cache=True, nogil=True)(_largest_step_py)
 
 
 def largest_step(t: np.ndarray) -> float:
     """``np.diff(t).max()`` of finite *t* (≥ 2 values), without the difference array
     (compiled: no interpreter lock held)."""
-    if _largest_step is None or t.dtype != np.float64:
+    if t.dtype != np.float64:
         return float(np.diff(t).max())
     return float(_largest_step(np.ascontiguousarray(t)))
 
@@ -448,7 +448,7 @@ def _uniform_step_py(dts):  # pragma: no cover - compiled below
     return 0.0 if over else step
 
 
-_uniform_step = njit(cache=True, nogil=True)(_uniform_step_py) if njit is not None else None
+_uniform_step = njit(cache=True, nogil=True)(_uniform_step_py)
 
 
 def uniform_step(dts: np.ndarray) -> float | None:
@@ -456,8 +456,7 @@ def uniform_step(dts: np.ndarray) -> float | None:
 
     Uniform: every difference within 1e-9 of the step (relative).
     """
-    kernel = _uniform_step if _uniform_step is not None else _uniform_step_py
-    step = float(kernel(np.ascontiguousarray(dts, dtype=float)))
+    step = float(_uniform_step(np.ascontiguousarray(dts, dtype=float)))
     return step if step > 0 else None
 
 
@@ -474,13 +473,13 @@ def _grid_py(start, stop, num):  # pragma: no cover - compiled below
     return out
 
 
-_grid = njit(cache=True, nogil=True)(_grid_py) if njit is not None else None
+_grid = njit(cache=True, nogil=True)(_grid_py)
 
 
 def grid(start: float, stop: float, num: int) -> np.ndarray:
     """``np.linspace(start, stop, num)`` (num ≥ 2), the same numbers without its Python
     overhead (the refinement and uncertainty grids of every line and pass)."""
-    if _grid is None or num < 2:
+    if num < 2:
         return np.linspace(start, stop, num)
     return _grid(float(start), float(stop), int(num))
 
@@ -497,7 +496,7 @@ def _pearson_py(F, S1, S2, n, mean_w):  # pragma: no cover - compiled below
     return r
 
 
-_pearson = njit(cache=True, nogil=True)(_pearson_py) if njit is not None else None
+_pearson = njit(cache=True, nogil=True)(_pearson_py)
 
 
 def pearson(F: np.ndarray, S1: np.ndarray, S2: np.ndarray, n: int, mean_w: float
@@ -694,18 +693,16 @@ def _scan_core_py(tags, h, t_att, h_att, dts, step, refine, uncertainty, subdivi
     return curve, k, low, lat, rmax, sigma, status
 
 
-if njit is not None:
-    _sums_any = njit(nogil=True)(_sums_any_py)
-    _curve = njit(nogil=True)(_curve_py)
-    _argmax_min = njit(cache=True, nogil=True)(_argmax_min_py)
-    _mean = njit(nogil=True, inline="always")(_mean_py)
-    _vertex = njit(nogil=True)(vertex)
-    _sigma = njit(nogil=True)(_sigma_py)
-    _window = njit(nogil=True)(_window_py)
-    _scan_core = njit(cache=True, nogil=True)(_scan_core_py)
-    _line_sigma = njit(cache=True, nogil=True)(_line_sigma_py)
-else:  # pragma: no cover
-    _argmax_min = _scan_core = _line_sigma = None
+_sums_any = njit(nogil=True)(_sums_any_py)
+_curve = njit(nogil=True)(_curve_py)
+_argmax_min = njit(cache=True, nogil=True)(_argmax_min_py)
+_mean = njit(nogil=True, inline="always")(_mean_py)
+_vertex = njit(nogil=True)(vertex)
+_sigma = njit(nogil=True)(_sigma_py)
+_window = njit(nogil=True)(_window_py)
+_scan_core = njit(cache=True, nogil=True)(_scan_core_py)
+_line_sigma = njit(cache=True, nogil=True)(_line_sigma_py)
+
 
 
 def scan_core(tags: np.ndarray, h: np.ndarray, t_att: np.ndarray, h_att: np.ndarray,
@@ -722,7 +719,7 @@ def scan_core(tags: np.ndarray, h: np.ndarray, t_att: np.ndarray, h_att: np.ndar
     None when the compiled path does not apply (no numba, a grid that is not uniform,
     fewer than two epochs); the caller then takes the Python steps.
     """
-    if _scan_core is None or not available() or tags.size < 2:
+    if not available() or tags.size < 2:
         return None
     step = uniform_step(dts)
     if step is None:
@@ -746,7 +743,7 @@ def line_sigma(tags: np.ndarray, h: np.ndarray, t_att: np.ndarray, h_att: np.nda
     """The σ (s) :func:`scan_core` gives a line whose peak is at *latency_s*, for a peak
     found without it (same window, same numbers); None where :func:`scan_core` would be
     None or its curvature grid is not uniform. Arguments as :func:`scan_core`'s."""
-    if _line_sigma is None or not available() or tags.size < 2 or uniform_step(dts) is None:
+    if not available() or tags.size < 2 or uniform_step(dts) is None:
         return None
     sigma = float(_line_sigma(np.ascontiguousarray(tags, dtype=float),
                               np.ascontiguousarray(h, dtype=float),

@@ -9,11 +9,7 @@ from __future__ import annotations
 import threading
 
 import numpy as np
-
-try:  # numba is a dependency; numpy remains if it cannot load
-    from numba import njit, prange
-except ImportError:  # pragma: no cover
-    njit = None
+from numba import njit, prange
 
 _LOCK = threading.Lock()
 """numba's default threading layer must not launch parallel kernels from two threads."""
@@ -86,17 +82,15 @@ def _total_heave_deg_py(heave, roll_deg, pitch_deg, x, y, z):  # pragma: no cove
     return out
 
 
-if njit is not None:
-    _sincos_deg = njit(cache=True, nogil=True, inline="always")(_sincos_deg_py)
-    _within_range = njit(cache=True, nogil=True)(_within_range_py)
-    _in_range = njit(cache=True, nogil=True)(_in_range_py)
-    _one_in_range = njit(cache=True, nogil=True, inline="always")(_one_in_range_py)
+_sincos_deg = njit(cache=True, nogil=True, inline="always")(_sincos_deg_py)
+_within_range = njit(cache=True, nogil=True)(_within_range_py)
+_in_range = njit(cache=True, nogil=True)(_in_range_py)
+_one_in_range = njit(cache=True, nogil=True, inline="always")(_one_in_range_py)
 
 
-_total_heave_deg_nb = (njit(cache=True, parallel=True)(_total_heave_deg_py)
-                       if njit is not None else None)
-_total_heave_deg_nb1 = (njit(cache=True, nogil=True)(_total_heave_deg_py)
-                        if njit is not None else None)
+
+_total_heave_deg_nb = njit(cache=True, parallel=True)(_total_heave_deg_py)
+_total_heave_deg_nb1 = njit(cache=True, nogil=True)(_total_heave_deg_py)
 """Serial variant for line windows (called from the scan threads)."""
 
 
@@ -128,33 +122,22 @@ def total_heave(heave: np.ndarray, roll: np.ndarray, pitch: np.ndarray, lever_ar
     return np.asarray(heave, dtype=float) + induced_heave(roll, pitch, lever_arm)
 
 
-def total_heave_deg(
-    heave: np.ndarray, roll_deg: np.ndarray, pitch_deg: np.ndarray, lever_arm,
-    chunk: int = 1 << 20,
-) -> np.ndarray:
-    """:func:`total_heave` from angles in degrees, in chunks to bound temporary memory.
+def total_heave_deg(heave: np.ndarray, roll_deg: np.ndarray, pitch_deg: np.ndarray,
+                    lever_arm) -> np.ndarray:
+    """:func:`total_heave` from angles in degrees, compiled without temporaries.
 
-    A day of 100 Hz attitude has ~10⁷ samples; the trigonometric temporaries of one
-    pass would cost several hundred MB. Compiled (numba, both cores, no temporaries) when
-    available; the result is the same to the last bit on the machines tested.
+    A day of 100 Hz attitude has ~10⁷ samples: numpy's trigonometric temporaries would
+    cost several hundred MB. Above 100 000 records on both cores (one kernel at a time),
+    below on the calling thread; the result is the same to the last bit on the machines
+    tested.
     """
-    if _total_heave_deg_nb is not None and len(heave) <= 100_000:
-        x, y, z = (float(v) for v in np.asarray(lever_arm, dtype=float).reshape(3))
-        return _total_heave_deg_nb1(np.ascontiguousarray(heave, dtype=float),
-                                    np.ascontiguousarray(roll_deg, dtype=float),
-                                    np.ascontiguousarray(pitch_deg, dtype=float), x, y, z)
-    if _total_heave_deg_nb is not None:
-        x, y, z = (float(v) for v in np.asarray(lever_arm, dtype=float).reshape(3))
-        with _LOCK:
-            return _total_heave_deg_nb(np.ascontiguousarray(heave, dtype=float),
-                                       np.ascontiguousarray(roll_deg, dtype=float),
-                                       np.ascontiguousarray(pitch_deg, dtype=float), x, y, z)
-    out = np.empty(len(heave))
-    for lo in range(0, len(heave), chunk):
-        sl = slice(lo, lo + chunk)
-        out[sl] = total_heave(heave[sl], np.radians(roll_deg[sl]), np.radians(pitch_deg[sl]),
-                              lever_arm)
-    return out
+    x, y, z = (float(v) for v in np.asarray(lever_arm, dtype=float).reshape(3))
+    args = (np.ascontiguousarray(heave, dtype=float), np.ascontiguousarray(roll_deg, dtype=float),
+            np.ascontiguousarray(pitch_deg, dtype=float), x, y, z)
+    if len(heave) <= 100_000:
+        return _total_heave_deg_nb1(*args)
+    with _LOCK:
+        return _total_heave_deg_nb(*args)
 
 
 WALK_STEPS = 64
@@ -206,8 +189,7 @@ def _total_heave_at_py(times, t, heave, roll_deg, pitch_deg, x, y, z):  # pragma
     return out
 
 
-_total_heave_at_nb = (njit(cache=True, nogil=True)(_total_heave_at_py) if njit is not None
-                      else None)
+_total_heave_at_nb = njit(cache=True, nogil=True)(_total_heave_at_py)
 
 
 def total_heave_at(times: np.ndarray, t: np.ndarray, heave: np.ndarray, roll_deg: np.ndarray,
@@ -216,7 +198,7 @@ def total_heave_at(times: np.ndarray, t: np.ndarray, heave: np.ndarray, roll_deg
     (*t* increasing, angles in degrees), as ``numpy.interp`` of :func:`total_heave_deg`
     but evaluating only the records next to each time."""
     times = np.ascontiguousarray(times, dtype=float)
-    if _total_heave_at_nb is None or t.size < 2:
+    if t.size < 2:
         k = np.clip(np.searchsorted(t, times, side="right"), 1, max(t.size - 1, 1))
         idx = np.unique(np.concatenate([k - 1, k]))
         idx = idx[idx < t.size]

@@ -210,10 +210,6 @@ def _argmax_min(curve: np.ndarray) -> tuple[int, float]:
 
     One pass instead of np.any(np.isfinite), nanargmax, nanmax and nanmin (their Python
     overhead, per line and pass, held the GIL the scan threads share)."""
-    if fastscan._argmax_min is None:  # pragma: no cover
-        if not np.any(np.isfinite(curve)):
-            return -1, float("nan")
-        return int(np.nanargmax(curve)), float(np.nanmin(curve))
     k, low = fastscan._argmax_min(np.ascontiguousarray(curve, dtype=float))
     return int(k), float(low)
 

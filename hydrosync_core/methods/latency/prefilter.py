@@ -158,15 +158,10 @@ def spectrum(x: np.ndarray) -> Spectrum:
     right = size - n - left
     if left > n or right > n:  # reflections of reflections
         y = np.pad(x - (intercept + slope * kc), (left, right), mode="symmetric")
-    elif fastfilter.available():
+    else:  # np.pad(mode="symmetric")'s numbers without its Python overhead
         y = np.empty(size)
         fastfilter.mirror_detrended(np.ascontiguousarray(x, dtype=float), intercept, slope,
                                     left, y)
-    else:  # np.pad(mode="symmetric")'s numbers without its Python overhead
-        y = np.empty(size)
-        inner = np.subtract(x, intercept + slope * kc, out=y[left:left + n])
-        y[:left] = inner[left - 1::-1] if left else inner[:0]
-        y[left + n:] = inner[:n - right - 1:-1] if n > right else inner[::-1]
     return Spectrum(n, size, left, intercept, slope, np.fft.rfft(y))
 
 
@@ -222,21 +217,13 @@ def filtered(spec: Spectrum, gains: Gains | tuple[np.ndarray, float],
         raise ValueError("the response is not zero beyond the kept bins")
     # Beyond the kept bins the product is zero: irfft pads its input with zeros to
     # size // 2 + 1 bins, the same numbers as a full product with zero gains there.
-    if fastfilter.available():
-        product = np.empty(spec.bins.size, dtype=complex)
-        fastfilter.scaled(spec.bins, gains.values, product)
-        full = np.fft.irfft(product, spec.size)
-        out = np.empty(hi - lo) if out is None else out[:hi - lo]
-        fastfilter.plus_trend(full, spec.left + lo, lo, spec.n, spec.intercept, spec.slope,
-                              gains.dc, out)
-        return out
-    product = spec.bins * gains.values[:spec.bins.size]
-    series = np.fft.irfft(product, spec.size)[spec.left + lo:spec.left + hi]
-    kc = np.arange(lo, hi, dtype=float) - 0.5 * (spec.n - 1)
-    trend = (spec.intercept + spec.slope * kc) * gains.dc
-    if out is None:
-        return series + trend
-    return np.add(series, trend, out=out[:hi - lo])
+    product = np.empty(spec.bins.size, dtype=complex)
+    fastfilter.scaled(spec.bins, gains.values, product)
+    full = np.fft.irfft(product, spec.size)
+    out = np.empty(hi - lo) if out is None else out[:hi - lo]
+    fastfilter.plus_trend(full, spec.left + lo, lo, spec.n, spec.intercept, spec.slope,
+                          gains.dc, out)
+    return out
 
 
 def fft_filter(x: np.ndarray, dt: float, response, cache: dict | None = None) -> np.ndarray:

@@ -38,15 +38,16 @@ import numpy as np
 
 from hydrosync_core.importers.import_report import stored_warnings
 from hydrosync_core.methods.latency import VERSION
-from hydrosync_core.methods.latency.api import estimate_latency, synchronise
 from hydrosync_core.methods.latency.combine import combine
 from hydrosync_core.methods.latency.correlation import heave_at
 from hydrosync_core.methods.latency.detrend import detrend
+from hydrosync_core.methods.latency.estimate import estimate_latency
 from hydrosync_core.methods.latency.heave import total_heave_deg
 from hydrosync_core.methods.latency.lines import line_slice
 from hydrosync_core.methods.latency.params import LatencyParams
 from hydrosync_core.methods.latency.quality import sigma0
 from hydrosync_core.methods.latency.result import LatencyResult
+from hydrosync_core.methods.latency.synchronised import synchronise
 from hydrosync_core.params import stored
 from hydrosync_core.progress import sub_progress
 from hydrosync_core.project import Project

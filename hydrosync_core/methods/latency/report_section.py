@@ -16,8 +16,9 @@ import numpy as np
 from reportlab.platypus import Flowable, Paragraph
 
 from hydrosync_core.methods.latency.params import LatencyParams, estimator_label
+from hydrosync_core.methods.latency.texts import interval_text, latency_text, line_cells
 from hydrosync_core.params import stored
-from hydrosync_core.report.context import ReportContext, esc, fmt, fmt_pm, utc_text
+from hydrosync_core.report.context import ReportContext, esc, fmt, utc_text
 from hydrosync_core.report.styles import INK, MUTED, SERIES
 
 RESULT = "results/latency"
@@ -43,14 +44,14 @@ def _json_attr(attrs: dict, key: str, default):
 
 
 def final_value_text(attrs: dict) -> str:
-    """``"0.288 ± 0.006 s"`` — final Δt and its standard uncertainty."""
-    return fmt_pm(attrs.get("latency_s"), attrs.get("uncertainty_s"), DT_DECIMALS, "s")
+    """``"+288 ± 6.0 ms"`` — final Δt and its standard uncertainty (:mod:`.texts`)."""
+    return latency_text(attrs.get("latency_s"), attrs.get("uncertainty_s"))
 
 
 def ci_text(attrs: dict) -> str:
-    """``"0.276 … 0.300 s"`` — the 95 % interval of the final Δt."""
-    lo, hi = fmt(attrs.get("ci95_low"), DT_DECIMALS), fmt(attrs.get("ci95_high"), DT_DECIMALS)
-    return "\u2014" if "\u2014" in (lo, hi) else f"{lo} \u2026 {hi} s"
+    """``"+276 … +300 ms"`` — the 95 % interval of the final Δt (:mod:`.texts`)."""
+    return interval_text(attrs.get("ci95_low"), attrs.get("ci95_high"),
+                         attrs.get("uncertainty_s"))
 
 
 def estimator_text(attrs: dict) -> str:
@@ -64,8 +65,7 @@ def line_row(table: dict, i: int) -> list[str]:
         str(table["name"][i]),
         str(int(table["epochs"][i])),
         fmt(table["r_max"][i], R_DECIMALS),
-        fmt(table["latency_s"][i], DT_DECIMALS),
-        fmt(table["uncertainty_s"][i], DT_DECIMALS),
+        *line_cells(table["latency_s"][i], table["uncertainty_s"][i]),
         fmt(table["sigma0_before_m"][i], SIGMA0_DECIMALS),
         fmt(table["sigma0_after_m"][i], SIGMA0_DECIMALS),
         "yes" if bool(table["used"][i]) else "no",
@@ -158,8 +158,8 @@ def _estimator_note(attrs: dict) -> str:
 
 def _line_table(ctx: ReportContext, table: dict, attrs: dict) -> list[Flowable]:
     rows = [line_row(table, i) for i in range(len(table["name"]))]
-    rows.append(["Weighted mean", "", "", fmt(attrs.get("latency_s"), DT_DECIMALS),
-                 fmt(attrs.get("uncertainty_s"), DT_DECIMALS), "", "", ""])
+    rows.append(["Weighted mean", "", "",
+                 *line_cells(attrs.get("latency_s"), attrs.get("uncertainty_s")), "", "", ""])
     header = ["Line", "Epochs", "R<sub>max</sub>", "\u0394t [s]", "\u03c3<sub>\u0394t</sub> [s]",
               "\u03c3<sub>0</sub> before [m]", "\u03c3<sub>0</sub> after [m]", "Used"]
     not_used = [i + 1 for i in range(len(table["name"])) if not bool(table["used"][i])]
@@ -252,7 +252,7 @@ def _peak_zoom(ctx: ReportContext, dts, curves, table, attrs) -> Flowable:
 
 def _before_after_figures(project, ctx, table, attrs, params, arm) -> list[Flowable]:
     """Seed fig. 4 for the best and the worst used line (highest / lowest R_max)."""
-    from hydrosync_core.methods.latency.api import line_series
+    from hydrosync_core.methods.latency.series import line_series
 
     lat = attrs.get("latency_s")
     used = np.flatnonzero(np.asarray(table["used"], bool))

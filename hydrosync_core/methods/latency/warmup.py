@@ -13,9 +13,9 @@ def compile_kernels() -> None:
 
     from hydrosync_core.importers.survey_csv import read_lines_csv
     from hydrosync_core.methods.latency import lines
-    from hydrosync_core.methods.latency.api import estimate_latency
-    from hydrosync_core.methods.latency.fastcsv import read_attitude_csv, read_gnss_csv
+    from hydrosync_core.methods.latency.estimate import estimate_latency
     from hydrosync_core.methods.latency.heave import total_heave_deg
+    from hydrosync_core.methods.latency.readers import read_attitude_csv, read_gnss_csv
     from hydrosync_core.methods.latency.simulate import DayConfig, simulate_day, write_day_csv
 
     cfg = DayConfig(n_lines=2, line_s=60.0, turn_s=10.0, run_in_s=5.0, gnss_hz=10.0,

@@ -10,6 +10,7 @@ from PySide6.QtCore import Qt
 
 from hydrosync_core.methods.latency.combine import combine
 from hydrosync_core.methods.latency.demo import fill_demo
+from hydrosync_core.methods.latency.texts import latency_text
 from hydrosync_core.project import Project
 from plugins.latency.panel import LatencyPanel
 from plugins.latency.views import USED_COLUMN
@@ -91,7 +92,7 @@ def test_demo_run_table_curves_and_toggle(panel, qtbot):
     assert new["n_used"] == 11
     assert project.get_table("results/latency/lines")["used"].tolist() == used.tolist()
     assert panel.r_plot.final_line.value() == pytest.approx(expect.latency_s)
-    assert f"{expect.latency_s:.3f}" in panel.summary.text()
+    assert latency_text(expect.latency_s, expect.uncertainty_s) in panel.summary.text()
     if SCREENSHOT_DIR:
         panel.table.selectRow(2)
         qtbot.wait(100)  # let the layouts settle before the screenshot
@@ -193,3 +194,112 @@ def test_a_file_backed_project_draws_the_line_series_from_a_thread(panel, qtbot,
         assert panel.table.item(panel._selected(), 0).text() in title.text
         panel.table.selectRow((panel._selected() + 3) % 13)  # from memory: drawn at once
         assert panel.table.item(panel._selected(), 0).text() in title.text
+
+
+def _run_and_wait(panel, qtbot) -> None:
+    with qtbot.waitSignal(panel.sig_busy, timeout=60_000, check_params_cb=lambda b: not b):
+        panel.run_button.click()
+
+
+def test_no_stale_picture_after_runs_and_a_project_change(panel, qtbot, tmp_path):
+    """Issue #29 item 7: three runs and a second project leave one set of curves (13 R
+    curves + peaks + threshold + final Δt = 16 items; they used to pile up, 13 -> 52), the
+    series plot follows a re-run's Δt on the same selected row, and the lever-arm fields
+    follow the project (not the previous one's values). Screenshot for the record when
+    HYDROSYNC_SCREENSHOTS is set."""
+    first = Project.new("demo")
+    fill_demo(first, seed=0)
+    panel.set_project(first)
+    panel.form.set_params({"step_s": 0.01})
+    _run_and_wait(panel, qtbot)
+    qtbot.waitUntil(lambda: panel.table.rowCount() == 13, timeout=10_000)
+    once = panel.r_plot.item_count()
+    assert once == 13 + 3
+    for step in (0.02, 0.005):
+        panel.form.set_params({"step_s": step})
+        row = panel._selected()
+        _run_and_wait(panel, qtbot)
+        assert panel._selected() == row
+        assert panel.r_plot.item_count() == once
+        final = first.attrs("results/latency")["latency_s"]
+        shown = latency_text(final, first.attrs("results/latency")["uncertainty_s"])
+        assert shown in panel.series_plot.plotItem.titleLabel.text
+
+    # A second project (its own demo day, another lever arm): its curves only.
+    second = Project.new("other")
+    fill_demo(second, seed=3)
+    second_arm = first.attrs("results/latency")["lever_arm_m"]
+    panel.form.set_params({"lever_arm_m": (9.0, 9.0, 9.0)})  # typed on the first project
+    panel.set_project(second)
+    assert panel.form.editors["lever_arm_m"].value() != (9.0, 9.0, 9.0)
+    assert panel.r_plot.item_count() == 0  # no result yet: nothing drawn
+    panel.form.set_params({"step_s": 0.01})
+    _run_and_wait(panel, qtbot)
+    qtbot.waitUntil(lambda: panel.table.rowCount() > 0, timeout=10_000)
+    n = panel.table.rowCount()
+    assert panel.r_plot.item_count() == n + 3
+    assert second_arm  # the first project's result is untouched
+    if SCREENSHOT_DIR:
+        os.makedirs(SCREENSHOT_DIR, exist_ok=True)
+        panel.grab().save(os.path.join(SCREENSHOT_DIR, "latency_after_two_projects.png"))
+
+
+def test_warnings_are_escaped_in_the_summary(panel):
+    """'R_max <= 0.85' keeps its '<=' (it was read as an HTML tag and lost)."""
+    project = Project.new("demo")
+    fill_demo(project, seed=0)
+    from hydrosync_core.methods.latency.project_run import run
+
+    run(project, {"step_s": 0.01, "min_r": 0.97})
+    panel.set_project(project)
+    assert "R_max &lt;= 0.97" in panel.summary.text()
+
+
+def test_closing_the_panel_while_its_series_task_runs_is_harmless(qtbot, tmp_path):
+    """The series read is a side task of PluginPanel: deleting the panel before it ends
+    raised "Signal source has been deleted" from the raw thread; now the result is
+    dropped. The task is held back until the panel is gone."""
+    import threading
+
+    from shiboken6 import delete
+
+    from hydrosync_core.methods.latency.project_run import run
+    from plugins.latency import panel as panel_module
+
+    project = Project.new("demo")
+    fill_demo(project, seed=0)
+    run(project, {"step_s": 0.01})
+    path = project.save(tmp_path / "demo.h5")
+    project.close()
+    gate, entered = threading.Event(), threading.Event()
+    original = panel_module._line_series
+
+    def held(project, request):
+        entered.set()
+        gate.wait(20)
+        return original(project, request)
+
+    errors = []
+    with Project.open(path) as opened:
+        widget = LatencyPanel()
+        panel_module._line_series = held
+        try:
+            widget.set_project(opened)
+            assert entered.wait(20)
+            task = next(iter(w for w in _side_tasks() if not w.finished_event.is_set()))
+            delete(widget)
+            gate.set()
+            assert task.finished_event.wait(20)
+            qtbot.wait(50)  # deliver the finished signal (to nobody)
+        except Exception as exc:  # pragma: no cover - the failure being guarded against
+            errors.append(exc)
+        finally:
+            panel_module._line_series = original
+            gate.set()
+    assert not errors
+
+
+def _side_tasks():
+    from hydrosync_gui import plugin_panel
+
+    return plugin_panel._SIDE_TASKS

@@ -1,0 +1,55 @@
+"""The latency's numbers as the CLI, the panel and the PDF print them (one wording, one
+rounding): digits from σ through :mod:`hydrosync_core.numfmt`, never ``"± 0.000"``.
+
+A survey day of 500 lines has σ ≈ 0.5 ms: ``"0.122 ± 0.000 s"`` becomes
+``"+122.0 ± 0.5 ms"``; a 1 Hz day with σ ≈ 6 ms reads ``"+288 ± 6.0 ms"``.
+"""
+
+from __future__ import annotations
+
+import math
+
+from hydrosync_core import numfmt
+
+LINE_MIN_DECIMALS = 3
+"""Per-line Δt and σ (s) keep at least the millisecond (the scan's refinement)."""
+
+
+def latency_text(latency_s, sigma_s) -> str:
+    """Δt with its standard uncertainty, in s or ms as σ reads best (``"+122.0 ± 0.5 ms"``)."""
+    return numfmt.quantity(latency_s, sigma_s, "s", sign=True)
+
+
+def _number(value) -> float | None:
+    try:
+        number = float(value)
+    except (TypeError, ValueError):
+        return None
+    return number if math.isfinite(number) else None
+
+
+def interval_text(low_s, high_s, sigma_s) -> str:
+    """The 95 % interval in the unit and to the decimals of :func:`latency_text`."""
+    unit, factor = numfmt.scaled(sigma_s, "s")
+    s, low, high = _number(sigma_s), _number(low_s), _number(high_s)
+    decimals = numfmt.sigma_decimals(s * factor) if s is not None else None
+    decimals = 3 if decimals is None else decimals
+    if low is None or high is None:
+        return numfmt.MISSING
+    lo = numfmt.fixed(low * factor, decimals, sign=True)
+    hi = numfmt.fixed(high * factor, decimals, sign=True)
+    if numfmt.MISSING in (lo, hi):
+        return numfmt.MISSING
+    return numfmt.with_unit(f"{lo} \u2026 {hi}", unit)
+
+
+def line_decimals(sigma_s) -> int:
+    """Decimals (in s) of one line's Δt and σ: what its σ supports, at least 3."""
+    decimals = numfmt.sigma_decimals(sigma_s, min_decimals=LINE_MIN_DECIMALS, max_decimals=6)
+    return LINE_MIN_DECIMALS if decimals is None else decimals
+
+
+def line_cells(latency_s, sigma_s) -> tuple[str, str]:
+    """(Δt, σ) of one line in s, both to :func:`line_decimals` (``"—"`` when missing)."""
+    d = line_decimals(sigma_s)
+    return numfmt.fixed(latency_s, d), numfmt.fixed(sigma_s, d)

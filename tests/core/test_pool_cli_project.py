@@ -126,11 +126,14 @@ def test_cli_ins_accuracy_widens_sigma_and_is_checked(files, tmp_path, capsys):
 
 
 def test_cli_exit_3_names_undetermined_parameters(tmp_path, capsys):
-    """A patent target whose design lacks the block tops: nothing determines the vertical
-    lever arm. The CLI finishes, writes the JSON (coarse value kept, σ null, the reason)
-    and exits 3 with one line naming the parameter; --help documents the code."""
+    """A patent target whose design lacks the block tops, passed without roll or pitch:
+    nothing determines the vertical lever arm (only tops, or the vessel's roll and pitch
+    against the wall and obliques, do). The CLI finishes, writes the JSON (coarse value
+    kept, σ null, the reason) and exits 3 with one line naming the parameter; --help
+    documents the code."""
     sim = simulate_pool_pass(PoolPassConfig(beams=128, ping_rate_hz=8.0,
-                                            laser_density_per_m2=800.0), seed=3)
+                                            laser_density_per_m2=800.0, roll_amp_deg=0.0,
+                                            pitch_amp_deg=0.0), seed=3)
     sim["target"] = dict(sim["target"], faces=[f for f in sim["target"]["faces"]
                                                if not f["name"].endswith("_top")])
     paths = write_pool_files(sim, tmp_path / "in")
@@ -142,7 +145,8 @@ def test_cli_exit_3_names_undetermined_parameters(tmp_path, capsys):
            if not line.startswith("[")]
     assert len(err) == 1 and "lever_z" in err[0] and "not determined" in err[0]
     doc = json.loads(out.read_text())
-    assert "horizontal face" in doc["undetermined"]["lever_z"]
+    assert "singular" in doc["undetermined"]["lever_z"] or \
+        "σ from the data" in doc["undetermined"]["lever_z"]
     assert doc["lever_arm_m"]["z"] == pytest.approx(sim["setup"]["lever_arm_m"]["z"])
     assert doc["joint"]["sigma_lever_arm_m"]["z"] is None
     assert doc["build_tolerance"] == {"translation_m": 0.001, "rotation_deg": 0.005}

@@ -198,7 +198,7 @@ def test_simulator_sees_what_the_geometry_allows():
         assert max(abs(v) for v in c.lever_error_m) <= 0.15
         assert 1 <= len(c.ranges_m) <= 3 and len(c.headings_deg) == len(c.ranges_m)
         design_faces(c.target)
-    assert kinds == {"patent", "crossing", "mixed"}
+    assert kinds == {"patent", "crossing", "mixed", "prism"}
 
 
 def test_single_pass_meets_or_declares():

@@ -140,6 +140,9 @@ def cmd_pool(args: argparse.Namespace) -> int:
     out = Outputs({f"--{n}": getattr(args, n) for n in ("lidar", "mbes", "ins", "setup",
                                                          "target", "project")})
     out.plan(args.json, "--json")  # checked before any work
+    if args.project and args.passes:
+        raise InputError(args.project, "give either a project (its passes are stored under "
+                         "raw/pool/passes) or --pass folders, not both")
     if args.project:
         from hydrosync_core.methods.pool_calibration.project_run import run
         from hydrosync_core.project import Project

@@ -11,8 +11,9 @@ solutions; the joint adjustment is repeated once on the points re-selected aroun
 solution.
 
 Undetermined parameters (never a value fitted from insufficient geometry): a parameter
-that no face can determine (lever_z without a below-water block top with a twin, a
-singular normal matrix) or whose σ from the data exceeds the accuracy of the coarse setup
+that no face can determine (a singular normal matrix; the patent's seed also needs a
+below-water block top with a twin for lever_z, the joint adjustment only needs the data to
+fix it) or whose σ from the data exceeds the accuracy of the coarse setup
 keeps its coarse value, gets a NaN σ and a named reason (``PoolResult.undetermined``);
 the coarse error of such a parameter is propagated into the σ of the others. A parameter
 whose σ exceeds ``max_sigma_deg``/``max_sigma_m`` is flagged (``PoolResult.flagged``).
@@ -278,8 +279,12 @@ def _joint(seg, p, mfaces, r_a, l_a, cancel):
                        covariance=False, huber_m=p.huber_m, cancel=cancel)
         mfaces = _resegment(seg, p, first.r_m, first.lever, cancel)
         obs = _joint_obs(seg, mfaces, p.min_soundings)
-        fit = adjust(seg.ctx, obs, first.r_m, first.lever,
-                     fix=structural_fix(seg.roles, obs), **kw)
+        # No structural hold here: without a horizontal face the vessel's roll and pitch
+        # still tie lever z to the wall and the obliques; the data decide (singular normal
+        # matrix, or σ not below the coarse accuracy). Holding it at a coarse value off by
+        # up to the coarse accuracy biased the angles correlated with it (#24: single passes
+        # without a visible top 2-20× worse than a plain point-to-plane fit).
+        fit = adjust(seg.ctx, obs, first.r_m, first.lever, fix={}, **kw)
     except (ValueError, np.linalg.LinAlgError) as exc:
         return None, obs, mfaces, [f"joint adjustment failed ({exc}); the seed solution is "
                                    "reported"]

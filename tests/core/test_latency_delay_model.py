@@ -78,3 +78,21 @@ def test_gap_sigma_is_that_of_the_difference():
     assert gap_sigma(3.0, 5.0) == pytest.approx(4.0)
     assert gap_sigma(3.0, 3.0) == pytest.approx(3.0)  # floored at the kept σ
     assert gap_sigma(3.0, float("nan")) == pytest.approx(3.0)
+
+
+def test_lines_chosen_by_hand_keep_the_widened_sigma():
+    """Recombining by hand (panel check boxes) keeps the run's delay-model widening."""
+    from hydrosync_core.methods.latency.project_run import recombine, run
+    from hydrosync_core.project import Project
+
+    lat, (gnss, att, lines, arm) = _day(1, 2)
+    project = Project.new("filtered")
+    project.put_table("raw/gnss", gnss)
+    project.put_table("raw/attitude", att)
+    project.put_table("raw/lines", {k: np.asarray(v) for k, v in lines.items()})
+    run(project, {"lever_arm_m": arm})
+    widened = project.attrs("results/latency")["uncertainty_s"]
+    used = project.get_table("results/latency/lines")["used"].copy()
+    recombine(project, used)  # the same lines, by hand
+    assert project.attrs("results/latency")["uncertainty_s"] == pytest.approx(widened,
+                                                                              rel=1e-9)

@@ -97,6 +97,22 @@ def _flags(result: LatencyResult, check: ModelCheck, p: LatencyParams
     return sigma, warnings, notes
 
 
+def widened_sigma(latency_s: float, sigma_s: float, diagnostics: Mapping) -> float:
+    """σ (s) of a recombined mean (lines chosen by hand) widened as the run's checks
+    widened it: by the band spread when the bands disagreed, to half the gap to the
+    other estimator when that exceeds 2 σ of the difference. From the stored diagnostics."""
+    sigma = float(sigma_s)
+    model = diagnostics.get("delay_model") or {}
+    if model.get("determined") and not model.get("pure_delay", True):
+        sigma = math.hypot(sigma, float(model.get("spread_s", 0.0)))
+    other = diagnostics.get("other_estimate")
+    if other and np.isfinite(other.get("latency_s", np.nan)) and np.isfinite(latency_s):
+        gap = abs(float(other["latency_s"]) - float(latency_s))
+        if gap > GAP_SIGMAS * gap_sigma(float(sigma_s), float(other["uncertainty_s"])):
+            sigma = max(sigma, gap / GAP_SIGMAS)
+    return sigma
+
+
 def with_model_check(result: LatencyResult, gnss: Mapping, attitude: Mapping,
                      p: LatencyParams) -> LatencyResult:
     """*result* with the delay-model check in its diagnostics and, when flagged, its

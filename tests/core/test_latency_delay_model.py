@@ -41,6 +41,10 @@ def test_an_undeclared_heave_filter_is_flagged_and_widens_sigma(seed):
     assert "heave filter" in res.warnings[0] and "not a pure delay" in res.message
     assert res.uncertainty_s > res.diagnostics["sigma_before_model_check_s"]
     assert res.ci95_high - res.ci95_low > 2 * 1.9 * res.uncertainty_s
+    # The search over candidate filters says what the data determine.
+    search = res.diagnostics["heave_filter_search"]
+    assert search["best"] is not None and len(search["p_values"]) == 16
+    assert any("heave filter" in w and "Δt" in w for w in res.warnings[1:2])
 
 
 @pytest.mark.parametrize("seed", [1, 3])
@@ -52,6 +56,7 @@ def test_no_flag_without_a_filter(seed):
     res = estimate_latency(*args)
     assert res.diagnostics["delay_model"]["pure_delay"]
     assert not any(w.startswith("delay model") for w in res.warnings)
+    assert "heave_filter_search" not in res.diagnostics
     assert abs(res.latency_s - lat) < 3 * res.uncertainty_s
 
 

@@ -19,6 +19,10 @@ from hydrosync_core.methods.latency.lines import line_selection
 from hydrosync_core.methods.latency.params import LatencyParams
 from hydrosync_core.methods.latency.result import LatencyResult
 
+SEARCH_MAX_RECORDS = 2_000_000
+"""Attitude records up to which a flagged run searches the heave filter (16 candidates,
+each filtering the whole record: seconds for a day of 1 Hz data, minutes for 100 Hz)."""
+
 GAP_SIGMAS = 2.0
 """Two estimates further apart than this many σ of their difference are flagged."""
 
@@ -124,6 +128,16 @@ def with_model_check(result: LatencyResult, gnss: Mapping, attitude: Mapping,
     check = check_delay_model(pairs, interval, result.latency_s)
     sigma, warnings, notes = _flags(result, check, p)
     diagnostics = {**result.diagnostics, "delay_model": check.to_dict()}
+    if not check.pure_delay and p.heave_filter == "unknown":
+        if len(attitude["time"]) <= SEARCH_MAX_RECORDS:
+            from hydrosync_core.methods.latency.filter_search import search_filter
+
+            found = search_filter(result, gnss, attitude, p, _line_pairs)
+            diagnostics["heave_filter_search"] = found.to_dict()
+            warnings.insert(1, f"delay model: {found.text()}")
+        else:
+            warnings.insert(1, "delay model: no search for the heave filter on a record this "
+                               "long (16 filterings of the whole day): declare it")
     old = float(result.uncertainty_s)
     factor = (result.ci95_high - result.latency_s) / old if old > 0 else 1.959964
     changes = {"diagnostics": diagnostics, "warnings": tuple(warnings) + result.warnings}

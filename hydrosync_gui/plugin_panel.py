@@ -30,6 +30,25 @@ _SIDE_TASKS: set[Worker] = set()
 """Side tasks started and not yet pruned: the pool does not own its workers, and a side
 task may outlive the panel that started it."""
 
+
+def _wait_side_tasks_on_quit() -> None:
+    """Once: when the application quits, let running side tasks end (a few seconds at
+    most) before Qt deletes their signal objects under them."""
+    from PySide6.QtCore import QCoreApplication
+
+    app = QCoreApplication.instance()
+    if app is None or app.property("hydrosync_side_tasks_hooked"):
+        return
+    app.setProperty("hydrosync_side_tasks_hooked", True)
+
+    def wait() -> None:
+        for worker in list(_SIDE_TASKS):
+            worker.cancel()
+            worker.finished_event.wait(10.0)
+
+    app.aboutToQuit.connect(wait)
+
+
 STALE_STYLE = ("QLabel { background: #f8d7da; border: 1px solid #c0392b; border-radius: 3px;"
                " color: #6e1a12; padding: 6px; }")
 
@@ -139,6 +158,7 @@ class PluginPanel(QWidget):
         """
         for done in [w for w in _SIDE_TASKS if w.finished_event.is_set()]:
             _SIDE_TASKS.discard(done)
+        _wait_side_tasks_on_quit()
         worker = Worker(fn)
         worker.signals.sig_finished.connect(on_finished)
         if on_failed is not None:

@@ -41,6 +41,10 @@ def test_an_undeclared_heave_filter_is_flagged_and_widens_sigma(seed):
     assert "heave filter" in res.warnings[0] and "not a pure delay" in res.message
     assert res.uncertainty_s > res.diagnostics["sigma_before_model_check_s"]
     assert res.ci95_high - res.ci95_low > 2 * 1.9 * res.uncertainty_s
+    # The search over candidate filters says what the data determine.
+    search = res.diagnostics["heave_filter_search"]
+    assert search["best"] is not None and len(search["p_values"]) == 16
+    assert any("heave filter" in w and "Δt" in w for w in res.warnings[1:2])
 
 
 @pytest.mark.parametrize("seed", [1, 3])
@@ -52,6 +56,7 @@ def test_no_flag_without_a_filter(seed):
     res = estimate_latency(*args)
     assert res.diagnostics["delay_model"]["pure_delay"]
     assert not any(w.startswith("delay model") for w in res.warnings)
+    assert "heave_filter_search" not in res.diagnostics
     assert abs(res.latency_s - lat) < 3 * res.uncertainty_s
 
 
@@ -78,3 +83,21 @@ def test_gap_sigma_is_that_of_the_difference():
     assert gap_sigma(3.0, 5.0) == pytest.approx(4.0)
     assert gap_sigma(3.0, 3.0) == pytest.approx(3.0)  # floored at the kept σ
     assert gap_sigma(3.0, float("nan")) == pytest.approx(3.0)
+
+
+def test_lines_chosen_by_hand_keep_the_widened_sigma():
+    """Recombining by hand (panel check boxes) keeps the run's delay-model widening."""
+    from hydrosync_core.methods.latency.project_run import recombine, run
+    from hydrosync_core.project import Project
+
+    lat, (gnss, att, lines, arm) = _day(1, 2)
+    project = Project.new("filtered")
+    project.put_table("raw/gnss", gnss)
+    project.put_table("raw/attitude", att)
+    project.put_table("raw/lines", {k: np.asarray(v) for k, v in lines.items()})
+    run(project, {"lever_arm_m": arm})
+    widened = project.attrs("results/latency")["uncertainty_s"]
+    used = project.get_table("results/latency/lines")["used"].copy()
+    recombine(project, used)  # the same lines, by hand
+    assert project.attrs("results/latency")["uncertainty_s"] == pytest.approx(widened,
+                                                                              rel=1e-9)

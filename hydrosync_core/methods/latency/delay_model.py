@@ -20,7 +20,6 @@ import dataclasses
 from collections.abc import Sequence
 
 import numpy as np
-from scipy.signal import csd, welch
 from scipy.stats import chi2
 
 SEGMENT_S = 64.0
@@ -83,25 +82,40 @@ class ModelCheck:
         return ", ".join(f"{b.delay_s:+.3f} s at {b.periods_text()} periods" for b in self.bands)
 
 
+def _segments(x: np.ndarray, nper: int) -> np.ndarray:
+    """Half-overlapping segments of *x* (rows), each without its least-squares line and
+    Hann-windowed: Welch's segments, for one rfft of both series."""
+    starts = np.arange(0, x.size - nper + 1, nper // 2)
+    seg = x[starts[:, None] + np.arange(nper)]
+    k = np.arange(nper, dtype=float) - 0.5 * (nper - 1)
+    seg = seg - seg.mean(axis=1, keepdims=True)
+    seg -= np.outer(seg @ k / (k @ k), k)
+    return seg * np.hanning(nper + 2)[1:-1]
+
+
 def _pooled_spectra(pairs: Sequence[tuple[np.ndarray, np.ndarray]], interval: float):
-    """(f, Pxy, Pxx, Pyy, segments) summed over the lines long enough for a segment."""
+    """(f, Pxy, Pxx, Pyy, segments) summed over every segment of the lines long enough
+    for one (relative scale: only phases and coherences are used)."""
     nper = int(round(SEGMENT_S / interval))
-    total = None
+    if nper < 8:
+        return None
+    pxy = pxx = pyy = None
     segments = 0
     for heave, height in pairs:
-        if heave.size < nper or nper < 8:
+        if heave.size < nper:
             continue
-        f, pxy = csd(heave, height, fs=1.0 / interval, nperseg=nper, detrend="linear")
-        _, pxx = welch(heave, fs=1.0 / interval, nperseg=nper, detrend="linear")
-        _, pyy = welch(height, fs=1.0 / interval, nperseg=nper, detrend="linear")
-        count = 1 + 2 * (heave.size - nper) // nper  # half-overlapping segments
-        parts = (pxy * count, pxx * count, pyy * count)
-        total = parts if total is None else tuple(a + b for a, b in zip(total, parts,
-                                                                        strict=True))
-        segments += count
-    if total is None:
+        hx = np.fft.rfft(_segments(np.asarray(heave, dtype=float), nper), axis=1)
+        hy = np.fft.rfft(_segments(np.asarray(height, dtype=float), nper), axis=1)
+        parts = ((np.conj(hx) * hy).sum(axis=0), (np.abs(hx) ** 2).sum(axis=0),
+                 (np.abs(hy) ** 2).sum(axis=0))
+        if pxy is None:
+            pxy, pxx, pyy = parts
+        else:
+            pxy, pxx, pyy = pxy + parts[0], pxx + parts[1], pyy + parts[2]
+        segments += hx.shape[0]
+    if pxy is None:
         return None
-    return (f, *(part / segments for part in total), segments)
+    return np.fft.rfftfreq(nper, interval), pxy, pxx, pyy, segments
 
 
 def _band(f, phase, weight, latency_s) -> BandDelay:

@@ -24,6 +24,9 @@ from scipy.signal import butter, freqs
 
 from hydrosync_core.methods.latency.heave import total_heave_deg
 
+CHUNK = 100_000
+"""Records per call of the serial total-heave kernel (:func:`.heave.total_heave_deg`)."""
+
 GAP_FACTOR = 3.0
 """An interval above this many median intervals splits a record: the filter restarts."""
 
@@ -87,9 +90,15 @@ def with_declared_filter(gnss: Mapping, attitude: Mapping, lever_arm, order: int
     gnss_out = dict(gnss)
     gnss_out["height"] = causal_highpass(gnss["time"], gnss["height"], order, cutoff_period_s)
     t = np.asarray(attitude["time"], dtype=float)
-    zeros = np.zeros(t.size)
-    induced = total_heave_deg(zeros, np.asarray(attitude["roll"], dtype=float),
-                              np.asarray(attitude["pitch"], dtype=float), lever_arm)
+    roll = np.asarray(attitude["roll"], dtype=float)
+    pitch = np.asarray(attitude["pitch"], dtype=float)
+    induced = np.empty(t.size)
+    zeros = np.zeros(min(t.size, CHUNK))
+    # In chunks: the serial kernel, callable from any thread (the parallel one is not, and
+    # warns on machines whose TBB is too old).
+    for lo in range(0, t.size, CHUNK):
+        hi = min(lo + CHUNK, t.size)
+        induced[lo:hi] = total_heave_deg(zeros[:hi - lo], roll[lo:hi], pitch[lo:hi], lever_arm)
     att_out = dict(attitude)
     att_out["heave"] = (np.asarray(attitude["heave"], dtype=float)
                         + causal_highpass(t, induced, order, cutoff_period_s) - induced)

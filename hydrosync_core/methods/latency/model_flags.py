@@ -19,6 +19,10 @@ from hydrosync_core.methods.latency.lines import line_selection
 from hydrosync_core.methods.latency.params import LatencyParams
 from hydrosync_core.methods.latency.result import LatencyResult
 
+SEARCH_MAX_RECORDS = 2_000_000
+"""Attitude records up to which a flagged run searches the heave filter (16 candidates,
+each filtering the whole record: seconds for a day of 1 Hz data, minutes for 100 Hz)."""
+
 GAP_SIGMAS = 2.0
 """Two estimates further apart than this many σ of their difference are flagged."""
 
@@ -97,6 +101,22 @@ def _flags(result: LatencyResult, check: ModelCheck, p: LatencyParams
     return sigma, warnings, notes
 
 
+def widened_sigma(latency_s: float, sigma_s: float, diagnostics: Mapping) -> float:
+    """σ (s) of a recombined mean (lines chosen by hand) widened as the run's checks
+    widened it: by the band spread when the bands disagreed, to half the gap to the
+    other estimator when that exceeds 2 σ of the difference. From the stored diagnostics."""
+    sigma = float(sigma_s)
+    model = diagnostics.get("delay_model") or {}
+    if model.get("determined") and not model.get("pure_delay", True):
+        sigma = math.hypot(sigma, float(model.get("spread_s", 0.0)))
+    other = diagnostics.get("other_estimate")
+    if other and np.isfinite(other.get("latency_s", np.nan)) and np.isfinite(latency_s):
+        gap = abs(float(other["latency_s"]) - float(latency_s))
+        if gap > GAP_SIGMAS * gap_sigma(float(sigma_s), float(other["uncertainty_s"])):
+            sigma = max(sigma, gap / GAP_SIGMAS)
+    return sigma
+
+
 def with_model_check(result: LatencyResult, gnss: Mapping, attitude: Mapping,
                      p: LatencyParams) -> LatencyResult:
     """*result* with the delay-model check in its diagnostics and, when flagged, its
@@ -108,6 +128,16 @@ def with_model_check(result: LatencyResult, gnss: Mapping, attitude: Mapping,
     check = check_delay_model(pairs, interval, result.latency_s)
     sigma, warnings, notes = _flags(result, check, p)
     diagnostics = {**result.diagnostics, "delay_model": check.to_dict()}
+    if not check.pure_delay and p.heave_filter == "unknown":
+        if len(attitude["time"]) <= SEARCH_MAX_RECORDS:
+            from hydrosync_core.methods.latency.filter_search import search_filter
+
+            found = search_filter(result, gnss, attitude, p, _line_pairs)
+            diagnostics["heave_filter_search"] = found.to_dict()
+            warnings.insert(1, f"delay model: {found.text()}")
+        else:
+            warnings.insert(1, "delay model: no search for the heave filter on a record this "
+                               "long (16 filterings of the whole day): declare it")
     old = float(result.uncertainty_s)
     factor = (result.ci95_high - result.latency_s) / old if old > 0 else 1.959964
     changes = {"diagnostics": diagnostics, "warnings": tuple(warnings) + result.warnings}

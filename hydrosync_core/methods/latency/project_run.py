@@ -44,6 +44,7 @@ from hydrosync_core.methods.latency.detrend import detrend
 from hydrosync_core.methods.latency.estimate import estimate_latency
 from hydrosync_core.methods.latency.heave import total_heave_deg
 from hydrosync_core.methods.latency.lines import line_slice
+from hydrosync_core.methods.latency.model_flags import widened_sigma
 from hydrosync_core.methods.latency.params import LatencyParams
 from hydrosync_core.methods.latency.quality import sigma0
 from hydrosync_core.methods.latency.result import LatencyResult
@@ -181,6 +182,15 @@ def recombine(project: Project, used: np.ndarray, weighting: str | None = None) 
                           time="corrected GNSS time (tag - latency)")
     else:
         project.delete(f"{RESULT}/synchronised")
+    # The run's delay-model flags still hold for the lines chosen by hand: σ widened alike.
+    diagnostics = json.loads(attrs.get("diagnostics", "{}") or "{}")
+    sigma = widened_sigma(comb.latency_s, comb.uncertainty_s, diagnostics) \
+        if comb.n_used else comb.uncertainty_s
+    if sigma > comb.uncertainty_s:
+        factor = (comb.ci95_high - comb.latency_s) / comb.uncertainty_s
+        comb = dataclasses.replace(comb, uncertainty_s=sigma,
+                                   ci95_low=comb.latency_s - factor * sigma,
+                                   ci95_high=comb.latency_s + factor * sigma)
     values = comb.to_dict()
     project.set_attrs(
         RESULT, latency_s=comb.latency_s, uncertainty_s=comb.uncertainty_s,

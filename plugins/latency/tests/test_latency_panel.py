@@ -241,6 +241,7 @@ def test_no_stale_picture_after_runs_and_a_project_change(panel, qtbot, tmp_path
     assert second_arm  # the first project's result is untouched
     if SCREENSHOT_DIR:
         os.makedirs(SCREENSHOT_DIR, exist_ok=True)
+        qtbot.wait(200)  # the summary's new height laid out
         panel.grab().save(os.path.join(SCREENSHOT_DIR, "latency_after_two_projects.png"))
 
 

@@ -170,11 +170,16 @@ def _reference_column(grade: str):
     return extra
 
 
-def monte_carlo(runs: int, seed: int) -> list[tuple]:
+def monte_carlo(runs: int, seed: int, grades=tuple(IMU_GRADES), conventions=CONVENTIONS
+                ) -> list[tuple]:
     """Part 2: one Monte Carlo per grade × convention × tilt class."""
     out = []
     for gi, grade in enumerate(IMU_GRADES):
+        if grade not in grades:
+            continue
         for ci, conv in enumerate(CONVENTIONS):
+            if conv not in conventions:
+                continue
             parts = []
             for ti, tilt in enumerate(((15.0, 40.0), (40.0, 60.0))):
                 params = TiltParams(imu_grade=grade, monte_carlo_runs=0)
@@ -238,6 +243,9 @@ def main() -> None:
     ap.add_argument("--all-methods", action="store_true",
                     help="also Li et al.'s heading-only methods")
     ap.add_argument("--no-foreign", action="store_true")
+    ap.add_argument("--grades", default=",".join(IMU_GRADES), help="grades to simulate")
+    ap.add_argument("--conventions", default=",".join(CONVENTIONS),
+                    help="IMU conventions to simulate")
     ap.add_argument("--demo-mc", type=int, default=0, metavar="N",
                     help="also run the demo record with N Monte-Carlo runs (part 3)")
     ap.add_argument("--demo-out", type=Path, help="project file for --demo-mc")
@@ -251,7 +259,8 @@ def main() -> None:
     if args.runs <= 0:
         return
     t1 = time.perf_counter()
-    cells = monte_carlo(args.runs, args.seed)
+    cells = monte_carlo(args.runs, args.seed, tuple(args.grades.split(",")),
+                        tuple(args.conventions.split(",")))
     n = sum(c[2]["run"].size for c in cells)
     dt = time.perf_counter() - t1
     print(f"Monte Carlo: {n} simulated swings ({dt:.0f} s, {1000 * dt / max(n, 1):.0f} ms "

@@ -117,8 +117,26 @@ def random_config(rng: np.random.Generator, tilt_range=(15.0, 60.0), grade: str 
 
 
 def _smooth(u):
+    """0 → 1 with zero rate and acceleration at both ends (quintic smoothstep): a hand
+    starts and stops without a jump in acceleration (the cosine step had one, which no
+    human swing has and which instantaneous samples cannot be interpolated across)."""
     u = np.clip(u, 0.0, 1.0)
-    return 0.5 - 0.5 * np.cos(np.pi * u)
+    return u * u * u * (10.0 - 15.0 * u + 6.0 * u * u)
+
+
+def _ease(tau, ramp: float = 0.15):
+    """Swing phase 0 → 1 whose rate rises from zero over the first *ramp* of the swing
+    (and falls over the last) by the quintic smoothstep, steady between: zero rate and
+    acceleration at both ends, the peak rate only 1/(1 − ramp) of a steady swing's."""
+    tau = np.clip(np.asarray(tau, float), 0.0, 1.0)
+
+    def rise(x):            # ∫₀ˣ smoothstep = ramp·F(x/ramp), F(1) = 1/2
+        u = np.clip(x / ramp, 0.0, 1.0)
+        return ramp * u ** 4 * (2.5 - 3.0 * u + u * u)
+
+    inner = np.clip(tau, ramp, 1.0 - ramp) - ramp
+    s = rise(tau) + inner + (0.5 * ramp - rise(1.0 - tau)) * (tau > 1.0 - ramp)
+    return s / (1.0 - ramp)
 
 
 def _angles(cfg: SwingConfig, t: np.ndarray, wob: tuple, scale: float) -> np.ndarray:
@@ -130,7 +148,7 @@ def _angles(cfg: SwingConfig, t: np.ndarray, wob: tuple, scale: float) -> np.nda
     lean0 = np.array([0.02, -0.015])
     t_move = cfg.level_s
     t_swing = t_move + cfg.move_s
-    tau = np.clip((t - t_swing) / cfg.swing_s, 0.0, 1.0)
+    tau = _ease((t - t_swing) / cfg.swing_s)
     n = cfg.sweeps
     swing = (-np.cos(np.pi * n * tau))[:, None] * a * d1 \
         + (cfg.shape_ratio * a * np.sin(np.pi * n * tau) * np.sin(np.pi * tau))[:, None] * d2

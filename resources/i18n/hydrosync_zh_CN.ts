@@ -60,6 +60,10 @@
             <translation>视图(&amp;V)</translation>
         </message>
         <message>
+            <source>(no recent projects)</source>
+            <translation>(无最近项目)</translation>
+        </message>
+        <message>
             <source>(not saved)</source>
             <translation>(未保存)</translation>
         </message>
@@ -88,12 +92,20 @@
             <translation>;惯导姿态视为无误差(未给出惯导精度):σ 为下限</translation>
         </message>
         <message>
+            <source>&lt;h3&gt;No analysis plugin is available&lt;/h3&gt;&lt;p&gt;See Help → Plugins and the log for what failed to load.&lt;/p&gt;</source>
+            <translation>&lt;h3&gt;没有可用的分析插件&lt;/h3&gt;&lt;p&gt;请查看“帮助 → 插件”和日志,了解加载失败的原因。&lt;/p&gt;</translation>
+        </message>
+        <message>
             <source>&lt;span style='color:#777'&gt;no iterations yet (Run all)&lt;/span&gt;</source>
             <translation>&lt;span style='color:#777'&gt;尚无迭代(全部运行)&lt;/span&gt;</translation>
         </message>
         <message>
             <source>&lt;span style='color:#d62728'&gt;━&lt;/span&gt;&amp;nbsp;Δ roll&amp;nbsp;&amp;nbsp; &lt;span style='color:#1f77b4'&gt;━&lt;/span&gt;&amp;nbsp;Δ pitch&amp;nbsp;&amp;nbsp; &lt;span style='color:#2ca02c'&gt;━&lt;/span&gt;&amp;nbsp;Δ yaw&amp;nbsp;&amp;nbsp; &lt;span style='color:#6e6e6e'&gt;╌&lt;/span&gt;&amp;nbsp;tolerance&amp;nbsp;&amp;nbsp; &lt;span style='color:#aaa'&gt;┆&lt;/span&gt;&amp;nbsp;new round</source>
             <translation>&lt;span style='color:#d62728'&gt;━&lt;/span&gt;&amp;nbsp;Δ 横摇&amp;nbsp;&amp;nbsp; &lt;span style='color:#1f77b4'&gt;━&lt;/span&gt;&amp;nbsp;Δ 纵摇&amp;nbsp;&amp;nbsp; &lt;span style='color:#2ca02c'&gt;━&lt;/span&gt;&amp;nbsp;Δ 艏摇&amp;nbsp;&amp;nbsp; &lt;span style='color:#6e6e6e'&gt;╌&lt;/span&gt;&amp;nbsp;收敛阈值&amp;nbsp;&amp;nbsp; &lt;span style='color:#aaa'&gt;┆&lt;/span&gt;&amp;nbsp;新一轮</translation>
+        </message>
+        <message>
+            <source>A task is running</source>
+            <translation>有任务正在运行</translation>
         </message>
         <message>
             <source>A-priori σ horizontal</source>
@@ -114,6 +126,10 @@
         <message>
             <source>Accepted solutions</source>
             <translation>采用的解</translation>
+        </message>
+        <message>
+            <source>Add sensor</source>
+            <translation>添加传感器</translation>
         </message>
         <message>
             <source>Advanced</source>
@@ -150,6 +166,10 @@
         <message>
             <source>Appendix: pool calibration, every patent iteration</source>
             <translation>附录:水池检校,专利方法的每次迭代</translation>
+        </message>
+        <message>
+            <source>Apply to vessel sheet</source>
+            <translation>应用到船舶参数表</translation>
         </message>
         <message>
             <source>Apply to vessel sheet…</source>
@@ -240,6 +260,10 @@
             <translation>艏摇安装偏角(最终值,1σ)</translation>
         </message>
         <message>
+            <source>Browse…</source>
+            <translation>浏览…</translation>
+        </message>
+        <message>
             <source>Build tolerance</source>
             <translation>建造容差</translation>
         </message>
@@ -252,12 +276,32 @@
             <translation>建造容差(位置)</translation>
         </message>
         <message>
+            <source>Campaign file</source>
+            <translation>批处理文件</translation>
+        </message>
+        <message>
             <source>Cancel</source>
             <translation>取消</translation>
         </message>
         <message>
             <source>Cancel the running task</source>
             <translation>取消正在运行的任务</translation>
+        </message>
+        <message>
+            <source>Cancel the running task and quit?</source>
+            <translation>取消正在运行的任务并退出?</translation>
+        </message>
+        <message>
+            <source>Cancelled: the steps that finished are saved in their projects; running the campaign again does only the rest.</source>
+            <translation>已取消:已完成的步骤保存在各自项目中;再次运行批处理只做其余部分。</translation>
+        </message>
+        <message>
+            <source>Cancelling: steps already finished stay saved…</source>
+            <translation>正在取消:已完成的步骤保持已保存…</translation>
+        </message>
+        <message>
+            <source>Cannot open project</source>
+            <translation>无法打开项目</translation>
         </message>
         <message>
             <source>Carries</source>
@@ -272,8 +316,20 @@
             <translation>校核</translation>
         </message>
         <message>
+            <source>Choose…</source>
+            <translation>选择…</translation>
+        </message>
+        <message>
+            <source>Clear list</source>
+            <translation>清除列表</translation>
+        </message>
+        <message>
             <source>Clip to View</source>
             <translation>裁剪到视图</translation>
+        </message>
+        <message>
+            <source>Close</source>
+            <translation>关闭</translation>
         </message>
         <message>
             <source>Cluster distance (laser)</source>
@@ -356,6 +412,10 @@
             <translation>测深点面聚类的 DBSCAN 邻域</translation>
         </message>
         <message>
+            <source>Dask scheduler</source>
+            <translation>Dask 调度器</translation>
+        </message>
+        <message>
             <source>Data ready. &lt;b&gt;Segment&lt;/b&gt; to check the faces found with the coarse setup, or &lt;b&gt;Run all&lt;/b&gt; to calibrate.</source>
             <translation>数据已就绪。按&lt;b&gt;分割&lt;/b&gt;检查用粗标定找到的各面,或按&lt;b&gt;全部运行&lt;/b&gt;进行检校。</translation>
         </message>
@@ -374,6 +434,10 @@
         <message>
             <source>Detail of the correlation peaks: each dot is one line's (Δt, R&lt;sub&gt;max&lt;/sub&gt;), the vertical line the weighted mean and the band its 95 % interval.</source>
             <translation>相关峰细节:每个点为一条测线的 (Δt, R&lt;sub&gt;max&lt;/sub&gt;),竖线为加权平均,色带为其 95 % 区间。</translation>
+        </message>
+        <message>
+            <source>Details</source>
+            <translation>详情</translation>
         </message>
         <message>
             <source>Detrend degree</source>
@@ -450,6 +514,22 @@
         <message>
             <source>Every</source>
             <translation>每隔</translation>
+        </message>
+        <message>
+            <source>Export JSON…</source>
+            <translation>导出 JSON…</translation>
+        </message>
+        <message>
+            <source>Export report</source>
+            <translation>导出报告</translation>
+        </message>
+        <message>
+            <source>Export vessel sheet</source>
+            <translation>导出船舶参数表</translation>
+        </message>
+        <message>
+            <source>Exporting report</source>
+            <translation>正在导出报告</translation>
         </message>
         <message>
             <source>Face</source>
@@ -600,6 +680,10 @@
             <translation>惯导姿态误差的高斯–马尔可夫相关时间</translation>
         </message>
         <message>
+            <source>Goes to:</source>
+            <translation>导入到:</translation>
+        </message>
+        <message>
             <source>Gravity</source>
             <translation>重力</translation>
         </message>
@@ -648,12 +732,20 @@
             <translation>文件中的升沉符号</translation>
         </message>
         <message>
+            <source>Heave:</source>
+            <translation>升沉:</translation>
+        </message>
+        <message>
             <source>Horizontal tip errors of the simulated swings (cf. Li et al., figs. 6-9).</source>
             <translation>模拟摆动的杆尖水平误差(参见 Li 等,图 6-9)。</translation>
         </message>
         <message>
             <source>Huber threshold</source>
             <translation>Huber 阈值</translation>
+        </message>
+        <message>
+            <source>HydroSync — unexpected error</source>
+            <translation>HydroSync — 意外错误</translation>
         </message>
         <message>
             <source>IMU epochs</source>
@@ -696,8 +788,28 @@
             <translation>惯导横摇、纵摇和航向的标称精度,传播到结果的 σ 中(0:视惯导为无误差,σ 为下限)</translation>
         </message>
         <message>
+            <source>Import JSON…</source>
+            <translation>导入 JSON…</translation>
+        </message>
+        <message>
             <source>Import a data file into the project</source>
             <translation>将数据文件导入项目</translation>
+        </message>
+        <message>
+            <source>Import data</source>
+            <translation>导入数据</translation>
+        </message>
+        <message>
+            <source>Import failed</source>
+            <translation>导入失败</translation>
+        </message>
+        <message>
+            <source>Import file</source>
+            <translation>导入文件</translation>
+        </message>
+        <message>
+            <source>Import vessel sheet</source>
+            <translation>导入船舶参数表</translation>
         </message>
         <message>
             <source>Import warning</source>
@@ -770,6 +882,10 @@
         <message>
             <source>Kind / shape</source>
             <translation>类型 / 形状</translation>
+        </message>
+        <message>
+            <source>Kind:</source>
+            <translation>类型:</translation>
         </message>
         <message>
             <source>LSQ</source>
@@ -848,6 +964,14 @@
             <translation>杆臂 GNSS 天线 − 姿态传感器(x 向前,y 右舷,z 向下)</translation>
         </message>
         <message>
+            <source>Lever arm gnss − motion: fix the table first.</source>
+            <translation>杆臂 gnss − 姿态传感器:请先修正表格。</translation>
+        </message>
+        <message>
+            <source>Lever arm gnss − motion: needs sensors named 'gnss' and 'motion' (the Latency plugin uses it).</source>
+            <translation>杆臂 gnss − 姿态传感器:需要名为 'gnss' 和 'motion' 的传感器(时间延迟插件使用)。</translation>
+        </message>
+        <message>
             <source>Lever arm x (forward)</source>
             <translation>杆臂 x(向前)</translation>
         </message>
@@ -894,6 +1018,10 @@
         <message>
             <source>Loaded and failed plugins</source>
             <translation>已加载和加载失败的插件</translation>
+        </message>
+        <message>
+            <source>Local workers</source>
+            <translation>本地工作进程</translation>
         </message>
         <message>
             <source>Log</source>
@@ -1092,6 +1220,10 @@
             <translation>北</translation>
         </message>
         <message>
+            <source>Not applied</source>
+            <translation>未应用</translation>
+        </message>
+        <message>
             <source>Notes</source>
             <translation>备注</translation>
         </message>
@@ -1110,6 +1242,14 @@
         <message>
             <source>Open a project</source>
             <translation>打开项目</translation>
+        </message>
+        <message>
+            <source>Open project</source>
+            <translation>打开项目</translation>
+        </message>
+        <message>
+            <source>Open summary</source>
+            <translation>打开汇总</translation>
         </message>
         <message>
             <source>Outage</source>
@@ -1184,6 +1324,14 @@
             <translation>绘图选项</translation>
         </message>
         <message>
+            <source>Plugin</source>
+            <translation>插件</translation>
+        </message>
+        <message>
+            <source>Plugins</source>
+            <translation>插件</translation>
+        </message>
+        <message>
             <source>Points</source>
             <translation>点</translation>
         </message>
@@ -1256,6 +1404,10 @@
             <translation>项目文件 SHA-256</translation>
         </message>
         <message>
+            <source>Project is read-only</source>
+            <translation>项目为只读</translation>
+        </message>
+        <message>
             <source>Project last saved</source>
             <translation>项目最后保存时间</translation>
         </message>
@@ -1312,6 +1464,10 @@
             <translation>再裁剪容差</translation>
         </message>
         <message>
+            <source>Ready: up-to-date results are not computed again.</source>
+            <translation>就绪:已是最新的结果不再重新计算。</translation>
+        </message>
+        <message>
             <source>Records</source>
             <translation>记录数</translation>
         </message>
@@ -1336,8 +1492,20 @@
             <translation>剔除限值</translation>
         </message>
         <message>
+            <source>Remove sensor</source>
+            <translation>删除传感器</translation>
+        </message>
+        <message>
             <source>Report date</source>
             <translation>报告日期</translation>
+        </message>
+        <message>
+            <source>Report failed</source>
+            <translation>报告生成失败</translation>
+        </message>
+        <message>
+            <source>Report not available</source>
+            <translation>报告不可用</translation>
         </message>
         <message>
             <source>Reported method</source>
@@ -1376,6 +1544,10 @@
             <translation>全部运行</translation>
         </message>
         <message>
+            <source>Run campaign</source>
+            <translation>运行批处理</translation>
+        </message>
+        <message>
             <source>SGD</source>
             <translation>SGD</translation>
         </message>
@@ -1390,6 +1562,14 @@
         <message>
             <source>Save &amp;As…</source>
             <translation>另存为(&amp;A)…</translation>
+        </message>
+        <message>
+            <source>Save failed</source>
+            <translation>保存失败</translation>
+        </message>
+        <message>
+            <source>Save project as</source>
+            <translation>项目另存为</translation>
         </message>
         <message>
             <source>Save the project</source>
@@ -1438,6 +1618,10 @@
         <message>
             <source>Sensor positions and mounting angles of the vessel</source>
             <translation>船上各传感器的位置和安装角</translation>
+        </message>
+        <message>
+            <source>Sensor positions from the reference point in the body frame: x forward, y starboard, z down (metres). Mounting angles in degrees; leave them blank if not given.</source>
+            <translation>传感器相对参考点在载体坐标系中的位置:x 向前、y 右舷、z 向下(米)。安装角以度为单位;未给出时留空。</translation>
         </message>
         <message>
             <source>Set aside</source>
@@ -1540,6 +1724,10 @@
             <translation>开始 – 结束</translation>
         </message>
         <message>
+            <source>Starting the Dask cluster…</source>
+            <translation>正在启动 Dask 集群…</translation>
+        </message>
+        <message>
             <source>Static alignment time</source>
             <translation>静态对准时间</translation>
         </message>
@@ -1590,6 +1778,14 @@
         <message>
             <source>Target faces</source>
             <translation>标靶面</translation>
+        </message>
+        <message>
+            <source>The application keeps running; save your work. The details are in the log.</source>
+            <translation>程序仍在运行;请保存您的工作。详情见日志。</translation>
+        </message>
+        <message>
+            <source>The campaign file has a problem: fix it and choose it again.</source>
+            <translation>批处理文件有问题:请修正后重新选择。</translation>
         </message>
         <message>
             <source>The laser and multibeam clouds are drawn here after &lt;b&gt;Segment&lt;/b&gt; or &lt;b&gt;Run all&lt;/b&gt;.</source>
@@ -1680,6 +1876,10 @@
             <translation>不确定度模型</translation>
         </message>
         <message>
+            <source>Unsaved changes</source>
+            <translation>未保存的修改</translation>
+        </message>
+        <message>
             <source>Untitled project</source>
             <translation>未命名项目</translation>
         </message>
@@ -1708,12 +1908,20 @@
             <translation>船舶</translation>
         </message>
         <message>
+            <source>Vessel name</source>
+            <translation>船名</translation>
+        </message>
+        <message>
             <source>Vessel offset sheet as stored in the project (body frame, relative to the reference point).</source>
             <translation>项目中保存的船体偏移量表(载体坐标系,相对于参考点)。</translation>
         </message>
         <message>
             <source>Vessel offsets</source>
             <translation>船体偏移量</translation>
+        </message>
+        <message>
+            <source>Vessel offsets updated</source>
+            <translation>船体偏移量已更新</translation>
         </message>
         <message>
             <source>View All</source>
@@ -1730,6 +1938,10 @@
         <message>
             <source>Wahba (closed form)</source>
             <translation>Wahba(闭合形式)</translation>
+        </message>
+        <message>
+            <source>Wait for the running task to finish, or press Cancel in the status bar, then try again.</source>
+            <translation>请等待正在运行的任务结束,或按状态栏中的“取消”,然后再试。</translation>
         </message>
         <message>
             <source>Warn above |correlation|</source>
@@ -1756,12 +1968,20 @@
             <translation>权</translation>
         </message>
         <message>
+            <source>Welcome</source>
+            <translation>欢迎</translation>
+        </message>
+        <message>
             <source>What ran</source>
             <translation>运行内容</translation>
         </message>
         <message>
             <source>Write the PDF report of the project</source>
             <translation>生成项目的 PDF 报告</translation>
+        </message>
+        <message>
+            <source>Write the final boresight angles and lever arm into the vessel sheet's multibeam entry? The previous entry is kept in the project history.</source>
+            <translation>将最终安装偏角和杆臂写入船舶参数表的多波束条目?原条目保留在项目历史中。</translation>
         </message>
         <message>
             <source>X axis</source>
@@ -1888,6 +2108,10 @@
             <translation>建造容差</translation>
         </message>
         <message>
+            <source>choose a campaign file (.toml)</source>
+            <translation>选择批处理文件(.toml)</translation>
+        </message>
+        <message>
             <source>closed form</source>
             <translation>闭合形式</translation>
         </message>
@@ -1948,12 +2172,20 @@
             <translation>天向误差</translation>
         </message>
         <message>
+            <source>e.g. MV Example</source>
+            <translation>例如 MV Example</translation>
+        </message>
+        <message>
             <source>east</source>
             <translation>东</translation>
         </message>
         <message>
             <source>east error</source>
             <translation>东向误差</translation>
+        </message>
+        <message>
+            <source>empty: local cluster (or DASK_SCHEDULER_ADDRESS); e.g. tcp://host:8786</source>
+            <translation>空:本地集群(或 DASK_SCHEDULER_ADDRESS);例如 tcp://host:8786</translation>
         </message>
         <message>
             <source>end (time of week) of the statistics interval</source>
@@ -1986,6 +2218,10 @@
         <message>
             <source>file</source>
             <translation>文件</translation>
+        </message>
+        <message>
+            <source>file to import</source>
+            <translation>要导入的文件</translation>
         </message>
         <message>
             <source>final</source>
@@ -2308,6 +2544,10 @@
             <translation>滤波速度超过此值时不做零速修正(匀速运动中平稳的 IMU 并非静止)</translation>
         </message>
         <message>
+            <source>no correlation peak for this line</source>
+            <translation>此测线没有相关峰</translation>
+        </message>
+        <message>
             <source>none</source>
             <translation>无</translation>
         </message>
@@ -2464,6 +2704,14 @@
             <translation>各天线的位置协方差:file = .pos 文件中的标准差列(缺失时用先验 σ),apriori = 上方的先验 σ</translation>
         </message>
         <message>
+            <source>positive down</source>
+            <translation>向下为正</translation>
+        </message>
+        <message>
+            <source>positive up</source>
+            <translation>向上为正</translation>
+        </message>
+        <message>
             <source>pred.</source>
             <translation>预测</translation>
         </message>
@@ -2614,6 +2862,10 @@
         <message>
             <source>static: level at the rest at the start, heading by gyrocompassing (gyro better than 1 °/h), the given heading or the GNSS track once moving (walks, boats at the quay); moving: heading from the GNSS course above the alignment speed; given: the initial attitude given; auto: the configuration's or given attitude, gyrocompassing, moving, else static with the track's heading</source>
             <translation>static:在起始静止段调平,航向由陀螺寻北(陀螺优于 1 °/h)、给定航向或开始运动后的 GNSS 航迹确定(步行、靠码头的船);moving:航向取超过对准速度时的 GNSS 航迹向;given:使用给定的初始姿态;auto:依次采用配置或给定的姿态、陀螺寻北、动态对准,否则用航迹航向的静态对准</translation>
+        </message>
+        <message>
+            <source>statistics interval: drag it or its edges</source>
+            <translation>统计区间:拖动区间或其边缘</translation>
         </message>
         <message>
             <source>survey the as-built below-water blocks (smaller build tolerance)</source>
@@ -2774,6 +3026,10 @@
         <message>
             <source>window of the IMU statistics that detect a standstill</source>
             <translation>检测静止的 IMU 统计窗口</translation>
+        </message>
+        <message>
+            <source>worker processes of the local cluster</source>
+            <translation>本地集群的工作进程数</translation>
         </message>
         <message>
             <source>worst</source>
@@ -2951,8 +3207,20 @@
             <translation>&lt;b&gt;联合平差解&lt;/b&gt;,已收敛。{0}</translation>
         </message>
         <message>
+            <source>&lt;b&gt;Lever arm needed&lt;/b&gt;: {0}</source>
+            <translation>&lt;b&gt;需要杆臂&lt;/b&gt;:{0}</translation>
+        </message>
+        <message>
             <source>&lt;b&gt;No latency&lt;/b&gt;: {0}</source>
             <translation>&lt;b&gt;无时间延迟结果&lt;/b&gt;:{0}</translation>
+        </message>
+        <message>
+            <source>&lt;b&gt;Out of date&lt;/b&gt;: the results shown no longer match the project — {0}</source>
+            <translation>&lt;b&gt;已过期&lt;/b&gt;:显示的结果与项目不再一致 — {0}</translation>
+        </message>
+        <message>
+            <source>&lt;b&gt;Parameter error&lt;/b&gt;: {0}</source>
+            <translation>&lt;b&gt;参数错误&lt;/b&gt;:{0}</translation>
         </message>
         <message>
             <source>&lt;b&gt;Patent method solution&lt;/b&gt;, &lt;b&gt;NOT converged&lt;/b&gt;. {0}</source>
@@ -2961,6 +3229,14 @@
         <message>
             <source>&lt;b&gt;Patent method solution&lt;/b&gt;, converged. {0}</source>
             <translation>&lt;b&gt;专利方法解&lt;/b&gt;,已收敛。{0}</translation>
+        </message>
+        <message>
+            <source>&lt;b&gt;Read-only.&lt;/b&gt; {0}</source>
+            <translation>&lt;b&gt;只读。&lt;/b&gt;{0}</translation>
+        </message>
+        <message>
+            <source>&lt;h3&gt;{0}&lt;/h3&gt;&lt;p style='color:#c00000'&gt;This plugin's panel could not be loaded:&lt;/p&gt;&lt;pre&gt;{1}&lt;/pre&gt;&lt;p&gt;Details are in the log.&lt;/p&gt;</source>
+            <translation>&lt;h3&gt;{0}&lt;/h3&gt;&lt;p style='color:#c00000'&gt;无法加载此插件的面板:&lt;/p&gt;&lt;pre&gt;{1}&lt;/pre&gt;&lt;p&gt;详情见日志。&lt;/p&gt;</translation>
         </message>
         <message>
             <source>&lt;h3&gt;{0}&lt;/h3&gt;&lt;p&gt;{1}&lt;/p&gt;&lt;p&gt;&lt;i&gt;Loading…&lt;/i&gt;&lt;/p&gt;</source>
@@ -3007,8 +3283,20 @@
             <translation>HydroSync 报告 — {0}</translation>
         </message>
         <message>
+            <source>Imported {0}</source>
+            <translation>已导入 {0}</translation>
+        </message>
+        <message>
+            <source>Importing {0}</source>
+            <translation>正在导入 {0}</translation>
+        </message>
+        <message>
             <source>Least-squares precision versus baseline length for this layout scaled, with σ = {0} mm horizontal and {1} mm vertical per antenna (cf. Liu et al., fig. 15).</source>
             <translation>按本布设缩放时最小二乘精度随基线长度的变化,每个天线水平 σ = {0} mm、垂直 {1} mm(参见 Liu 等,图 15)。</translation>
+        </message>
+        <message>
+            <source>Lever arm gnss − motion (body FRD): x = {0}</source>
+            <translation>杆臂 gnss − 姿态传感器(载体坐标系 FRD):x = {0}</translation>
         </message>
         <message>
             <source>Line {0}, the {1} used line (R&lt;sub&gt;max&lt;/sub&gt; = {2}): σ&lt;sub&gt;0&lt;/sub&gt; {3} m before, {4} m after synchronisation over the whole line; a {5}-s excerpt from its middle (as fig. 4 of Qi et al. 2010).</source>
@@ -3039,6 +3327,10 @@
             <translation>筛选后矢量上的目标函数 J(ψ)(归一化)及梯度下降迭代过程(学习率 {0},ε {1}°;参见 Li 等,图 11)。</translation>
         </message>
         <message>
+            <source>Opened {0}</source>
+            <translation>已打开 {0}</translation>
+        </message>
+        <message>
             <source>Opening {0}</source>
             <translation>正在打开 {0}</translation>
         </message>
@@ -3051,8 +3343,24 @@
             <translation>专利迭代,每轮的最后一次迭代:累计角度及剩余的最大法向夹角。杆臂重新估计后开始新的一轮;全部 {0} 次迭代列于附录。</translation>
         </message>
         <message>
+            <source>Report written to {0}</source>
+            <translation>报告已写入 {0}</translation>
+        </message>
+        <message>
+            <source>Saved {0}</source>
+            <translation>已保存 {0}</translation>
+        </message>
+        <message>
+            <source>Saving {0}</source>
+            <translation>正在保存 {0}</translation>
+        </message>
+        <message>
             <source>Table {0}.</source>
             <translation>表 {0}.</translation>
+        </message>
+        <message>
+            <source>The campaign could not run: {0}</source>
+            <translation>批处理无法运行:{0}</translation>
         </message>
         <message>
             <source>The data-sources appendix could not be produced: {0}.</source>

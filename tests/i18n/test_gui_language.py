@@ -163,3 +163,25 @@ def test_catalogue_compiles_or_falls_back(qapp, tmp_path, monkeypatch):
         assert i18n.tr("page 2 of 9") == "第 2 页,共 9 页"
     finally:
         i18n.set_language("en")
+
+
+def test_a_dialog_opened_in_chinese_is_chinese(qtbot, window, settings, demo_project_of):
+    """Dialogs are relabelled when they are shown (the vessel sheet editor)."""
+    from PySide6.QtCore import QTimer
+
+    from hydrosync_gui.vessel_dialog import VesselDialog
+
+    spec = next(s for s in plugin_specs() if s.id == "latency")
+    i18n.set_language("zh_CN", settings)
+    dialog = VesselDialog(demo_project_of(spec), "", window)
+    seen = {}
+
+    def look():
+        seen["texts"] = _texts(dialog)
+        dialog.reject()
+
+    QTimer.singleShot(200, look)
+    dialog.exec()
+    assert any(t.startswith("添加传感器") for t in seen["texts"])
+    left = [t for t in seen["texts"] if _english(t)]
+    assert not left, f"still English: {left}"

@@ -130,8 +130,10 @@ def write_day(folder: Path, hours: int) -> dict[str, Path]:
 
 def measured(args: list[str]) -> tuple[float, float, str]:
     """Wall time and peak memory of one command in a child python that reports its own
-    ``ru_maxrss`` (RUSAGE_CHILDREN keeps the largest child so far, so it cannot be used)."""
-    code = ("import resource, runpy, sys, time\n"
+    peak resident memory, ``VmHWM`` of ``/proc/self/status``. Not ``ru_maxrss``: it keeps
+    the peak of the process before ``exec``, i.e. of this benchmark when it forked (the
+    simulated day), nor RUSAGE_CHILDREN, which keeps the largest child so far."""
+    code = ("import os, runpy, sys, time\n"
             "sys.argv = sys.argv[1:]\n"
             "t = time.perf_counter()\n"
             "try:\n"
@@ -139,13 +141,17 @@ def measured(args: list[str]) -> tuple[float, float, str]:
             "except SystemExit as e:\n"
             "    if e.code: raise\n"
             "finally:\n"
-            "    print('@@', time.perf_counter() - t, "
-            "resource.getrusage(resource.RUSAGE_SELF).ru_maxrss, file=sys.stderr)\n")
+            "    hwm = [ln for ln in open('/proc/self/status') if ln.startswith('VmHWM')]\n"
+            "    cpu = sum(os.times()[:2])\n"
+            "    print('@@', time.perf_counter() - t, hwm[0].split()[1], cpu, file=sys.stderr)\n")
     proc = subprocess.run([sys.executable, "-c", code, *args], capture_output=True, text=True,
                           env={**os.environ, "HYDROSYNC_PROGRESS": "off"})
     if proc.returncode:
         raise RuntimeError(f"{' '.join(args)} failed: {proc.stderr[-2000:]}")
     mark = [ln for ln in proc.stderr.splitlines() if ln.startswith("@@")][-1].split()
+    print(f"    [{' '.join(a if len(a) < 40 else '…' + a[-30:] for a in args[1:])}: "
+          f"wall {float(mark[1]):.1f} s, CPU {float(mark[3]):.1f} s, "
+          f"peak {float(mark[2]) / 1024:.0f} MiB]", flush=True)
     return float(mark[1]), float(mark[2]) / 1024.0, proc.stdout
 
 
@@ -155,12 +161,15 @@ def pynmeagps_hour(path: Path, max_lines: int) -> tuple[float, int]:
 
     n = 0
     start = time.perf_counter()
+    cpu = time.process_time()
     with open(path) as handle:
         for line in handle:
             NMEAReader.parse(line[line.index("$"):])
             n += 1
             if n >= max_lines:
                 break
+    print(f"    [pynmeagps: wall {time.perf_counter() - start:.1f} s, "
+          f"CPU {time.process_time() - cpu:.1f} s for {n} sentences]", flush=True)
     return time.perf_counter() - start, n
 
 
@@ -171,11 +180,48 @@ def import_day(files: dict, project: Path, hourly: bool) -> tuple[float, float, 
                      logs, "--heave-positive", "up", "--lines", str(files["lines"])])
 
 
+GUI_CODE = """
+import os, sys, time
+os.environ.setdefault("QT_QPA_PLATFORM", "offscreen")
+from PySide6.QtWidgets import QApplication
+from hydrosync_core.project import Project
+from plugins.latency.panel import LatencyPanel
+app = QApplication([])
+panel = LatencyPanel()
+panel.resize(1300, 850)
+panel.show()
+app.processEvents()
+t0 = time.perf_counter()
+project = Project.open(sys.argv[1], readonly=True)
+t_open = time.perf_counter() - t0
+t0 = time.perf_counter()
+panel.set_project(project)
+app.processEvents()
+t_bind = time.perf_counter() - t0
+title = panel.series_plot.plotItem.titleLabel
+t1 = time.perf_counter()
+while not title.text.startswith("line ") and time.perf_counter() - t1 < 300:
+    app.processEvents()
+    time.sleep(0.002)
+print(f"open {t_open:.2f} s, panel bound {t_bind:.2f} s, first line's series plotted "
+      f"{time.perf_counter() - t1:.2f} s later")
+"""
+
+
+def _gui_script(folder: Path) -> Path:
+    """The Latency panel opening the imported day: open, bind, first series plot."""
+    path = folder / "gui.py"
+    path.write_text(GUI_CODE)
+    return path
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--dir", type=Path, default=Path(tempfile.gettempdir()) / "hs-stream")
     parser.add_argument("--hours", type=int, nargs="+", default=[1, 6, 24])
     parser.add_argument("--no-latency", action="store_true")
+    parser.add_argument("--no-pynmeagps", action="store_true",
+                        help="skip the reference (use the figure measured before)")
     args = parser.parse_args()
     rows = []
     for hours in args.hours:
@@ -183,7 +229,7 @@ def main() -> None:
         truth = json.loads(files["truth"].read_text())
         size_mb = files["day"].stat().st_size / 1e6
         project = args.dir / f"P{hours}h.h5"
-        # warm the page cache and the numba cache, as a second import of the day would be
+        # warm the page cache, as a second import of the day would find it
         subprocess.run(["cat", str(files["day"])], stdout=subprocess.DEVNULL, check=True)
         wall, peak, out = import_day(files, project, hourly=False)
         counts = out.split("\n")
@@ -197,11 +243,12 @@ def main() -> None:
             rows.append((f"{hours} h, {hours} hourly files", size_mb, wall, peak,
                          project.stat().st_size / 1e6, out.split("\n")[0][:90]))
             print(rows[-1], flush=True)
-            n = 360_000 + 36_000 + 3600
-            t_ref, n_ref = pynmeagps_hour(files["day"], n)
-            print(f"pynmeagps: {n_ref} sentences (one hour) in {t_ref:.1f} s -> "
-                  f"{t_ref * hours:.0f} s for {hours} h; import {wall:.1f} s = "
-                  f"{t_ref * hours / wall:.1f}x faster")
+            if not args.no_pynmeagps:
+                n = 360_000 + 36_000 + 3600
+                t_ref, n_ref = pynmeagps_hour(files["day"], n)
+                print(f"pynmeagps: {n_ref} sentences (one hour) in {t_ref:.1f} s -> "
+                      f"{t_ref * hours:.0f} s for {hours} h; import {wall:.1f} s = "
+                      f"{t_ref * hours / wall:.1f}x faster")
             code = ("import sys, time; from hydrosync_core.project import Project\n"
                     "t = time.perf_counter(); p = Project.open(sys.argv[1], readonly=True)\n"
                     "a = p.get_table('raw/attitude'); g = p.get_table('raw/gnss')\n"
@@ -211,9 +258,15 @@ def main() -> None:
             wall_r, peak_r, out = measured([str(script), str(project)])
             print(f"read back: {out.strip()} ({wall_r:.1f} s, {peak_r:.0f} MiB)")
             if not args.no_latency:
+                lever = [str(v) for v in truth["lever_arm_m"]]
+                subprocess.run([HYDROSYNC, "vessel", str(project), "--set", "gnss", *lever,
+                                "--set", "motion", "0", "0", "0"], check=True,
+                               stdout=subprocess.DEVNULL)
                 wall_l, peak_l, out = measured([HYDROSYNC, "run", "latency", str(project)])
                 print(f"latency run: {wall_l:.1f} s, {peak_l:.0f} MiB; true "
                       f"{truth['latency_s']} s\n{out}")
+                wall_g, peak_g, out = measured([str(_gui_script(args.dir)), str(project)])
+                print(f"GUI (offscreen): {out.strip()}; peak {peak_g:.0f} MiB")
     print(f"{'case':28s} {'log MB':>7s} {'s':>7s} {'peak MiB':>9s} {'project MB':>10s}")
     for name, size, wall, peak, psize, _ in rows:
         print(f"{name:28s} {size:7.0f} {wall:7.1f} {peak:9.0f} {psize:10.0f}")

@@ -52,9 +52,10 @@ def plot_widget(ylabel: str, xlabel: str, equal: bool = False) -> pg.PlotWidget:
 class AnalysisPanel(PluginPanel):
     """Form, Run and summary on the left; tabs of views on the right (see module doc)."""
 
-    def __init__(self, spec, schema: type[Params], parent: QWidget | None = None) -> None:
+    def __init__(self, spec, schema: type[Params], parent: QWidget | None = None,
+                 choice_labels: dict[str, dict[str, str]] | None = None) -> None:
         super().__init__(spec, parent)
-        self.form = ParamForm(schema)
+        self.form = ParamForm(schema, choice_labels=choice_labels)
         self.run_button = QPushButton("Run")
         self.run_button.clicked.connect(self._on_run)
         self.summary = QLabel()

@@ -25,6 +25,21 @@ from PySide6.QtWidgets import (
 from hydrosync_core.plugins.spec import DataKind
 from hydrosync_gui.plugin_host import PluginHost
 
+FILE_FILTER = (
+    "Data files (*.csv *.txt *.json *.ply *.las *.laz *.pos *.log *.nmea *.raw *.Raw *.RAW "
+    "*.gga *.dat *.nav);;NMEA logs (*.log *.nmea *.txt *.raw *.Raw *.RAW *.gga *.dat *.nav);;"
+    "RTKLIB solutions (*.pos);;CSV tables (*.csv *.txt);;Point clouds (*.ply *.las *.laz);;"
+    "All files (*)"
+)
+"""Every extension a reader knows (the logs' ones as loggers write them), then by kind."""
+SEPARATOR = "; "
+"""Between the files of the File field (several logs of one kind: one table)."""
+
+
+def _takes_geoid(kind) -> bool:
+    """Whether the kind's reader takes ``empty_geoid`` (a GGA log)."""
+    return "empty_geoid" in getattr(kind, "options", ())
+
 
 def _takes_heave(kind) -> bool:
     """Whether the kind's reader takes ``heave_positive`` ("up" / "down")."""
@@ -60,8 +75,17 @@ class ImportDialog(QDialog):
         self.heave_note.setWordWrap(True)
         self.heave_note.setObjectName("heave_note")
         self.heave_label = QLabel("Heave:")
+        # The GGA warning about empty geoid separations names this choice.
+        self.geoid_box = QComboBox()
+        self.geoid_box.addItem("keep, separation taken as 0 (heights above the geoid)", "zero")
+        self.geoid_box.addItem("skip those epochs", "skip")
+        self.geoid_box.setToolTip("GGA sentences whose geoid separation field is empty: keep "
+                                  "them with N = 0 (their heights are then above the geoid, "
+                                  "not ellipsoidal) or leave them out.")
+        self.geoid_label = QLabel("Empty geoid:")
         self.path_edit = QLineEdit()
-        self.path_edit.setPlaceholderText("file to import")
+        self.path_edit.setPlaceholderText("file(s) to import; several logs of one kind "
+                                          "(a day in hourly files) become one table")
         browse = QPushButton("Browse…")
         browse.clicked.connect(self._on_browse)
         row = QHBoxLayout()
@@ -79,6 +103,7 @@ class ImportDialog(QDialog):
         form.addRow("Goes to:", self.target)
         form.addRow("File:", row)
         form.addRow(self.heave_label, self.heave_box)
+        form.addRow(self.geoid_label, self.geoid_box)
         form.addRow("", self.heave_note)
         layout = QVBoxLayout(self)
         layout.addLayout(form)
@@ -88,13 +113,20 @@ class ImportDialog(QDialog):
         self._on_kind()
         self.resize(560, self.sizeHint().height())
 
-    def choice(self) -> tuple[str, str, dict]:
-        """The chosen ``(kind, path, options)``; options go to the kind's reader."""
+    def paths(self) -> list[str]:
+        """The files of the File field (``; ``-separated when several)."""
+        return [p.strip() for p in self.path_edit.text().split(SEPARATOR.strip()) if p.strip()]
+
+    def choice(self) -> tuple[str, str | list[str], dict]:
+        """The chosen ``(kind, path or paths, options)``; options go to the kind's reader."""
         kind = str(self.kind_box.currentData())
         options = {}
         if _takes_heave(self._kinds.get(kind)) and self.heave_box.currentData() is not None:
             options["heave_positive"] = self.heave_box.currentData()
-        return kind, self.path_edit.text().strip(), options
+        if _takes_geoid(self._kinds.get(kind)):
+            options["empty_geoid"] = self.geoid_box.currentData()
+        paths = self.paths()
+        return kind, paths[0] if len(paths) == 1 else paths, options
 
     @classmethod
     def ask(
@@ -114,7 +146,10 @@ class ImportDialog(QDialog):
         heave = _takes_heave(kind)
         for widget in (self.heave_box, self.heave_label, self.heave_note):
             widget.setVisible(heave)
-        path = self.path_edit.text().strip()
+        for widget in (self.geoid_box, self.geoid_label):
+            widget.setVisible(_takes_geoid(kind))
+        paths = self.paths()
+        path = paths[0] if paths else ""
         if heave and path != self._sniffed:
             self._sniffed = path
             self._preselect_heave(path, kind)
@@ -147,13 +182,11 @@ class ImportDialog(QDialog):
 
     @Slot()
     def _on_browse(self) -> None:
-        path, _ = QFileDialog.getOpenFileName(
-            self, "Import file", self.path_edit.text() or self.start_dir,
-            "Data files (*.csv *.txt *.json *.ply *.las *.laz *.nmea *.pos);;All files (*)",
-        )
-        if path:
-            self.path_edit.setText(path)
-            self.start_dir = str(Path(path).parent)
+        start = self.paths()[0] if self.paths() else self.start_dir
+        paths, _ = QFileDialog.getOpenFileNames(self, "Import files", start, FILE_FILTER)
+        if paths:
+            self.path_edit.setText(SEPARATOR.join(paths))
+            self.start_dir = str(Path(paths[0]).parent)
 
 
 class PluginsDialog(QDialog):

@@ -47,11 +47,26 @@ def open_for_gui(path: str) -> Project:
         return project
 
 
-def _import_into_scratch(kind: str, path: str, options: dict):
-    """Read *path* into a scratch project (worker thread): the real one stays untouched."""
+def _import_into_scratch(kind: str, path: str | list[str], options: dict, progress=None,
+                         cancel=None):
+    """Read *path* (one file, or several of one kind) into a scratch project (worker
+    thread): the real one stays untouched. Device logs report progress and stop on
+    *cancel*."""
     scratch = Project.new(name="import")
     accepted = {k: v for k, v in options.items() if k in kinds()[kind].options}
-    return scratch, import_file(scratch, kind, path, **accepted)
+    return scratch, import_file(scratch, kind, path, progress=progress, cancel=cancel,
+                                **accepted)
+
+
+def _move_into(scratch: Project, project: Project, target: str) -> None:
+    """Put what the scratch project read at *target* into *project*: a streamed table as
+    it is (its columns stay in their file), anything else copied."""
+    from hydrosync_core.project.table_files import adopt_table, is_file_table
+
+    if is_file_table(scratch, target):
+        adopt_table(scratch, project, target)
+    else:
+        copy_subtree(scratch, project, target)
 
 
 class FileActions:
@@ -199,8 +214,10 @@ class FileActions:
         if choice is not None:
             self.import_data(*choice)
 
-    def import_data(self, kind: str, path: str, options: dict | None = None) -> None:
-        """Import *path* as *kind* (a key of ``KINDS``) in a worker.
+    def import_data(self, kind: str, path: str | list[str], options: dict | None = None
+                    ) -> None:
+        """Import *path* (a file, or several of one kind) as *kind* (a key of ``KINDS``) in
+        a worker, with progress and Cancel.
 
         *options*: ``{"heave_positive": "up" | "down"}`` for a motion log.
 
@@ -213,19 +230,22 @@ class FileActions:
 
         def imported(result) -> None:
             scratch, message = result
-            copy_subtree(scratch, project, kinds()[kind].target)
+            _move_into(scratch, project, kinds()[kind].target)
             scratch.close()
-            self.remember_dir(path)
+            self.remember_dir(path if isinstance(path, str) else path[0])
             self.browser.refresh()
             self.host.refresh()
             self.update_title()
             log.info("imported %s", message)
             self.statusBar().showMessage(f"Imported {message}", 8000)
 
-        self.run_shell_task(f"Importing {Path(path).name}",
-                            lambda p, c: _import_into_scratch(kind, path, dict(options or {})),
+        name = Path(path).name if isinstance(path, str) else f"{len(path)} files"
+        self.run_shell_task(f"Importing {name}",
+                            lambda p, c: _import_into_scratch(kind, path, dict(options or {}),
+                                                              p, c),
                             imported,
-                            lambda msg: self.show_error("Import failed", msg))
+                            lambda msg: self.show_error("Import failed", msg),
+                            cancellable=True)
 
     # --------------------------------------------------------------- report
     def _on_export_report(self) -> None:

@@ -28,17 +28,16 @@ class _Bridge(QObject):
     sig_record = Signal(str, int)  # formatted text, level number
 
 
-LIBRARY_CHATTER = ("OpenGL", "numba", "matplotlib", "PIL", "fontTools", "h5py", "asyncio",
-                   "distributed", "bokeh", "tornado")
-"""Loggers whose INFO lines mean nothing to a surveyor ("OpenGL_accelerate module loaded"
-at start-up): only their warnings and errors reach the console."""
+#: Loggers whose INFO lines are the application's own; other libraries' (PyOpenGL's
+#: "OpenGL_accelerate module loaded" at start-up) show from WARNING on, unless the
+#: console shows debug lines (``-v``).
+OWN_LOGGERS = ("hydrosync", "plugins", "root")
 
 
-def _not_chatter(record: logging.LogRecord) -> bool:
-    if record.levelno >= logging.WARNING:
+def _own_or_important(record: logging.LogRecord, level: int) -> bool:
+    if record.levelno >= logging.WARNING or level < logging.INFO:
         return True
-    root = record.name.partition(".")[0]
-    return root not in LIBRARY_CHATTER
+    return record.name.split(".")[0].startswith(OWN_LOGGERS)
 
 
 class QtLogHandler(logging.Handler):
@@ -46,10 +45,10 @@ class QtLogHandler(logging.Handler):
 
     def __init__(self, level: int = logging.INFO) -> None:
         super().__init__(level)
+        self.addFilter(lambda record: _own_or_important(record, self.level))
         self.bridge = _Bridge()
         self.setFormatter(logging.Formatter("%(asctime)s %(levelname)s %(name)s: %(message)s",
                                             "%H:%M:%S"))
-        self.addFilter(_not_chatter)
 
     def emit(self, record: logging.LogRecord) -> None:
         try:

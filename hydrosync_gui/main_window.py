@@ -46,7 +46,14 @@ from hydrosync_gui.recent_files import RecentFiles
 from hydrosync_gui.resources import icon
 from hydrosync_gui.task_status import TaskStatus
 from hydrosync_gui.vessel_dialog import VesselDialog
-from hydrosync_gui.window_geometry import DOCK_WIDTH_WIDE, PREFERRED, dock_width, fit_window
+from hydrosync_gui.window_geometry import (
+    DOCK_WIDTH_WIDE,
+    LOG_HEIGHT_TALL,
+    PREFERRED,
+    dock_width,
+    fit_window,
+    log_height,
+)
 from hydrosync_gui.workers import Worker, start
 
 log = logging.getLogger("hydrosync_gui.main_window")
@@ -349,8 +356,9 @@ class MainWindow(QMainWindow, FileActions):
             screen = self.screen()
             available = screen.availableGeometry() if screen is not None else None
             width = dock_width(available) if available is not None else DOCK_WIDTH_WIDE
+            height = log_height(available) if available is not None else LOG_HEIGHT_TALL
             self.resizeDocks([self.browser_dock], [width], Qt.Orientation.Horizontal)
-            self.resizeDocks([self.log_dock], [140], Qt.Orientation.Vertical)
+            self.resizeDocks([self.log_dock], [height], Qt.Orientation.Vertical)
         fit_window(self, restored)
 
     def _save_settings(self) -> None:

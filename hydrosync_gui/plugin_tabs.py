@@ -75,6 +75,7 @@ class PluginTabs(QTabWidget):
             return
         layout = label.parentWidget().layout()
         layout.removeWidget(label)
+        label.hide()  # until it is deleted it would lie over the panel at its old size
         label.deleteLater()
         layout.addWidget(panel.stale_banner)
         # A panel taller or wider than the screen scrolls instead of pushing the log,

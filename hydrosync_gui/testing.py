@@ -79,7 +79,15 @@ def run_demo_command(out: Path) -> subprocess.CompletedProcess:
 @pytest.fixture(scope="session")
 def hydrosync_demo(tmp_path_factory) -> Path:
     """Folder of one ``hydrosync demo`` run: ``demo.h5``, ``demo-report.pdf``, ``stdout.txt``
-    and ``returncode.txt``. Shared: never write into it."""
+    and ``returncode.txt``. Shared: never write into it.
+
+    ``HYDROSYNC_DEMO_DIR`` names the folder of an earlier run of the same code to reuse
+    (while working on the GUI: the demo takes minutes); it is ignored unless it holds
+    ``returncode.txt``.
+    """
+    reuse = os.environ.get("HYDROSYNC_DEMO_DIR")
+    if reuse and (Path(reuse) / "returncode.txt").exists():
+        return Path(reuse)
     shared = _shared_dir(tmp_path_factory)
     out = shared / "hydrosync-demo"
     with _exclusive(shared / "hydrosync-demo.lock"):

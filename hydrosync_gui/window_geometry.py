@@ -13,11 +13,17 @@ from PySide6.QtWidgets import QWidget
 
 #: The size the window asks for on a screen with room to spare (pixels).
 PREFERRED = QSize(1280, 800)
-#: Below this available width the project dock starts narrow (pixels).
-NARROW_SCREEN = 1366
+#: Below this available width the project dock starts narrow (pixels): on a 1366 px
+#: laptop a 420 px dock left the panels 920 px, too little for a parameter column and
+#: plots side by side.
+NARROW_SCREEN = 1600
 #: Width of the project dock on a narrow and on a wide screen (pixels).
 DOCK_WIDTH_NARROW = 260
 DOCK_WIDTH_WIDE = 420
+#: Below this available height the log dock starts short (pixels).
+SHORT_SCREEN = 900
+LOG_HEIGHT_SHORT = 90
+LOG_HEIGHT_TALL = 140
 #: Room kept for the window manager's title bar and borders (pixels).
 FRAME_ALLOWANCE = QSize(16, 40)
 
@@ -56,6 +62,11 @@ def fit_rect(available: QRect, wanted: QRect | None = None,
     left = min(max(wanted.left(), room.left()), room.right() + 1 - size.width())
     top = min(max(wanted.top(), room.top()), room.bottom() + 1 - size.height())
     return QRect(left, top, size.width(), size.height())
+
+
+def log_height(available: QRect) -> int:
+    """The log dock's starting height: 5 lines on a short screen (768 px), 7 otherwise."""
+    return LOG_HEIGHT_SHORT if available.height() < SHORT_SCREEN else LOG_HEIGHT_TALL
 
 
 def dock_width(available: QRect) -> int:

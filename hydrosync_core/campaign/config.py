@@ -17,7 +17,6 @@ from __future__ import annotations
 import datetime as _dt
 import glob
 import re
-import tomllib
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -121,22 +120,10 @@ class Campaign:
 # ----------------------------------------------------------------------------- reading
 def load_campaign(path: str | Path, specs=None) -> Campaign:
     """Read and check the campaign file *path*; raise :class:`InputError` on any problem."""
+    from hydrosync_core.configfiles import parse_toml, read_config_text
+
     path = Path(path)
-    where = str(path)
-    try:
-        text = path.read_bytes().decode("utf-8")
-    except FileNotFoundError:
-        raise InputError(where, "no such campaign file") from None
-    except IsADirectoryError:
-        raise InputError(where, "is a folder, not a campaign file") from None
-    except (OSError, UnicodeDecodeError) as exc:
-        raise InputError(where, f"cannot be read ({exc})") from None
-    try:
-        doc = tomllib.loads(text)
-    except tomllib.TOMLDecodeError as exc:
-        match = re.search(r"\(at line (\d+)", str(exc))
-        raise InputError(where, f"not valid TOML: {str(exc).split(' (at line')[0]}",
-                         line=int(match.group(1)) if match else None) from None
+    doc = parse_toml(read_config_text(path, "campaign file"), str(path))
     return parse_campaign(doc, path, specs)
 
 
@@ -369,4 +356,8 @@ def parse_campaign(doc: dict, path: Path, specs=None) -> Campaign:
             raise InputError(where, "must be true or false", field=f"outputs.{key}")
         flags[key] = value
     outputs = Outputs(str(_resolve(base, out_dir)), **flags)
+    if (flags.get("report", True) or flags.get("summary", True)) and \
+            Path(outputs.dir).exists() and not Path(outputs.dir).is_dir():
+        raise InputError(where, f"{outputs.dir} exists and is not a folder",
+                         field="outputs.dir")
     return Campaign(where, name, tuple(final), analyses, outputs, tuple(notes))

@@ -37,6 +37,7 @@ from hydrosync_core.campaign.steps import (
     DONE,
     FAILED,
     OK_STATES,
+    UNDETERMINED,
     UP_TO_DATE,
     analysis_step,
     import_step,
@@ -45,6 +46,12 @@ from hydrosync_core.campaign.steps import (
 from hydrosync_core.errors import Cancelled, InputError
 
 log = logging.getLogger(__name__)
+
+HEARTBEAT_S = 5.0
+"""The progress line is repeated at least this often (s), also when nothing changes."""
+
+STALL_S = 120.0
+"""Default stall timeout (s): no step finished and none ran for this long."""
 
 
 @dataclass
@@ -59,6 +66,8 @@ class Progress:
     eta_s: float | None = None
     last: dict | None = None
     """Outcome of the step that finished last."""
+    workers: int | None = None
+    """Workers alive at the last look (None: not asked)."""
 
     @property
     def finished(self) -> int:
@@ -70,6 +79,8 @@ class Progress:
                 f"running {self.running}; elapsed {_duration(self.elapsed_s)}, {eta}")
         if self.last is not None:
             line += f"; last: {self.last['project']} {self.last['step']} {self.last['status']}"
+        if self.workers == 0:
+            line += "; no worker alive (waiting for one)"
         return line
 
 
@@ -150,15 +161,38 @@ def open_client(scheduler: str | None = None, workers: int | None = None,
 
 
 # --------------------------------------------------------------------------- running
-def _submit(client, campaign: Campaign) -> list[tuple[object, dict]]:
+def stop_flag(token: str) -> str:
+    """Name of the Dask ``Event`` that tells the steps of campaign *token* not to start."""
+    return f"hydrosync-stop-{token}"
+
+
+def _guarded(fn, token: str, step: str, entry, *args):
+    """Run step *fn* on a worker unless the campaign was interrupted before it started
+    (then a ``skipped`` outcome: exact, where cancelling a queued Dask task may lose the
+    race with the worker starting it)."""
+    from hydrosync_core.campaign.steps import SKIPPED, _outcome
+
+    try:
+        import distributed
+
+        stopped = distributed.Event(stop_flag(token)).is_set()
+    except Exception:  # no scheduler to ask: run, as before
+        stopped = False
+    if stopped:
+        out = _outcome(entry, step)
+        out.update(status=SKIPPED, message="not started: the campaign was interrupted")
+        return out
+    return fn(entry, *args)
+
+
+def _submit(client, campaign: Campaign, token: str) -> list[tuple[object, dict]]:
     """Submit every step; return ``(future, placeholder outcome)`` in campaign order."""
-    token = uuid.uuid4().hex[:8]
     steps = []
     out_dir = campaign.outputs.dir
     for entry in campaign.projects:
         def add(fn, step, *args, entry=entry):
-            future = client.submit(fn, entry, *args, key=f"{step}-{entry.label}-{token}",
-                                   pure=False)
+            future = client.submit(_guarded, fn, token, step, entry, *args,
+                                   key=f"{step}-{entry.label}-{token}", pure=False)
             steps.append((future, {"project": entry.label, "path": entry.path,
                                    "date": entry.date, "step": step}))
             return future
@@ -174,6 +208,10 @@ def _submit(client, campaign: Campaign) -> list[tuple[object, dict]]:
 
 
 def _dask_failure(placeholder: dict, future) -> dict:
+    if future.status == "cancelled":
+        return dict(placeholder, status=FAILED, message="cancelled before it started "
+                    "(interrupted): not run", warnings=[], seconds=0.0, worker="",
+                    run_utc=None, rows=[], numbers={}, data_date=None)
     try:
         exc = future.exception(timeout=5)
         text = f"{type(exc).__name__}: {exc}"
@@ -201,7 +239,8 @@ def run_campaign(campaign: Campaign, *, scheduler: str | None = None,
                  workers: int | None = None, client=None,
                  listener: Listener | None = None, cancel=None,
                  poll_s: float = 0.25, write_summary: bool = True,
-                 dashboard: bool = True) -> CampaignResult:
+                 dashboard: bool = True, heartbeat_s: float = HEARTBEAT_S,
+                 stall_s: float = STALL_S) -> CampaignResult:
     """Run *campaign* on Dask and return every step's outcome.
 
     Parameters
@@ -219,6 +258,16 @@ def run_campaign(campaign: Campaign, *, scheduler: str | None = None,
         Set it to stop: pending steps are cancelled; steps already saved stay saved.
     write_summary : bool
         Write ``summary.csv`` / ``summary.html`` when the campaign asks for them.
+    heartbeat_s : float
+        The listener hears at least this often (s), even when nothing changes (no worker
+        alive: formats.md promises a progress line every 5 s).
+    stall_s : float
+        Stop with :class:`CampaignStalled` when for this long (s) no step finished and
+        none ran (every worker dead, a scheduler that schedules nothing).
+
+    A Ctrl-C (``KeyboardInterrupt``) cancels the steps not started, waits for those
+    running (their saves land, or not, before the message is written) and tells the
+    listener of each, then raises again.
     """
     listener = listener or Listener()
     result = CampaignResult(campaign)
@@ -240,43 +289,21 @@ def run_campaign(campaign: Campaign, *, scheduler: str | None = None,
             result.dashboard = None
         result.workers = len(client.scheduler_info().get("workers", {}))
         threads = sum(client.nthreads().values())
-        steps = _submit(client, campaign)
-        listener.started(result, len(steps))
-        outcomes: list[dict | None] = [None] * len(steps)
-        keys = {future.key for future, _ in steps}
-        progress = Progress(total=len(steps))
-        last_running = -1
-        while True:
-            if cancel is not None and cancel.is_set():
-                raise Cancelled("campaign cancelled")
-            changed = False
-            for i, (future, placeholder) in enumerate(steps):
-                if outcomes[i] is not None or future.status == "pending":
-                    continue
-                if future.status == "finished":
-                    outcomes[i] = future.result()
-                else:  # error, cancelled, lost
-                    outcomes[i] = _dask_failure(placeholder, future)
-                keys.discard(future.key)
-                progress.last = outcomes[i]
-                if outcomes[i]["status"] in OK_STATES:
-                    progress.done += 1
-                else:
-                    progress.failed += 1
-                changed = True
-            progress.elapsed_s = time.perf_counter() - t0
-            if progress.finished == progress.total:
-                progress.running, progress.eta_s = 0, 0.0
-                listener.update(progress)
-                break
-            progress.running = _running(client, keys, threads)
-            if progress.finished:
-                progress.eta_s = (progress.elapsed_s / progress.finished
-                                  * (progress.total - progress.finished))
-            if changed or progress.running != last_running:
-                last_running = progress.running
-                listener.update(progress)
-            time.sleep(poll_s)
+        outcomes: list[dict | None] = []
+        progress, keys = Progress(total=0), set()
+        token = uuid.uuid4().hex[:8]
+        try:
+            steps = _submit(client, campaign, token)
+            outcomes[:] = [None] * len(steps)
+            progress = Progress(total=len(steps))
+            keys = {future.key for future, _ in steps}
+            listener.started(result, len(steps))
+            _watch(client, steps, outcomes, progress, keys, listener, threads, cancel,
+                   (poll_s, heartbeat_s, stall_s), t0)
+        except KeyboardInterrupt:
+            if steps:
+                _wind_down(client, steps, outcomes, progress, listener, keys, stall_s, token)
+            raise
         result.outcomes = [o for o in outcomes if o is not None]
     finally:
         if steps and any(f.status == "pending" for f, _ in steps):
@@ -294,9 +321,111 @@ def run_campaign(campaign: Campaign, *, scheduler: str | None = None,
     return result
 
 
+class CampaignStalled(InputError):
+    """No step finished or ran for the stall timeout: exit 2 with one line."""
+
+
+def _collect(steps, outcomes: list, progress: Progress, keys: set,
+             listener: Listener) -> bool:
+    """Record the steps that ended since the last look, telling the listener of each
+    (``progress.last``); True if any did."""
+    changed = False
+    for i, (future, placeholder) in enumerate(steps):
+        if outcomes[i] is not None or future.status == "pending":
+            continue
+        if future.status == "finished":
+            outcomes[i] = future.result()
+        else:  # error, cancelled, lost
+            outcomes[i] = _dask_failure(placeholder, future)
+        keys.discard(future.key)
+        progress.last = outcomes[i]
+        if outcomes[i]["status"] in OK_STATES:
+            progress.done += 1
+        else:
+            progress.failed += 1
+        changed = True
+        listener.update(progress)
+    return changed
+
+
+def _alive_workers(client) -> int | None:
+    try:
+        return len(client.scheduler_info().get("workers", {}))
+    except Exception:
+        return None
+
+
+def _watch(client, steps, outcomes: list, progress: Progress, keys: set,
+           listener: Listener, threads: int, cancel, timing: tuple[float, float, float],
+           t0: float) -> None:
+    """Poll the futures until every step ended, filling *outcomes* (submission order).
+
+    *timing* is ``(poll_s, heartbeat_s, stall_s)`` (see :func:`run_campaign`).
+    """
+    poll_s, heartbeat_s, stall_s = timing
+    last_running, last_told = -1, time.monotonic()
+    last_activity = last_told
+    while True:
+        if cancel is not None and cancel.is_set():
+            raise Cancelled("campaign cancelled")
+        changed = _collect(steps, outcomes, progress, keys, listener)
+        now = time.monotonic()
+        progress.elapsed_s = time.perf_counter() - t0
+        if progress.finished == progress.total:
+            progress.running, progress.eta_s = 0, 0.0
+            listener.update(progress)
+            return
+        progress.running = _running(client, keys, threads)
+        if changed or progress.running:
+            last_activity = now
+        if progress.finished:
+            progress.eta_s = (progress.elapsed_s / progress.finished
+                              * (progress.total - progress.finished))
+        beat = now - last_told >= heartbeat_s
+        if changed or progress.running != last_running or beat:
+            if beat or progress.running == 0:
+                progress.workers = _alive_workers(client)
+            last_running, last_told = progress.running, now
+            listener.update(progress)
+        if now - last_activity >= stall_s:
+            raise _stalled(progress, stall_s, outcomes)
+        time.sleep(poll_s)
+
+
+def _stalled(progress: Progress, stall_s: float, outcomes) -> CampaignStalled:
+    saved = sorted({o["project"] for o in outcomes if o is not None and o["status"] in
+                    (DONE, UNDETERMINED)})
+    why = ("no worker is alive" if progress.workers == 0 else
+           f"{progress.workers} worker(s) connected but none took a step")
+    return CampaignStalled(
+        None, f"campaign stalled: no step finished or ran for {stall_s:.0f} s ({why}); "
+        f"{progress.finished} of {progress.total} step(s) ended"
+        + (f", saved: {', '.join(saved)}" if saved else ", nothing saved")
+        + "; running it again redoes only the rest (--stall-timeout S to wait longer)")
+
+
+def _wind_down(client, steps, outcomes, progress: Progress, listener: Listener,
+               keys: set, limit_s: float, token: str) -> None:
+    """After Ctrl-C: tell the steps not yet started to skip (the stop flag) and wait for
+    every step to end — a running one cannot be stopped mid-step, and its save must not
+    land after we said it did not — so each outcome is known before the message. Without
+    a live worker nothing can end: nothing is waited for."""
+    import distributed
+
+    with contextlib.suppress(Exception):
+        distributed.Event(stop_flag(token), client=client).set()
+    unfinished = [f for f, _ in steps if f.status == "pending"]
+    if unfinished and _alive_workers(client):
+        log.warning("interrupted: waiting for %d step(s) to finish or skip (Ctrl-C again to "
+                    "stop at once)", len(unfinished))
+        with contextlib.suppress(distributed.TimeoutError, Exception):
+            distributed.wait(unfinished, timeout=limit_s)
+    _collect(steps, outcomes, progress, keys, listener)
+
+
 def status_counts(result: CampaignResult) -> str:
     """``"12 done, 4 up to date, 1 failed"``."""
-    order = (DONE, UP_TO_DATE, "not applicable", "skipped", FAILED)
+    order = (DONE, UNDETERMINED, UP_TO_DATE, "not applicable", "skipped", FAILED)
     parts = [f"{result.count(s)} {s}" for s in order if result.count(s)]
     return ", ".join(parts) or "nothing to do"
 

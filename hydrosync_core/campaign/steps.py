@@ -34,7 +34,10 @@ from hydrosync_core.campaign.config import AnalysisEntry, ProjectEntry
 
 DONE, UP_TO_DATE, NOT_APPLICABLE, SKIPPED, FAILED = (
     "done", "up to date", "not applicable", "skipped", "failed")
-OK_STATES = (DONE, UP_TO_DATE, NOT_APPLICABLE)
+UNDETERMINED = "done, undetermined"
+"""Run and saved, but the data did not decide: not converged, or parameters left
+undetermined (the ``converged``/``undetermined`` attributes of the result)."""
+OK_STATES = (DONE, UNDETERMINED, UP_TO_DATE, NOT_APPLICABLE)
 #: Numeric result attributes that are bookkeeping, not figures.
 BOOKKEEPING = {"params_schema_version", "schema_version"}
 
@@ -44,6 +47,20 @@ def _outcome(entry: ProjectEntry, step: str) -> dict:
             "status": FAILED, "message": "", "warnings": [], "seconds": 0.0,
             "worker": f"{socket.gethostname()}:{os.getpid()}", "run_utc": None, "rows": [],
             "numbers": {}, "data_date": None}
+
+
+def undetermined_reason(attrs: dict) -> str:
+    """Why a stored result is not determined by its data ("" when it is)."""
+    reasons = []
+    if "converged" in attrs and not bool(attrs["converged"]):
+        reasons.append("did not converge")
+    try:
+        names = json.loads(attrs.get("undetermined") or "{}")
+    except (TypeError, ValueError):
+        names = {}
+    if names:
+        reasons.append("undetermined: " + ", ".join(sorted(names)))
+    return "; ".join(reasons)
 
 
 def _error_text(exc: BaseException) -> str:
@@ -204,6 +221,9 @@ def analysis_step(entry: ProjectEntry, analysis: AnalysisEntry, previous=None) -
                 spec.load_run()(project, params, None, None)
                 project.save()
                 out.update(status=DONE, message="")
+                why = undetermined_reason(project.attrs(f"results/{spec.id}"))
+                if why:
+                    out.update(status=UNDETERMINED, message=why)
             collect_figures(project, spec, out)
         finally:
             project.close()

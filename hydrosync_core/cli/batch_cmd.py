@@ -7,8 +7,10 @@ prints the plan and exits. Otherwise the steps run on a Dask cluster
 one per core), or an existing scheduler given by ``--scheduler`` or
 ``DASK_SCHEDULER_ADDRESS``. Progress goes to stderr; the table of outcomes and the summary
 files to stdout. Exit 0 when every step succeeded (or was up to date), 1 when some failed
-(the others still ran; the summary says which), 130 on Ctrl-C (steps finished before it
-stay saved: re-running the campaign redoes only the rest).
+(the others still ran; the summary says which), 2 when the campaign stalled (no step
+finished or ran for ``--stall-timeout`` seconds), 3 when a step was done but its data did
+not determine the result, 130 on Ctrl-C (steps not started are cancelled, running ones
+waited for; those saved stay saved and are named: re-running redoes only the rest).
 """
 
 from __future__ import annotations
@@ -38,10 +40,12 @@ def _table(result) -> list[str]:
 def cmd_batch(args: argparse.Namespace) -> int:
     from hydrosync_core import interrupts
     from hydrosync_core.campaign import load_campaign
-    from hydrosync_core.campaign.steps import DONE, OK_STATES
+    from hydrosync_core.campaign.steps import DONE, OK_STATES, UNDETERMINED
 
     if args.workers is not None and args.workers < 1:
         raise InputError("--workers", "must be at least 1")
+    if not args.stall_timeout > 0:
+        raise InputError("--stall-timeout", "must be a positive number of seconds")
     campaign = load_campaign(args.campaign)
     if args.dry_run:
         from hydrosync_core.campaign.steps import plan_status
@@ -77,9 +81,9 @@ def cmd_batch(args: argparse.Namespace) -> int:
             last = progress.last
             if last is not None and (last["project"], last["step"]) not in reported:
                 reported.add((last["project"], last["step"]))
-                if last["status"] == DONE and last["step"] != "report":
+                if last["status"] in (DONE, UNDETERMINED) and last["step"] != "report":
                     interrupts.note_completed(last["path"])
-                if last["status"] not in OK_STATES:
+                if last["status"] not in OK_STATES or last["status"] == UNDETERMINED:
                     bar.done()
                     print(f"{last['status'].upper()}: {last['project']} {last['step']}: "
                           f"{last.get('message', '')}", file=sys.stderr, flush=True)
@@ -89,7 +93,7 @@ def cmd_batch(args: argparse.Namespace) -> int:
         print("note: --workers is ignored with --scheduler (the cluster has its own workers)",
               file=sys.stderr)
     result = run_campaign(campaign, scheduler=args.scheduler, workers=args.workers,
-                          listener=Printer())
+                          listener=Printer(), stall_s=args.stall_timeout)
     bar.done()
     for line in _table(result):
         print(line)
@@ -101,6 +105,12 @@ def cmd_batch(args: argparse.Namespace) -> int:
               "the table above" + (" and the summary" if result.summary_files else ""),
               file=sys.stderr)
         return 1
+    undetermined = [o for o in result.outcomes if o["status"] == UNDETERMINED]
+    if undetermined:
+        print(f"hydrosync batch: {len(undetermined)} step(s) done but undetermined by their "
+              "data: " + "; ".join(f"{o['project']} {o['step']} ({o['message']})"
+                                   for o in undetermined), file=sys.stderr)
+        return 3
     return 0
 
 
@@ -112,7 +122,9 @@ def register(sub: argparse._SubParsersAction) -> None:
         "of worker processes by default, or an existing cluster (--scheduler or "
         "DASK_SCHEDULER_ADDRESS). Results already up to date (same inputs, parameters and "
         "versions) are not computed again; a failing project never stops the others. "
-        "Exit 0 all steps succeeded, 1 some failed, 2 bad campaign file, 130 interrupted.")
+        "Exit 0 all steps succeeded, 1 some failed, 2 bad campaign file or stalled, 3 some "
+        "step done but undetermined (did not converge), 130 interrupted (running steps are "
+        "waited for; the message names the projects saved).")
     p.add_argument("campaign", help="campaign file (.toml)")
     p.add_argument("--dry-run", action="store_true",
                    help="list the projects, analyses, parameters and outputs; run nothing")
@@ -121,4 +133,7 @@ def register(sub: argparse._SubParsersAction) -> None:
                    "DASK_SCHEDULER_ADDRESS, else a local cluster)")
     p.add_argument("--workers", type=int, metavar="N",
                    help="worker processes of the local cluster (default: one per core)")
+    p.add_argument("--stall-timeout", type=float, default=120.0, metavar="S",
+                   help="stop (exit 2) when no step finished or ran for S seconds, e.g. every "
+                   "worker dead (default 120)")
     p.set_defaults(func=cmd_batch)

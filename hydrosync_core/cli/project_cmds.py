@@ -51,8 +51,11 @@ def _import_one(project: Project, kind: DataKind, files: list[str],
 
     options = {name: getattr(args, name, None) for name in kind.options}
     progress = TerminalProgress(f"import --{kind.name.replace('_', '-')}")
-    return import_file(project, kind.name, files if len(files) > 1 else files[0],
-                       progress=progress, **options)
+    try:
+        return import_file(project, kind.name, files if len(files) > 1 else files[0],
+                           progress=progress, **options)
+    finally:
+        progress.done()
 
 
 def _human(nbytes: int) -> str:
@@ -80,30 +83,56 @@ def cmd_info(args: argparse.Namespace) -> int:
             else:
                 shape = "x".join(str(n) for n in info.shape) or "scalar"
                 print(f"  {'  ' * depth}{label}  {shape} {info.dtype}")
-        _print_results_status(project)
+        damaged = _print_results_status(project, verify=not args.quick)
+    if damaged:
+        first = next(iter(damaged.items()))
+        raise InputError(args.project, f"INPUT DAMAGED: {len(damaged)} stored data set(s) "
+                         f"fail the read-back against their checksums, e.g. /{first[0]} "
+                         f"{first[1]} (listed above)")
     return 0
 
 
-def _print_results_status(project: Project) -> None:
-    """One line per stored result: up to date, or out of date and why."""
+def _print_results_status(project: Project, verify: bool = True) -> dict[str, str]:
+    """One line per stored result: up to date, out of date and why, or INPUT DAMAGED
+    (its stored inputs, read back, fail their checksums). Returns the damaged data sets
+    (all of ``raw/`` and every result's inputs are read back)."""
     from hydrosync_core.plugins import plugin_specs
+    from hydrosync_core.project.verify import damaged
     from hydrosync_core.provenance import OUT_OF_DATE, read_record, stale_reasons
 
     specs = [s for s in plugin_specs() if project.exists(f"results/{s.id}")]
+    records = {s.id: read_record(project, f"results/{s.id}") or {} for s in specs}
+    inputs = ["raw"] + [p for rec in records.values() for p in (rec.get("inputs") or {})]
+    bad = damaged(project, inputs) if verify else {}
     if not specs:
-        return
+        _print_damaged(bad)
+        return bad
     print("results:")
     for spec in specs:
         path = f"results/{spec.id}"
+        hit = [p for p in bad if any(p == i or p.startswith(i.rstrip("/") + "/")
+                                     for i in records[spec.id].get("inputs") or {})]
         try:
             reasons = stale_reasons(project, path)
-            when = (read_record(project, path) or {}).get("run_utc") or \
-                project.attrs(path).get("run_utc", "?")
+            when = records[spec.id].get("run_utc") or project.attrs(path).get("run_utc", "?")
         except InputError as exc:  # a damaged project: info still lists what it holds
             print(f"  {spec.id}: status cannot be checked: {exc.message}")
             continue
-        state = f"{OUT_OF_DATE.upper()}: " + "; ".join(reasons) if reasons else "up to date"
+        if hit:
+            state = "INPUT DAMAGED: " + "; ".join(f"/{p} {bad[p]}" for p in hit)
+        else:
+            state = (f"{OUT_OF_DATE.upper()}: " + "; ".join(reasons) if reasons
+                     else "up to date")
         print(f"  {spec.id}: {state} (computed {when})")
+    _print_damaged(bad)
+    return bad
+
+
+def _print_damaged(bad: dict[str, str]) -> None:
+    if bad:
+        print("damaged data (read back against their checksums):")
+        for path, what in bad.items():
+            print(f"  /{path}: {what}")
 
 
 def cmd_vessel(args: argparse.Namespace) -> int:
@@ -224,8 +253,13 @@ def register(sub: argparse._SubParsersAction) -> None:
     p = sub.add_parser("info", help="list a project's contents",
                        description="List a project's contents: every group and dataset with "
                        "its shape, the time span of each raw data set (UTC and raw), and "
-                       "whether each stored result is up to date with its inputs.")
+                       "whether each stored result is up to date with its inputs, which are "
+                       "read back against their checksums.")
     p.add_argument("project", help="project file (.h5)")
+    p.add_argument("--quick", action="store_true",
+                   help="do not read the stored data back against their checksums (by "
+                   "default every data set of /raw and every result's inputs is read: a "
+                   "damaged one is listed as INPUT DAMAGED and the exit code is 2)")
     p.set_defaults(func=cmd_info)
 
     p = sub.add_parser(

@@ -9,6 +9,7 @@ in the PDF as "could not be produced: <reason>" and warned about on stderr; with
 from __future__ import annotations
 
 import argparse
+import os
 import sys
 from pathlib import Path
 
@@ -24,7 +25,7 @@ def cmd_report(args: argparse.Namespace) -> int:
     out = Path(args.output) if args.output else Path(args.project).with_suffix(".pdf")
     if out.suffix.lower() != ".pdf":
         raise InputError(str(out), "the report file name must end in .pdf")
-    if out.resolve() == Path(args.project).resolve():
+    if os.path.realpath(out) == os.path.realpath(args.project):  # no raise on a loop
         raise InputError(str(out), "the report would overwrite the project file")
     problems: list[str] = []
     with Outputs() as outputs:

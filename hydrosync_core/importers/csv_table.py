@@ -25,6 +25,7 @@ import numpy as np
 
 from hydrosync_core import plausible
 from hydrosync_core.errors import InputError, quote
+from hydrosync_core.inputs import input_ok
 
 MAX_COLUMNS = 1000
 """More header fields than this is not one of our tables."""
@@ -52,11 +53,7 @@ def cells(path: Path, line: str, number: int) -> list[str]:
 def read_text_file(path: str | os.PathLike, allow_empty: bool = False) -> str:
     """The text of *path*, or one-line ``InputError`` naming it: missing, a folder, not
     UTF-8, or (unless *allow_empty*) empty. Shared by every text importer."""
-    path = Path(path)
-    if not path.exists():
-        raise InputError(str(path), "no such file")
-    if path.is_dir():
-        raise InputError(str(path), "is a folder, not a file")
+    path = input_ok(path)  # a regular, readable text file (not a FIFO or device)
     try:
         text = path.read_text(encoding="utf-8-sig", errors="strict")
     except UnicodeDecodeError as exc:

@@ -39,6 +39,7 @@ import numpy as np
 
 from hydrosync_core import plausible
 from hydrosync_core.errors import InputError
+from hydrosync_core.inputs import input_ok
 
 CHECK_CHUNK = 1 << 24
 """Bytes scanned per read when screening a file for the pyarrow path."""
@@ -365,6 +366,7 @@ class Prescan:
 
     def _run(self) -> None:
         try:
+            input_ok(self.path)  # a FIFO would hang this thread; the reader then says so
             self._plan = _plan(*self._args)
         except Exception:  # never an error of its own: the reader then counts itself
             self._plan = None
@@ -604,6 +606,7 @@ def read_numeric_fast(
     same columns, saves the first pass. Raises only the duplicate-time
     :class:`InputError`, worded and placed as the generic reader does.
     """
+    input_ok(path, "CSV file")  # before any open: not a FIFO, device or sparse file
     path = Path(path)
     limits = limits or {}
     try:

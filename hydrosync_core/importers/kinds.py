@@ -15,6 +15,7 @@ from datetime import UTC, datetime
 from pathlib import Path
 from typing import Any
 
+from hydrosync_core.inputs import input_ok
 from hydrosync_core.plugins.spec import DataKind, load_object
 from hydrosync_core.project import Project, schema
 
@@ -100,6 +101,8 @@ def import_file(project: Project, kind: str, path, *, progress=None, cancel=None
     if isinstance(path, list | tuple):
         return "\n".join(import_file(project, kind, p, **options) for p in path)
     path = Path(path)
+    if not path.is_dir():  # a recording kind takes a folder; its reader checks it
+        input_ok(path, f"--{kind.replace('_', '-')} file", text=spec.store != "points")
     if spec.store == "custom":
         message = reader(project, spec.target, path, **given)
         record_import(project, spec.target, path, kind, given)

@@ -48,30 +48,39 @@ def expand(paths: str | os.PathLike | Iterable[str | os.PathLike]) -> list[Path]
 
 @dataclass
 class Part:
-    """One file's table (sorted by time) and report."""
+    """One file's table (sorted by time, in *group* of the scratch file) and report.
+
+    The columns are opened when asked for and closed when dropped: HDF5 keeps a chunk
+    cache per open dataset, and a day of hourly files would otherwise hold 24 of them.
+    """
 
     path: Path
-    columns: dict[str, h5py.Dataset]
+    group: h5py.Group
+    names: list[str]
     report: ImportReport
 
     @property
+    def columns(self) -> dict[str, h5py.Dataset]:
+        return {name: self.group[name] for name in self.names}
+
+    @property
     def first(self) -> float:
-        return float(self.columns["time"][0])
+        return float(self.group["time"][0])
 
     @property
     def last(self) -> float:
-        return float(self.columns["time"][-1])
+        return float(self.group["time"][-1])
 
     def interval(self) -> float:
         """Median sampling interval (s) over the first rows."""
-        t = self.columns["time"][:10_000]
+        t = self.group["time"][:10_000]
         return float(np.median(np.diff(t))) if t.size > 1 else 0.0
 
 
 def _repeated(a: Part, b: Part) -> np.ndarray:
     """Epochs of *b* that *a* also holds (each file's time column read once)."""
     lo, hi = max(a.first, b.first), min(a.last, b.last)
-    ta, tb = a.columns["time"][()], b.columns["time"][()]
+    ta, tb = a.group["time"][()], b.group["time"][()]
     return np.intersect1d(ta[(ta >= lo) & (ta <= hi)], tb[(tb >= lo) & (tb <= hi)])
 
 
@@ -106,14 +115,16 @@ def merge(group: h5py.Group, parts: list[Part]) -> tuple[dict[str, h5py.Dataset]
     notes, _ = check_order(parts)
     if len(parts) == 1:
         return parts[0].columns, notes
-    names = list(dict.fromkeys(n for p in parts for n in p.columns))
+    names = list(dict.fromkeys(n for p in parts for n in p.names))
     sink = TableSink(group.create_group("merged"), names)
     for part in parts:
-        n = part.columns["time"].shape[0]
+        columns = part.columns
+        n = columns["time"].shape[0]
         for a in range(0, n, READ_ROWS):
             b = min(a + READ_ROWS, n)
-            sink.append({k: part.columns[k][a:b] if k in part.columns else np.full(b - a, np.nan)
+            sink.append({k: columns[k][a:b] if k in columns else np.full(b - a, np.nan)
                          for k in names})
+        del columns
     return sink.finish(), notes
 
 

@@ -336,9 +336,14 @@ def _store(project, target: str, paths, reader, options, progress=None, cancel=N
         parts, done = [], 0
         for j, (path, size) in enumerate(zip(files, sizes, strict=True)):
             sub = sub_progress(progress, 0.95 * done / total, 0.95 * (done + size) / total)
-            columns, rep = reader(path, handle.create_group(f"file{j}"), progress=sub,
-                                  cancel=cancel, **options)
-            parts.append(log_files.Part(path, columns, rep))
+            group = handle.create_group(f"file{j}")
+            group.attrs["intermediate"] = len(files) > 1
+            columns, rep = reader(path, group, progress=sub, cancel=cancel, **options)
+            # the datasets are closed here, reopened by name when merged (one chunk cache
+            # at a time, not one per file)
+            parts.append(log_files.Part(path, handle[columns["time"].parent.name],
+                                        list(columns), rep))
+            del columns
             done += size
         columns, notes = log_files.merge(handle.create_group("all"), parts)
         rep = log_files.merged_report(parts, int(columns["time"].shape[0]), notes)

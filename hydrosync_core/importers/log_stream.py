@@ -35,10 +35,11 @@ from hydrosync_core.importers import nmea_gnss as ng
 from hydrosync_core.importers import nmea_lines as nl
 from hydrosync_core.importers import nmea_motion as nm
 from hydrosync_core.importers.table_sink import TableSink
+from hydrosync_core.inputs import input_ok
 from hydrosync_core.progress import check_cancel, report
 
-BLOCK_BYTES = 32 << 20
-"""Bytes read at a time (whole lines): ~0.4 M lines of a tagged log."""
+BLOCK_BYTES = 16 << 20
+"""Bytes read at a time (whole lines): ~0.2 M lines of a tagged log."""
 MAX_LOG_BYTES = 2_000_000_000
 GNSS_KINDS = ("GGA", "PTNL,GGK", "GST", "ZDA", "RMC")
 MOTION_KINDS = ("PASHR", "PSXN,23", "PSXN,20", "TSS1", "HDT", "ZDA", "RMC", "PTNL,GGK")
@@ -48,6 +49,7 @@ MOTION_COLUMNS = ("time", "roll", "pitch", "heading", "heave")
 
 def check_file(path: Path) -> int:
     """Size of *path* in bytes, or the one-line reason it cannot be read as a log."""
+    input_ok(path, "log", max_bytes=MAX_LOG_BYTES * 8)  # not a FIFO, device or sparse file
     if not path.exists():
         raise InputError(str(path), "no such file")
     if path.is_dir():
@@ -63,28 +65,28 @@ def check_file(path: Path) -> int:
 def blocks(path: Path, block_bytes: int | None = None):
     """Yield ``(buf, first_line, bytes_done)``: blocks of whole lines of *path* (uint8).
 
-    A block ends after its last ``\\n``; the rest of the read waits for the next block, so
-    a sentence, a CRLF pair or a binary run cut by a read is whole in one block. The last
-    block may end without ``\\n`` (a file cut mid-sentence).
+    A block ends after its last ``\n`` and the next read starts right after it (the file
+    is read again from there, nothing is copied), so a sentence, a CRLF pair or a binary
+    run cut by a read is whole in one block. A line longer than a block doubles the read.
+    The last block may end without ``\n`` (a file cut mid-sentence).
     """
-    block_bytes = block_bytes or BLOCK_BYTES
+    size = block_bytes or BLOCK_BYTES
     line = 1
-    done = 0
-    rest = b""
+    pos = 0
     with open(path, "rb") as handle:
-        while chunk := handle.read(block_bytes):
-            done += len(chunk)
-            data = rest + chunk if rest else chunk
-            cut = data.rfind(b"\n") + 1
+        while True:
+            handle.seek(pos)
+            chunk = handle.read(size)
+            if not chunk:
+                return
+            cut = len(chunk) if len(chunk) < size else chunk.rfind(b"\n") + 1
             if cut == 0:
-                rest = data
+                size *= 2
                 continue
-            rest = data[cut:]
-            buf = np.frombuffer(data, np.uint8, count=cut)
-            yield buf, line, done
-            line += int(np.count_nonzero(buf == 10))
-    if rest:
-        yield np.frombuffer(rest, np.uint8), line, done
+            yield np.frombuffer(chunk, np.uint8, count=cut), line, pos + cut
+            line += chunk.count(b"\n", 0, cut)
+            pos += cut
+            del chunk
 
 
 # ----------------------------------------------------------------------------- census
@@ -144,14 +146,26 @@ class Census:
                     self.first_event[policy] = (float(events.day[0]), float(events.tod[0]))
 
 
+_CENSUS: dict[tuple, Census] = {}
+"""The last files surveyed, by (path, size, modification time): the GNSS and the attitude
+import of one logger file (one ``hydrosync import``) survey it once."""
+
+
 def census(path: Path, progress=None, cancel=None, share: float = 0.3) -> Census:
     """Pass 1 over *path* (progress reported on 0..*share*)."""
-    size = max(path.stat().st_size, 1)
+    stat = path.stat()
+    key = (str(path.resolve()), stat.st_size, stat.st_mtime_ns, BLOCK_BYTES)
+    if key in _CENSUS:
+        return _CENSUS[key]
+    size = max(stat.st_size, 1)
     out = Census()
     for buf, first_line, done in blocks(path):
         check_cancel(cancel)
         out.add(nl.scan_block(buf, first_line), str(path))
         report(progress, share * done / size, f"{path.name}: surveying {done >> 20} MiB")
+    if len(_CENSUS) >= 64:
+        _CENSUS.clear()
+    _CENSUS[key] = out
     return out
 
 
@@ -183,9 +197,16 @@ class Candidate:
         self.lags.append((lag - self.lag_ref).astype(np.float32))
 
     def lag(self) -> float | None:
+        """Median of logger − sentence (s), partitioning the offsets in place."""
         if not self.lags:
             return None
-        return self.lag_ref + float(np.median(np.concatenate(self.lags).astype(np.float64)))
+        v = np.concatenate(self.lags)
+        self.lags = [v]
+        n = v.size
+        k = n // 2
+        v.partition([k - 1, k] if n % 2 == 0 else k)
+        middle = float(v[k]) if n % 2 else (float(v[k - 1]) + float(v[k])) / 2.0
+        return self.lag_ref + middle
 
 
 @dataclass
@@ -422,8 +443,11 @@ def _motion_records(cand: Candidate, block, kinds, key: str):
 
 
 def new_candidates(group: h5py.Group, keys, columns) -> dict[str, Candidate]:
-    """One sink per candidate source, in a subgroup of *group* each."""
-    return {key: Candidate(key, TableSink(group.create_group(key.replace(",", "_")), columns))
+    """One sink per candidate source, in a subgroup of *group* each; compressed unless
+    *group* says ``intermediate`` (one of several files, copied on when merged)."""
+    compress = not group.attrs.get("intermediate", False)
+    return {key: Candidate(key, TableSink(group.create_group(key.replace(",", "_")), columns,
+                                          compress))
             for key in keys}
 
 

@@ -197,7 +197,31 @@ def _scan(buf, n_lines, pow10):
     while k < n_lines:
         s = i
         j = s
-        while j < n and buf[j] != 10:
+        # one pass to the newline: bytes outside printable ASCII, the '$' count and the
+        # first '$', any '!', the first '*' after the '$'
+        dollar = -1
+        n_dollar = 0
+        bang = False
+        last_bad = -1
+        first_ctl = -1  # \r or \t: allowed only in the stripped tail
+        star = -1
+        while j < n:
+            c = buf[j]
+            if c == 10:
+                break
+            if c == 13 or c == 9:
+                if first_ctl < 0:
+                    first_ctl = j
+            elif c < 32 or c > 126:
+                last_bad = j
+            elif c == 36:
+                n_dollar += 1
+                if dollar < 0:
+                    dollar = j
+            elif c == 33:
+                bang = True
+            elif c == 42 and star < 0 and dollar >= 0:
+                star = j
             j += 1
         line_start[k] = s
         line_end[k] = j
@@ -210,20 +234,8 @@ def _scan(buf, n_lines, pow10):
             k += 1
             continue
         status[k] = 2
-        # printable only; one '$', no '!'
-        dollar = -1
-        ok = True
-        for q in range(s, e):
-            c = buf[q]
-            if c < 32 or c > 126 or c == 33:
-                ok = False
-                break
-            if c == 36:
-                if dollar >= 0:
-                    ok = False
-                    break
-                dollar = q
-        if not ok or dollar < 0:
+        # printable only (the stripped tail aside); one '$', no '!'
+        if last_bad >= 0 or 0 <= first_ctl < e or bang or n_dollar != 1:
             k += 1
             continue
         first = s
@@ -243,11 +255,6 @@ def _scan(buf, n_lines, pow10):
         if m >= e or buf[m] != 44 or m - a < 3 or m - a > 7:
             k += 1
             continue
-        star = -1
-        for q in range(m, e):
-            if buf[q] == 42:
-                star = q
-                break
         if star < 0:
             body_start[k] = a
             body_end[k] = e
@@ -286,12 +293,20 @@ def _scan(buf, n_lines, pow10):
     return line_start, line_end, status, body_start, body_end, cs, tag, style
 
 
+@njit(cache=True, nogil=True)
+def _newlines(buf):
+    n = 0
+    for c in buf:
+        if c == 10:
+            n += 1
+    return n
+
+
 def count_lines(buf: np.ndarray) -> int:
     """Lines of a block as ``bytes.split(b"\\n")`` counts them, a final empty one dropped."""
     if buf.size == 0:
         return 0
-    newlines = int(np.count_nonzero(buf == 10))
-    return newlines + (0 if buf[-1] == 10 else 1)
+    return int(_newlines(buf)) + (0 if buf[-1] == 10 else 1)
 
 
 def scan_lines(buf: np.ndarray) -> tuple[np.ndarray, ...]:

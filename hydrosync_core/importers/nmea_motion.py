@@ -30,9 +30,11 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from hydrosync_core.errors import InputError
 from hydrosync_core.importers import nmea_fields as nf
 from hydrosync_core.importers import nmea_kernels as nk
 from hydrosync_core.importers.nmea_lines import LogLines
+from hydrosync_core.inputs import input_ok
 
 _TSS1 = re.compile(
     r":([0-9A-Fa-f]{2})([0-9A-Fa-f]{4}) ([ +-])(\d{4})([A-Za-z ])([ +-])(\d{4}) ([ +-])(\d{4})"
@@ -190,6 +192,10 @@ def sniff_motion_source(path, max_bytes: int = 262_144) -> str | None:
     Cheap enough to call while the user picks a file, so the Import dialog can preselect
     the sentence's documented heave sign for confirmation.
     """
+    try:
+        input_ok(path, "motion log")  # a FIFO would block the sniffing read
+    except InputError:
+        return None
     import re
 
     try:

@@ -42,6 +42,7 @@ import numpy as np
 
 from hydrosync_core import plausible
 from hydrosync_core.errors import InputError, clip, quote
+from hydrosync_core.inputs import input_ok
 
 _PLY_TYPES = {
     "char": "i1", "int8": "i1", "uchar": "u1", "uint8": "u1", "short": "i2", "int16": "i2",
@@ -69,6 +70,7 @@ def read_point_cloud(
     warnings : list of str, optional
         Receives a line per repaired or suspicious detail (bad VLR count, NaN GPS time).
     """
+    input_ok(path, "point cloud", text=False)  # binary LAS/LAZ/PLY allowed
     path = Path(path)
     notes: list[str] = [] if warnings is None else warnings
     if not path.exists():

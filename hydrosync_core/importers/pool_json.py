@@ -8,13 +8,13 @@ string — end as one :class:`InputError` line like any other bad input.
 
 from __future__ import annotations
 
-import json
 import math
 import os
 from pathlib import Path
 
 from hydrosync_core import plausible
 from hydrosync_core.errors import InputError, quote
+from hydrosync_core.inputs import input_ok
 
 MAX_JSON_BYTES = 50_000_000
 """A setup, target or vessel file is a few kB; more is not one of them."""
@@ -22,25 +22,16 @@ MAX_JSON_BYTES = 50_000_000
 
 def read_json(path: str | os.PathLike) -> dict:
     """Parse a JSON object from *path*, with the line of a syntax error named."""
-    path = Path(path)
-    if not path.exists():
-        raise InputError(str(path), "no such file")
-    if path.is_dir():
-        raise InputError(str(path), "is a folder, not a file")
+    path = input_ok(path, "JSON settings file", max_bytes=MAX_JSON_BYTES)
     if path.stat().st_size > MAX_JSON_BYTES:
         raise InputError(str(path), f"file is {path.stat().st_size} bytes: too large for a "
                          "JSON settings file")
     text = path.read_text(encoding="utf-8", errors="replace")
     if not text.strip():
         raise InputError(str(path), "file is empty")
-    try:
-        document = json.loads(text)
-    except json.JSONDecodeError as exc:
-        raise InputError(str(path), f"invalid JSON: {exc.msg}", line=exc.lineno) from None
-    except RecursionError:
-        raise InputError(str(path), "invalid JSON: nested too deeply") from None
-    except ValueError as exc:  # e.g. an integer of more than 4300 digits
-        raise InputError(str(path), f"invalid JSON: {str(exc)[:80]}") from None
+    from hydrosync_core.configfiles import parse_json
+
+    document = parse_json(text, str(path))  # bounded depth, size and integer digits
     if not isinstance(document, dict):
         raise InputError(str(path), "expected a JSON object at the top level")
     return document

@@ -8,9 +8,11 @@ were sorted. :meth:`TableSink.finish` sorts them when they were not (then the ti
 and one other column are in memory at once) and returns the final datasets.
 
 Storage: gzip level 1 with the shuffle filter in chunks of 131 072 rows (1 MiB of
-float64). Measured on a 24-hour motion log (docs/benchmarks.md, "Streaming import"):
-level 1 writes about 3x faster than h5py's default level 4 for a file a few percent
-larger; lzf was larger still and is not readable outside h5py.
+float64). Measured on the 24-hour attitude table (8.6 M rows x 5 columns, 346 MB raw;
+docs/benchmarks.md, "Streaming import of raw logs"): gzip 1 writes in 36 s to 152 MB,
+gzip 4 (the project's default for other tables) in 49 s to 149 MB, lzf in 19 s to 192 MB;
+all read back in 9-12 s. gzip is readable by every HDF5 tool, lzf only where h5py's
+filter is installed, so gzip at the level that costs least.
 
 The scratch file lives next to the project and is unlinked as soon as it is open (POSIX),
 so an interrupted import leaves nothing behind; :func:`scratch_file` returns the open file.
@@ -63,9 +65,13 @@ class TableSink:
         Where the column datasets are created (must be empty of these names).
     names : sequence of str
         Column names; the first is the time (s) by which rows are ordered.
+    compress : bool
+        Compress (the table kept); False for an intermediate one copied on (one of
+        several files, merged into the table kept): written ~9x faster (24 h attitude
+        table: 3.8 s against 36 s).
     """
 
-    def __init__(self, group: h5py.Group, names) -> None:
+    def __init__(self, group: h5py.Group, names, compress: bool = True) -> None:
         self.group = group
         self.names = list(names)
         self.rows = 0
@@ -74,7 +80,7 @@ class TableSink:
         self._last = -np.inf
         self._ds = {
             name: group.create_dataset(name, shape=(0,), maxshape=(None,), dtype="f8",
-                                       chunks=(CHUNK_ROWS,), **COMPRESSION)
+                                       chunks=(CHUNK_ROWS,), **(COMPRESSION if compress else {}))
             for name in self.names
         }
 

@@ -10,6 +10,7 @@ from __future__ import annotations
 import hashlib
 import json
 import os
+import re
 import threading
 import weakref
 from collections import OrderedDict
@@ -29,6 +30,7 @@ from hydrosync_core.errors import (
     ProjectDataError,
     ProjectFormatError,
     ProjectReadOnlyError,
+    quote,
 )
 from hydrosync_core.project import migrations, schema, validate
 from hydrosync_core.project.lock import ProjectLock
@@ -146,7 +148,8 @@ class Project:
         """
         path = Path(path)
         if not path.exists():
-            raise InputError(str(path), "no such project file")
+            raise InputError(str(path), "is a symbolic link that leads nowhere (a loop or a "
+                             "missing target)" if path.is_symlink() else "no such project file")
         if path.is_dir():
             raise InputError(str(path), "is a folder, not a project file")
         lock = None
@@ -523,6 +526,8 @@ class Project:
         lengths = {len(np.asarray(v)) for v in columns.values()}
         if len(lengths) > 1:
             raise ValueError(f"table '{path}': columns of different lengths {sorted(lengths)}")
+        for name, values in columns.items():
+            _check_text_column(values, attrs.get("source"), path, name)
         self.delete(path)
         group = self.ensure_group(path)
         group.attrs.update(attrs)
@@ -544,6 +549,22 @@ class Project:
         parent, name = self._parent_and_name(new)
         parent.children[name] = node
         self.dirty = True
+
+
+_CONTROL = re.compile(r"[\x00-\x1f\x7f]")
+
+
+def _check_text_column(values, source, table: str, name: str) -> None:
+    """Names (line names, antennas) with control characters are refused with the row:
+    a NUL cannot even be stored (HDF5 strings end at it), the others garble listings."""
+    array = np.asarray(values)
+    if array.dtype.kind not in "UO":
+        return
+    for row, value in enumerate(array.tolist()):
+        if isinstance(value, str) and _CONTROL.search(value):
+            char = _CONTROL.search(value).group()
+            raise InputError(source or f"/{table}", f"row {row + 1}: the name {quote(value)} "
+                             f"holds the control character {char!r}", field=name)
 
 
 def _column_names(node: GroupNode) -> list[str] | None:

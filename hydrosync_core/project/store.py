@@ -44,8 +44,13 @@ def copy_dataset(source: h5py.Dataset, group: h5py.Group, name: str) -> h5py.Dat
     target = h5py.Dataset(dsid)
     if dcpl.get_layout() == h5py.h5d.CHUNKED and h5py.check_vlen_dtype(source.dtype) is None \
             and h5py.check_string_dtype(source.dtype) is None:
-        for index in range(source.id.get_num_chunks()):
-            offset = source.id.get_chunk_info(index).chunk_offset
+        offsets: list[tuple[int, ...]] = []
+        if hasattr(source.id, "chunk_iter"):  # one pass over the chunk index
+            source.id.chunk_iter(lambda info: offsets.append(info.chunk_offset))
+        else:  # pragma: no cover - HDF5 < 1.12.3
+            offsets = [source.id.get_chunk_info(i).chunk_offset
+                       for i in range(source.id.get_num_chunks())]
+        for offset in offsets:
             mask, data = source.id.read_direct_chunk(offset)
             dsid.write_direct_chunk(offset, data, mask)
         return target

@@ -44,6 +44,13 @@ def put_file_table(project, path: str, columns: Mapping[str, h5py.Dataset], *,
     project.dirty = True
 
 
+def is_file_table(project, path: str) -> bool:
+    """True when table *path* has a column read from a file rather than held in memory."""
+    node = project._find(path)
+    return isinstance(node, GroupNode) and any(
+        isinstance(c, DatasetNode) and c.data is None for c in node.children.values())
+
+
 def adopt_table(src, dst, path: str) -> None:
     """Move table *path* of project *src* into *dst* as it is (file-backed columns stay in
     their file: nothing is read), replacing what *dst* had there."""

@@ -126,6 +126,15 @@ def check_lines(source: str, path: str | None, table: dict[str, np.ndarray],
     names = [str(n) for n in np.asarray(table["name"]).ravel()]
     start = np.asarray(table["start"], dtype=float).ravel()
     end = np.asarray(table["end"], dtype=float).ravel()
+    backwards = np.flatnonzero(~(end > start))
+    if backwards.size:  # else reported later as "no line has 30 epochs" (issue #28)
+        i = int(backwards[0])
+        message = (f"line '{names[i]}' ends ({end[i]:g} s) before or when it starts "
+                   f"({start[i]:g} s)")
+        if path is None:
+            raise InputError(source, message, line=None if line_numbers is None
+                             else int(line_numbers[i]))
+        raise _fail(source, path, message)
     order = np.argsort(start, kind="stable")
     for a, b in zip(order[:-1], order[1:], strict=True):
         if start[b] < end[a]:

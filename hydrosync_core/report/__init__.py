@@ -10,7 +10,10 @@ A plugin contributes through ``spec.report_section = "module:section"``:
   split across pages with a repeated header, vector charts with captions);
 * optionally ``summary(project) -> list[tuple[str, str]]`` in the same module — its rows
   (quantity, formatted value) in the report's summary table and in ``hydrosync demo``'s
-  printout.
+  printout;
+* optionally ``flags(project) -> dict[str, str]`` in the same module — the summary
+  quantities the panel flags (a σ above its threshold, two estimates that disagree),
+  each with its reason: the summary table marks them in red with the reason.
 
 Modules without results under ``/results/<id>`` get no section; the summary says why.
 """

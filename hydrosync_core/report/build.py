@@ -54,7 +54,12 @@ def failure_reason(exc: BaseException) -> str:
     """Why a section failed, in one line: the input problem, or the exception."""
     if isinstance(exc, InputError):
         return clip(exc.message, 300)
-    return clip(f"{type(exc).__name__}: {exc}", 300)
+    # Not the raw library text ("TypeError: ufunc 'isfinite' …", issue #28): what it
+    # means to the reader; the exception itself goes to the log (-v, HYDROSYNC_DEBUG).
+    log.debug("section failure", exc_info=exc)
+    kind = "damaged" if isinstance(exc, OSError | KeyError) else "not of the expected form"
+    return (f"its stored data are {kind} (run the analysis again; "
+            f"{type(exc).__name__} in the report code)")
 
 
 def _section(project, ctx: ReportContext, status: ModuleStatus,

@@ -150,9 +150,18 @@ class Chart:
         hi[filled] = ys[ends[filled] - 1]
         mid[filled] = ys[(starts[filled] + ends[filled] - 1) // 2]  # sorted: the median
         centre = (edges[:-1] + edges[1:]) / 2
-        light = colors.Color(colour.red, colour.green, colour.blue, alpha=0.28)
-        self.series.append(_Series("band", centre, lo, light, None, y2=hi))
+        self.band(centre, lo, hi, color=colour)
         return self.line(centre, mid, color=colour, label=label, width=width)
+
+    def band(self, x, lo, hi, *, color=None, label=None, alpha: float = 0.28) -> Chart:
+        """A shaded band from *lo* to *hi* over *x* (NaN breaks it), e.g. the spread of
+        many curves: 500 R curves drawn one by one printed as a solid block; their
+        min–max band and a median curve show the same at a glance."""
+        colour = self._color(color)
+        light = colors.Color(colour.red, colour.green, colour.blue, alpha=alpha)
+        self.series.append(_Series("band", np.asarray(x, float), np.asarray(lo, float), light,
+                                   label, y2=np.asarray(hi, float)))
+        return self
 
     def polygon(self, x, y, *, color=MUTED, width=0.5, label=None) -> Chart:
         """A closed outline (e.g. a design face)."""
@@ -356,7 +365,7 @@ class Chart:
                 elif s.kind == "points":
                     d.add(Circle(x + 7, y + 3, max(s.size, 2.0), fillColor=s.color,
                                  strokeColor=None))
-                elif s.kind == "vspan":
+                elif s.kind in ("vspan", "band"):
                     d.add(Rect(x + 1, y - 1, 12, 8, fillColor=s.color, strokeColor=None))
                 else:
                     d.add(Line(x, y + 3, x + 14, y + 3, strokeColor=s.color,

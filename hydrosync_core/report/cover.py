@@ -41,6 +41,12 @@ class ModuleStatus:
     rows: tuple[tuple[str, str], ...]
     #: Why the stored result no longer matches its inputs (empty: up to date).
     stale: tuple[str, ...] = ()
+    #: (quantity, reason) of the summary rows the analysis flags (its ``flags()``).
+    flags: tuple[tuple[str, str], ...] = ()
+
+    def flag(self, quantity: str) -> str:
+        """Why *quantity* is flagged ("" if it is not)."""
+        return dict(self.flags).get(quantity, "")
 
 
 def results_path(spec: PluginSpec) -> str:
@@ -67,12 +73,28 @@ def module_status(project, spec: PluginSpec) -> ModuleStatus:
         except Exception as exc:  # a plugin's summary must not sink the whole report
             log.error("summary of %s failed: %s", spec.id, exc)
             rows = (("summary unavailable", f"{type(exc).__name__}: {exc}"),)
+    flags = _flags(project, spec)
     try:
         stale = tuple(stale_reasons(project, path))
     except InputError as exc:  # a damaged project: flag the results, the report goes on
         stale = (f"whether they are up to date cannot be checked ({exc.message})",)
     return ModuleStatus(spec, True, "run", str(attrs.get("run_utc", "")),
-                        str(attrs.get("software_version", "")), rows, stale)
+                        str(attrs.get("software_version", "")), rows, stale, flags)
+
+
+def _flags(project, spec: PluginSpec) -> tuple[tuple[str, str], ...]:
+    """The analysis's flagged summary quantities (its optional ``flags(project)``)."""
+    if not spec.report_section:
+        return ()
+    try:
+        found = load_object(f"{spec.report_section.partition(':')[0]}:flags")
+    except AttributeError:
+        return ()
+    try:
+        return tuple((str(k), str(v)) for k, v in dict(found(project)).items())
+    except Exception as exc:  # a faulty flag check: say so in the summary, go on
+        log.error("flags of %s failed: %s", spec.id, exc)
+        return (("(flags)", f"could not be checked: {type(exc).__name__}: {exc}"),)
 
 
 def file_sha256(path: Path | None) -> str:
@@ -156,6 +178,7 @@ def contents_and_summary(ctx: ReportContext, statuses: list[ModuleStatus]) -> li
         return out
     rows = []
     separators = []
+    flagged = 0
     for s in statuses:
         if rows:
             separators.append(("LINEABOVE", (0, len(rows) + 1), (-1, len(rows) + 1), 0.5, RULE))
@@ -165,11 +188,23 @@ def contents_and_summary(ctx: ReportContext, statuses: list[ModuleStatus]) -> li
         if not s.has_results:
             rows.append([name, Paragraph(esc(tr(s.reason)), ctx.styles["Cell"]), "", ""])
             continue
-        if not s.rows:
+        summary_rows = list(s.rows)
+        # A flag whose quantity has no summary row still shows (never silently dropped).
+        summary_rows += [(q, "\u2014") for q, _ in s.flags if q not in dict(s.rows)]
+        if not summary_rows:
             rows.append([name, "results stored", "see section", ""])
-        for i, (quantity, value) in enumerate(s.rows):
-            rows.append([name if i == 0 else "", Paragraph(esc(tr(quantity)), ctx.styles["Cell"]),
-                         Paragraph(esc(tr(value)), ctx.styles["Cell"]),
+        for i, (quantity, value) in enumerate(summary_rows):
+            reason = s.flag(quantity)
+            if reason:  # as the panel flags it: red, with why
+                flagged += 1
+                quantity_text = f"<font color='#a32020'><b>\u2691 {esc(tr(quantity))}</b></font>"
+                value_text = (f"<font color='#a32020'><b>{esc(value)}</b></font><br/>"
+                              f"<font size='7' color='#a32020'>{esc(tr('flagged'))}: "
+                              f"{esc(tr(reason))}</font>")
+            else:
+                quantity_text, value_text = esc(tr(quantity)), esc(tr(value))
+            rows.append([name if i == 0 else "", Paragraph(quantity_text, ctx.styles["Cell"]),
+                         Paragraph(value_text, ctx.styles["Cell"]),
                          Paragraph(f"{esc(utc_text(s.run_utc))}<br/>HydroSync "
                                    f"{esc(s.software_version)}" if i == 0 else "",
                                    ctx.styles["Small"])])
@@ -177,7 +212,9 @@ def contents_and_summary(ctx: ReportContext, statuses: list[ModuleStatus]) -> li
                      col_widths=[0.17, 0.31, 0.28, 0.24], numeric_from=4, zebra=False,
                      extra_style=[("VALIGN", (0, 1), (-1, -1), "TOP"), *separators],
                      caption="Key results of every module. Values are the final, corrected "
-                     "values; uncertainties are one standard deviation unless stated.")
+                     "values; uncertainties are one standard deviation unless stated."
+                     + (" \u2691 marks a value the analysis flags (in red, with why)."
+                        if flagged else ""))
     for s in statuses:
         if s.stale:
             out.append(ctx.warning(f"{s.spec.name} results are {OUT_OF_DATE}: "

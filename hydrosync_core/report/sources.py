@@ -16,6 +16,7 @@ from reportlab.platypus import Flowable, Paragraph
 from hydrosync_core.project import schema
 from hydrosync_core.project.vessel import vessel_config
 from hydrosync_core.report.context import ReportContext, esc
+from hydrosync_core.report.styles import RULE
 from hydrosync_core.timespan import span_of, table_span
 
 HEADING = "Appendix: data sources, vessel offsets and survey lines"
@@ -103,18 +104,31 @@ def _vessel_table(project, ctx: ReportContext) -> list[Flowable]:
                      "relative to the reference point).")
 
 
+#: Survey lines are listed in two column pairs (Line, Start – end) from this many on:
+#: one narrow pair per row left a 500-line day's appendix 11 pages of white.
+TWO_UP_LINES = 30
+
+
 def _lines_table(project, ctx: ReportContext) -> list[Flowable]:
     if not project.exists("raw/lines"):
         return []
     table = project.get_table("raw/lines")
-    rows = []
+    entries = []
     for i, name in enumerate(table["name"]):
         span = span_of([table["start"][i], table["end"][i]])
-        rows.append([str(name), Paragraph(esc(span.text()) if span else "\u2014",
-                                          ctx.styles["Small"])])
-    return ctx.table(["Line", "Start \u2013 end"], rows, col_widths=[0.15, 0.85],
-                     numeric_from=2, left_columns=[1], font_size=7.5,
-                     caption="Survey lines (raw/lines) with their start and end times.")
+        entries.append([str(name), span.text() if span else "\u2014"])
+    caption = "Survey lines (raw/lines) with their start and end times."
+    if len(entries) < TWO_UP_LINES:
+        return ctx.table(["Line", "Start \u2013 end"], entries, col_widths=[0.15, 0.85],
+                         numeric_from=2, left_columns=[1], font_size=7.5, caption=caption)
+    # Row by row, two lines per row (read left to right): L001 L002 / L003 L004 / …
+    if len(entries) % 2:
+        entries.append(["", ""])
+    rows = [entries[i] + entries[i + 1] for i in range(0, len(entries), 2)]
+    return ctx.table(["Line", "Start \u2013 end"] * 2, rows,
+                     col_widths=[0.08, 0.42, 0.08, 0.42], numeric_from=4, font_size=7,
+                     extra_style=[("LINEBEFORE", (2, 0), (2, -1), 0.5, RULE)],
+                     caption=caption + " Two lines to a row, read left to right.")
 
 
 def section(project, ctx: ReportContext) -> list[Flowable]:

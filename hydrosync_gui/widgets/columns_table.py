@@ -28,6 +28,20 @@ from hydrosync_gui.i18n import tr
 _Index = QModelIndex | QPersistentModelIndex
 
 
+def wrap_header(text: str, width: int = 14) -> str:
+    """*text* on two lines, broken at the space nearest its middle, if longer than *width*
+    characters ("predicted σ heading [°]" → "predicted σ\nheading [°]"): a wide header
+    made a column of four-digit numbers 170 px wide and pushed the table into a
+    horizontal scroll. A unit in brackets stays with the word before it."""
+    if len(text) <= width:
+        return text
+    spaces = [i for i, c in enumerate(text) if c == " " and text[i + 1:i + 2] != "["]
+    if not spaces:
+        return text
+    cut = min(spaces, key=lambda i: abs(i - len(text) / 2))
+    return f"{text[:cut]}\n{text[cut + 1:]}"
+
+
 def _default_format(value) -> str:
     if isinstance(value, float | np.floating):
         return "" if np.isnan(value) else f"{value:.6g}"
@@ -39,8 +53,9 @@ def _default_format(value) -> str:
 class ColumnsTableModel(QAbstractTableModel):
     """Qt model over ``{name: 1-D array}``; headers ``name [unit]``."""
 
-    def __init__(self, parent=None) -> None:
+    def __init__(self, parent=None, wrap_headers: bool = False) -> None:
         super().__init__(parent)
+        self.wrap_headers = wrap_headers
         self._names: list[str] = []
         self._columns: list[np.ndarray] = []
         self._headers: list[str] = []
@@ -117,20 +132,28 @@ class ColumnsTableModel(QAbstractTableModel):
         if role != Qt.ItemDataRole.DisplayRole:
             return None
         if horizontal:
-            return tr(self._headers[section]) if section < len(self._headers) else None
+            if section >= len(self._headers):
+                return None
+            text = tr(self._headers[section])
+            return wrap_header(text) if self.wrap_headers else text
         return str(section + 1)
 
     def header(self, column: int) -> str:
-        """The displayed header of *column* (label and unit, in the workbench's language)."""
+        """The header of *column* (label and unit, in the workbench's language) on one
+        line."""
         return tr(self._headers[column])
 
 
 class ColumnsTable(QTableView):
-    """Read-only, sortable-looking table view; see :meth:`set_columns`."""
+    """Read-only, sortable-looking table view; see :meth:`set_columns`.
 
-    def __init__(self, parent: QWidget | None = None) -> None:
+    *wrap_headers*: long headers go on two lines (:func:`wrap_header`), so columns are as
+    narrow as their numbers.
+    """
+
+    def __init__(self, parent: QWidget | None = None, wrap_headers: bool = False) -> None:
         super().__init__(parent)
-        self.table_model = ColumnsTableModel(self)
+        self.table_model = ColumnsTableModel(self, wrap_headers=wrap_headers)
         self.setModel(self.table_model)
         self.setEditTriggers(QAbstractItemView.EditTrigger.NoEditTriggers)
         self.setSelectionBehavior(QAbstractItemView.SelectionBehavior.SelectRows)

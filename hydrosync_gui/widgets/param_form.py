@@ -23,7 +23,7 @@ from __future__ import annotations
 from collections.abc import Mapping
 from typing import Any
 
-from PySide6.QtCore import Qt, Signal
+from PySide6.QtCore import QSize, Qt, Signal
 from PySide6.QtWidgets import (
     QCheckBox,
     QComboBox,
@@ -52,9 +52,10 @@ class _Editor(QWidget):
 
     sig_changed = Signal()
 
-    def __init__(self, info: FieldInfo) -> None:
+    def __init__(self, info: FieldInfo, choice_labels: Mapping[str, str] | None = None) -> None:
         super().__init__()
         self.info = info
+        self.choice_labels = dict(choice_labels or {})
         layout = QHBoxLayout()
         layout.setContentsMargins(0, 0, 0, 0)
         outer = QVBoxLayout(self)
@@ -124,8 +125,10 @@ class _Editor(QWidget):
             return [check]
         if info.meta.choices:
             box = QComboBox()
-            box.addItems(list(info.meta.choices))
-            box.currentTextChanged.connect(self.sig_changed)
+            # The surveyor reads the label ("least squares"); the value stays the key.
+            for choice in info.meta.choices:
+                box.addItem(self.choice_labels.get(choice, choice), choice)
+            box.currentIndexChanged.connect(self.sig_changed)
             return [box]
         line = QLineEdit()
         line.textChanged.connect(self.sig_changed)
@@ -144,7 +147,8 @@ class _Editor(QWidget):
         values = []
         for part in self.parts:
             if isinstance(part, QComboBox):
-                values.append(part.currentText())
+                data = part.currentData()
+                values.append(data if data is not None else part.currentText())
             elif isinstance(part, QCheckBox):
                 values.append(part.isChecked())
             elif isinstance(part, QSpinBox | QDoubleSpinBox):
@@ -160,7 +164,11 @@ class _Editor(QWidget):
         values = list(value) if self.info.kind == "tuple" else [value]
         for part, v in zip(self.parts, values, strict=False):
             if isinstance(part, QComboBox):
-                part.setCurrentText(str(v))
+                index = part.findData(str(v))
+                if index >= 0:
+                    part.setCurrentIndex(index)
+                else:
+                    part.setCurrentText(str(v))
             elif isinstance(part, QCheckBox):
                 part.setChecked(bool(v))
             elif isinstance(part, QSpinBox):
@@ -178,22 +186,55 @@ class _Editor(QWidget):
 
 
 def _form(parent: QWidget | None = None) -> QFormLayout:
-    """A form layout whose long rows put the field under its label when the column is
-    narrow (the panel gives the room to its results, not to the widest label + field)."""
+    """A form layout; :class:`ParamForm` decides whether its rows wrap (all or none)."""
     form = QFormLayout(parent)
     form.setFieldGrowthPolicy(QFormLayout.FieldGrowthPolicy.AllNonFixedFieldsGrow)
-    form.setRowWrapPolicy(QFormLayout.RowWrapPolicy.WrapLongRows)
+    form.setRowWrapPolicy(QFormLayout.RowWrapPolicy.DontWrapRows)
     return form
 
 
+def _row_widths(form: QFormLayout) -> tuple[list[int], list[int]]:
+    labels, fields = [0], [0]
+    for row in range(form.rowCount()):
+        label = form.itemAt(row, QFormLayout.ItemRole.LabelRole)
+        field = form.itemAt(row, QFormLayout.ItemRole.FieldRole)
+        if label is not None and label.widget() is not None and label.widget().text():
+            labels.append(label.widget().sizeHint().width())
+        if field is not None and field.widget() is not None:
+            fields.append(field.widget().minimumSizeHint().width())
+    return labels, fields
+
+
+def stacked_width(form: QFormLayout) -> int:
+    """Pixels *form* needs with every field under its label (margins included)."""
+    labels, fields = _row_widths(form)
+    margins = form.contentsMargins()
+    return max(max(labels), max(fields)) + margins.left() + margins.right()
+
+
+def side_by_side_width(form: QFormLayout) -> int:
+    """Pixels *form* needs to put every field beside its label (margins included)."""
+    labels, fields = _row_widths(form)
+    margins = form.contentsMargins()
+    spacing = max(form.horizontalSpacing(), 0) if max(labels) else 0
+    return max(labels) + spacing + max(fields) + margins.left() + margins.right()
+
+
 class ParamForm(QWidget):
-    """Editors for every field of a :class:`~hydrosync_core.params.Params` schema."""
+    """Editors for every field of a :class:`~hydrosync_core.params.Params` schema.
+
+    *choice_labels* ``{field: {value: label}}``: what a choice box shows for each value
+    (the words of the panel and PDF, "least squares" for ``lsq``); the value is still
+    what :meth:`values` returns.
+    """
 
     sig_changed = Signal()
 
-    def __init__(self, schema: type[Params], parent: QWidget | None = None) -> None:
+    def __init__(self, schema: type[Params], parent: QWidget | None = None,
+                 choice_labels: Mapping[str, Mapping[str, str]] | None = None) -> None:
         super().__init__(parent)
         self.schema = schema
+        choice_labels = choice_labels or {}
         self.editors: dict[str, _Editor] = {}
         outer = QVBoxLayout(self)
         outer.setContentsMargins(0, 0, 0, 0)
@@ -206,7 +247,7 @@ class ParamForm(QWidget):
         advanced_form = _form()
         advanced_layout.addLayout(advanced_form)
         for info in schema.schema():
-            editor = _Editor(info)
+            editor = _Editor(info, choice_labels.get(info.name))
             editor.setObjectName(f"param_{info.name}")
             editor.sig_changed.connect(self.sig_changed)
             self.editors[info.name] = editor
@@ -221,6 +262,8 @@ class ParamForm(QWidget):
                 groups[info.meta.group].addRow(label, editor)
             else:
                 main.addRow(label, editor)
+        self.forms = [main, *groups.values(), advanced_form]
+        self.wrapped = False
         self.advanced = advanced
         self.advanced_button = QToolButton()
         self.advanced_button.setObjectName("advanced_toggle")
@@ -235,6 +278,47 @@ class ParamForm(QWidget):
         else:
             self.advanced_button.hide()
         advanced.setVisible(False)
+
+    def minimumSizeHint(self) -> QSize:  # noqa: N802 - Qt override
+        """As narrow as the form is with every field under its label, so that the column
+        holding it may be narrower than label + field side by side: the form then wraps
+        its rows (:meth:`fit_rows`) instead of pushing a horizontal scroll bar."""
+        hint = super().minimumSizeHint()
+        narrow = 0
+        for form in self.forms:
+            laid_out = form.geometry().width()
+            extra = max(self.width() - laid_out, 0) if laid_out > 0 else 0
+            narrow = max(narrow, stacked_width(form) + extra)
+        return QSize(min(hint.width(), narrow) if narrow else hint.width(), hint.height())
+
+    def resizeEvent(self, event) -> None:  # noqa: N802 - Qt override
+        """Wrap all rows (field under label) or none: row by row, a narrow column mixed
+        fields beside and under their labels, which reads as a misaligned form."""
+        super().resizeEvent(event)
+        self.fit_rows(event.size().width())
+
+    def showEvent(self, event) -> None:  # noqa: N802 - Qt override
+        # Before the first show the labels are not polished and measure narrower.
+        super().showEvent(event)
+        self.fit_rows(self.width())
+
+    def fit_rows(self, width: int) -> bool:
+        """Put every field under its label if any row does not fit *width* pixels beside
+        its label, else every field beside it; return whether the rows are wrapped."""
+        need = 0
+        for form in self.forms:
+            # A group box's frame and margins come on top of its form's own need.
+            laid_out = form.geometry().width()
+            extra = self.width() - laid_out if laid_out > 0 else 0
+            need = max(need, side_by_side_width(form) + max(extra, 0))
+        wrap = need > width
+        if wrap != self.wrapped:
+            self.wrapped = wrap
+            policy = (QFormLayout.RowWrapPolicy.WrapAllRows if wrap
+                      else QFormLayout.RowWrapPolicy.DontWrapRows)
+            for form in self.forms:
+                form.setRowWrapPolicy(policy)
+        return wrap
 
     def _on_advanced(self, shown: bool) -> None:
         self.advanced.setVisible(shown)

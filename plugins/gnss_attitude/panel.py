@@ -42,8 +42,8 @@ class GnssAttitudePanel(AnalysisPanel):
             from plugins.gnss_attitude import SPEC
 
             spec = SPEC
-        super().__init__(spec, GnssAttitudeParams, parent)
-        self.stats = ColumnsTable()
+        super().__init__(spec, GnssAttitudeParams, parent, choice_labels={"method": LABELS})
+        self.stats = ColumnsTable(wrap_headers=True)
         self.series = {a: _plot(f"{a} [°]") for a in ANGLES}
         self.series["pitch"].setXLink(self.series["heading"])
         self.series["roll"].setXLink(self.series["heading"])
@@ -185,7 +185,10 @@ class GnssAttitudePanel(AnalysisPanel):
                     np.column_stack([tab["sd_heading"], tab["sd_pitch"], tab["sd_roll"]]))
         for a in ANGLES:
             for name, tab in (("direct", direct), ("lsq", lsq)):
-                self.series[a].plot(tab["time"] - t0, tab[a], name=name,
+                # One legend, on the heading plot: on the pitch and roll plots it lay
+                # over the data the surveyor is reading.
+                self.series[a].plot(tab["time"] - t0, tab[a],
+                                    name=LABELS[name] if a == "heading" else None,
                                     pen=pg.mkPen(COLOURS[name], width=1), connect="finite")
         params = stored(GnssAttitudeParams, project, RESULT)
         t_end = float(np.nanmax(lsq["time"])) if lsq["time"].size else t0

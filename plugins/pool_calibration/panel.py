@@ -51,6 +51,15 @@ WARN_STYLE = ("QLabel { background: #fff3cd; border: 1px solid #d39e00; border-r
               " color: #6b3d00; padding: 6px; }")
 
 
+def passes_text(passes: list[dict]) -> str:
+    """One line per session: each pass's soundings and those on referenced faces."""
+    if len(passes) < 2:
+        return ""
+    return (f"<br>{len(passes)} passes adjusted jointly: " + "; ".join(
+        f"pass {q['pass']}: {q['soundings']:,} soundings ({q['on_faces']:,} on faces)"
+        for q in passes))
+
+
 class PoolCalibrationPanel(PluginPanel):
     """Multibeam boresight and lever arm from the pool target (CN 105425246 B + joint fit)."""
 
@@ -219,7 +228,9 @@ class PoolCalibrationPanel(PluginPanel):
                             & (faces["points_mbes"] >= self.form.values()["min_points"])))
         self.summary.setText(
             f"<b>Segmentation</b> with the coarse setup (not stored): {n_used} of "
-            f"{len(faces['face'])} faces have enough points in both clouds. "
+            f"{len(faces['face'])} faces have enough points in both clouds"
+            + (f" ({len(starts)} passes)" if (starts := self._pass_starts()) is not None
+               and len(starts) > 1 else "") + ". "
             "<b>Run all</b> to calibrate"
             + (" (replaces the stored results)." if self.project.exists(f"{RESULT}/faces")
                else "."))
@@ -230,6 +241,10 @@ class PoolCalibrationPanel(PluginPanel):
         self.convergence.show_table(None, None, self.log_check.isChecked())
         self.cloud_box.draw([str(n) for n in faces["face"]], clouds)
         self.tabs.setCurrentWidget(self.face_table)
+
+    def _pass_starts(self):
+        seg = self.segmentation
+        return None if seg is None else seg.ctx.pass_start
 
     def _show_results(self) -> None:
         project = self.project
@@ -243,6 +258,7 @@ class PoolCalibrationPanel(PluginPanel):
         if joint.get("sigma0_m") is not None:
             text += (f"<br>σ0 = {1000 * joint['sigma0_m']:.1f} mm from "
                      f"{joint.get('n_observations', 0)} soundings")
+        text += passes_text(result.get("passes") or [])
         text += f"<br><span style='color:#666'>run {attrs.get('run_utc', '?')}</span>"
         self.summary.setText(text)
         self._set_warnings(json.loads(attrs.get("warnings", "[]")))

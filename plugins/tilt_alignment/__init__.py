@@ -23,7 +23,9 @@ SPEC = PluginSpec(
         DataKind("tilt_gnss", "tilt-pole gnss.csv: time, e, n, u (local ENU) or time, lat, "
                  "lon, height: the antenna", "raw/tilt/gnss", f"{CORE}.io:read_gnss_csv",
                  "table"),
-        DataKind("tilt_pole", 'tilt-pole pole.json: {"pole_length_m": …}', "raw/tilt/pole",
+        DataKind("tilt_pole", 'tilt-pole pole.json: {"pole_length_m": …, optional '
+                 '"imu_convention": instant|interval-start|interval-middle|interval-end}',
+                 "raw/tilt/pole",
                  f"{CORE}.io:read_pole_json", "json"),
     ),
     requires=("raw/tilt/imu", "raw/tilt/gnss", "raw/tilt/pole"),

@@ -13,7 +13,18 @@ import numpy as np
 import pyqtgraph as pg
 from PySide6.QtCore import Qt
 
-from hydrosync_core.methods.tilt_alignment.params import METHODS, TiltParams
+from hydrosync_core.methods.tilt_alignment.params import TiltParams
+from hydrosync_core.methods.tilt_alignment.present import (
+    COLUMNS,
+    LABELS,
+    heading_text,
+    imu_text,
+    joint_text,
+    method_rows,
+    sigma_enu_text,
+    tip_header,
+    tip_text,
+)
 from hydrosync_core.methods.tilt_alignment.project_run import RESULT
 from hydrosync_core.params import stored
 from hydrosync_gui.analysis_panel import AnalysisPanel
@@ -63,32 +74,23 @@ class TiltAlignmentPanel(AnalysisPanel):
         self.form.set_params(stored(TiltParams, project, RESULT))
         doc = json.loads(project.attrs(RESULT)["result"])
         chosen = doc["methods"][doc["method"]]
-        key = "tip_enu" if "tip_enu" in doc else "tip_llh"
         if chosen["undetermined"]:
-            text = f"{doc['method']}: undetermined — {chosen['undetermined']}"
+            text = f"{LABELS[doc['method']]}: undetermined — {chosen['undetermined']}"
         else:
-            tip = ", ".join(f"{v:.4f}" for v in chosen[key])
-            sd = "/".join(f"{1000 * s:.1f}" for s in chosen["tip_std_enu_m"])
-            text = (f"{doc['method']}: tip {tip} (σ {sd} mm), heading misalignment "
-                    f"{chosen['heading_misalignment_deg']:.3f}°")
+            text = (f"{LABELS[doc['method']]}: tip {tip_text(chosen)} m (σ E/N/U "
+                    f"{sigma_enu_text(chosen)} mm), heading misalignment "
+                    f"{heading_text(chosen)}")
         warn = "".join(f" Warning — {w}." for w in doc.get("warnings", []))
-        self.summary.setText(f"{text}. Vectors used {doc['vectors_used']}, rejected "
-                             f"{doc['vectors_rejected']}; tilt up to "
-                             f"{doc['tilt_deg']['max']:.1f}°.{warn}")
-        table: dict[str, list] = {"method": [], "psi_deg": [], "sd_e_mm": [], "sd_n_mm": [],
-                                  "sd_u_mm": [], "vectors": [], "iterations": []}
-        for name in METHODS:
-            m = doc["methods"][name]
-            table["method"].append(name)
-            ok = not m["undetermined"]
-            table["psi_deg"].append(m["heading_misalignment_deg"] if ok else np.nan)
-            for i, a in enumerate("enu"):
-                table[f"sd_{a}_mm"].append(1000 * m["tip_std_enu_m"][i] if ok else np.nan)
-            table["vectors"].append(m["vectors"])
-            table["iterations"].append(m["iterations"])
-        self.table.set_columns({k: np.asarray(v) for k, v in table.items()},
-                               units={"psi_deg": "°", "sd_e_mm": "mm", "sd_n_mm": "mm",
-                                      "sd_u_mm": "mm"})
+        self.summary.setText(f"{text}. {imu_text(doc)}. {joint_text(doc)}. Vectors used "
+                             f"{doc['vectors_used']}, rejected {doc['vectors_rejected']}; "
+                             f"tilt up to {doc['tilt_deg']['max']:.1f}°.{warn}")
+        rows = method_rows(doc)
+        heads = {**COLUMNS, "tip": tip_header(doc)}
+        self.table.set_columns({k: np.array([r[k] for r in rows], dtype=object)
+                                for k in heads}, labels=heads,
+                               tips={"heading": "C = Rz(ψ)·C′: the IMU's heading error at "
+                                                "the first sample, ± 1σ",
+                                     "sigma": "1σ of the tip east, north and up"})
         ep = project.get_table(f"{RESULT}/epochs")
         e0, n0, u0 = (float(np.mean(ep[k])) for k in ("e", "n", "u"))
         pen = pg.mkPen((30, 90, 200), width=1)
@@ -108,7 +110,11 @@ class TiltAlignmentPanel(AnalysisPanel):
                 c = COLOURS[name]
                 self.jcurve.plot(d["psi_deg"], d["J"], name=name.upper(), pen=pg.mkPen(c),
                                  symbol="o", symbolSize=5, symbolBrush=c)
-        if project.exists(f"{RESULT}/montecarlo"):
+        has_mc = project.exists(f"{RESULT}/montecarlo")
+        for w in (self.hist, self.scatter):
+            w.setTitle(None if has_mc else "no Monte Carlo for this record (parameter "
+                       "'Monte-Carlo runs'; benchmarks/bench_tilt.py runs the full study)")
+        if has_mc:
             mc = project.get_table(f"{RESULT}/montecarlo")
             edges = np.linspace(-2.0, 2.0, 33)
             for name in ("joint", "mbgd", "svd", "closed_form"):

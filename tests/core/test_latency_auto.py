@@ -152,6 +152,8 @@ def test_auto_equals_the_estimator_it_keeps_run_alone(noise, seed):
     a, b = auto.to_dict(curves=True), kept.to_dict(curves=True)
     for key in ("message", "params"):
         a.pop(key), b.pop(key)
+    # auto also quotes the other estimate (the delay-model check compares the two).
+    assert a["diagnostics"].pop("other_estimate")["latency_s"] == other.latency_s
     assert a == b
 
 
@@ -177,7 +179,8 @@ def test_weighted_without_a_weighting_is_the_antialiased_estimator(monkeypatch):
     ref = estimate_latency(*args, {**PARAMS, "estimator": "qi2010_antialias"})
     monkeypatch.setattr(weighted, "pooled_weighting", lambda *a, **k: None)
     res = estimate_latency(*args, {**PARAMS, "estimator": "weighted"})
-    assert res.estimator == "weighted" and "coherence weighting not possible" in res.warnings[0]
+    assert res.estimator == "weighted"
+    assert any("coherence weighting not possible" in w for w in res.warnings)
     assert res.latency_s == ref.latency_s and res.uncertainty_s == ref.uncertainty_s
     for a, b in zip(res.lines, ref.lines, strict=True):
         assert (a.latency_s, a.uncertainty_s, a.r_max, a.used, a.sigma0_after_m) == (

@@ -248,3 +248,48 @@ def test_streamed_table_saves_compressed_and_reads_by_window(tmp_path):
     np.testing.assert_array_equal(window["heave"], table["heave"][100:201])
     again.close()
     project.close()
+
+
+TRICKY = [
+    "$GPGGA,1,2*5A", "$GPGGA,1,2", "  $GPGGA,1,2*5a  \r", "$GPGGA,1\r,2*00", "$GPGGA,1\t,2*00",
+    "$GPGGA,a*b*12", "$GPGGA,1*4", "$GPGGA,1*", "$GP,1*00", "$GPGGAXXX,1*00", "$gpgga,1*00",
+    "$GPGGA,1*00$GPZDA,2*00", "!AIVDM,1*00", "#$GPGGA,1*00", "{\"a\":1}", "   ", "\r",
+    "2014-08-01T00:00:00.814000Z $GPGGA,1*00", "2014-08-01 00:00:00Z, $GPGGA,1*00",
+    "2014-02-30T00:00:00Z $GPGGA,1*00", "2014-08-01T24:00:00Z $GPGGA,1*00",
+    "08/01/2014,12:34:56.789, $GPGGA,1*00", "08/01/2014 12:34:56 $GPGGA,1*00",
+    "1535243706.515 $GPGGA,1*00", "1535243706. $GPGGA,1*00", "15352437 $GPGGA,1*00",
+    "1535243706.5x $GPGGA,1*00", "junk $GPGGA,1*00", "\x01\x02$GPGGA,1*00",
+    ":000064 -0003U 0007 -0056", "12345.6 :000064 -0003U 0007 -0056",
+    "$PTNL,GGK,1,2*00", "$PTNL*00", "$GPGGA,1,2*5A\xff", "\x01$GPGGA,1*00\r",
+    "$GPGGA,1\r,2*00\r", "$GPGGA,\x85,2*00 \t\r",
+]
+
+
+def test_kernel_splits_every_line_as_the_regex_splitter_does():
+    """The compiled scanner and the regex splitter on lines built to sit on each of the
+    kernel's rules (and the awkward log): same sentences, tags, checksum states, counts."""
+    import numpy as np
+
+    from hydrosync_core.importers import nmea_lines as nl
+
+    rng = random.Random(5)
+    lines = [line.replace("*00", "*" + format(
+        reduce(lambda a, c: a ^ ord(c), line[line.find("$") + 1:line.find("*")], 0), "02X"))
+        if rng.random() < 0.5 else line for line in TRICKY]
+    data = ("\n".join(lines) + "\n").encode("latin-1") + awkward_log(20.0)
+    raw = nl.scan_block(np.frombuffer(data, np.uint8))
+    found = nl._Found()
+    cache: dict = {}
+    texts = data.decode("latin-1").split("\n")  # the last line has no newline
+    for number, text in enumerate(texts, start=1):
+        nl._regex_line(text, number, found, cache)
+    body = raw.buf.tobytes()
+    assert [body[a:b].decode("latin-1") for a, b in zip(raw.start, raw.end, strict=True)] \
+        == found.body
+    assert raw.line_no.tolist() == found.line
+    np.testing.assert_array_equal(raw.tag, np.array(found.tag))
+    given = raw.cs != 2
+    assert given.tolist() == [c is not None for c in found.cs]
+    counts = {k: v for k, v in raw.counts.items() if k != "lines"}
+    assert counts == found.counts and raw.styles == found.styles
+    assert raw.odd_prefix == found.odd_prefix

@@ -118,6 +118,9 @@ def test_contradiction_flag_names_the_faces():
     assert "N1_dn_side1" in out["yaw"] and "not a calibration" in out["yaw"]
     # A held parameter is not corrected at all, so never contradicts.
     assert set(contradictions(final_deg, final_m, coarse, p, {"yaw"}, usage)) == {"lever_x"}
+    # Beyond the bound by less than 3σ: the data cannot tell, no contradiction.
+    sigma = {"yaw": 0.1, "lever_x": 0.05}   # 2.7 > 2 + 0.3; 0.28 < 0.15 + 0.15
+    assert set(contradictions(final_deg, final_m, coarse, p, set(), usage, sigma)) == {"yaw"}
 
 
 def test_merged_passes_keep_their_pings_apart():

@@ -119,3 +119,88 @@ def test_an_empty_text_parameter_is_never_a_blank_cell():
     plain = _table(ctx.params_table(GnssAttitudeParams(), "p"))
     assert {row[2].getPlainText(): row[1].getPlainText()
             for row in plain._cellvalues[1:]}["direct_antennas"] == "(empty)"
+
+
+def test_summary_table_marks_the_values_the_analysis_flags(tmp_path, monkeypatch):
+    """The pool panel flags a pitch σ above its threshold and the PDF summary did not
+    (#26): a section module's ``flags(project)`` marks its summary rows, with the reason;
+    a flag without a summary row is still shown."""
+    import subprocess
+    import sys
+    import types
+
+    from hydrosync_core.plugins import PluginSpec, get_spec
+    from hydrosync_core.project import Project
+    from hydrosync_core.report import build_report
+    from hydrosync_core.report.cover import module_status
+
+    module = types.ModuleType("hydrosync_test_flagged_section")
+    module.section = lambda project, ctx: [ctx.heading("Flagged analysis")]
+    module.summary = lambda project: [("Boresight roll (final, 1σ)", "-44.193 ± 0.004°"),
+                                      ("Boresight pitch (final, 1σ)", "-0.605 ± 0.016°")]
+    module.flags = lambda project: {
+        "Boresight pitch (final, 1σ)": "σ 0.016° above the 0.01° threshold",
+        "Lever arm z (down)": "disagrees with the vessel sheet by 3σ"}
+    monkeypatch.setitem(sys.modules, module.__name__, module)
+    real = get_spec("latency")
+    spec = PluginSpec(id="flagged", name="Flagged analysis", run=real.run, panel=real.panel,
+                      report_section=f"{module.__name__}:section")
+    project = Project.new("flags")
+    project.put_json("results/flagged", {})
+    status = module_status(project, spec)
+    assert status.flag("Boresight pitch (final, 1σ)").startswith("σ 0.016°")
+    assert status.flag("Boresight roll (final, 1σ)") == ""
+    out = build_report(project, tmp_path / "f.pdf", specs=[spec])
+    text = subprocess.run(["pdftotext", "-layout", str(out), "-"], capture_output=True,
+                          text=True, check=True).stdout
+    flat = " ".join(text.split())
+    assert "\u2691 Boresight pitch" in flat and "\u2691 Boresight roll" not in flat
+    assert "flagged: σ 0.016° above the 0.01° threshold" in flat
+    assert "\u2691 Lever arm z (down)" in flat
+    assert "marks a value the analysis flags" in flat
+
+
+def test_a_long_survey_line_list_is_printed_two_lines_to_a_row(tmp_path):
+    """A 500-line day's appendix took 11 mostly white pages of one narrow column (#26)."""
+    import numpy as np
+
+    from hydrosync_core.project import Project
+    from hydrosync_core.report import build_report
+
+    project = Project.new("lines")
+    start = 345_600 + np.arange(500) * 170.0
+    project.put_table("raw/lines", {"name": np.array([f"L{i:03d}" for i in range(1, 501)]),
+                                    "start": start, "end": start + 120})
+    layout = PageLayout()
+    out = build_report(project, tmp_path / "lines.pdf", layout=layout)
+    assert len(layout.fill) <= 7 and layout.sparse_pages() == []
+    import subprocess
+
+    text = subprocess.run(["pdftotext", "-layout", str(out), "-"], capture_output=True,
+                          text=True, check=True).stdout
+    assert re_search(r"L001 +raw 345600\.000 … 345720\.000 s .*L002 +raw 345770\.000", text)
+    assert "L500" in text
+
+
+def re_search(pattern: str, text: str) -> bool:
+    import re
+
+    return re.search(pattern, text) is not None
+
+
+def test_band_of_many_curves_is_one_shaded_polygon_with_a_legend_entry():
+    import numpy as np
+    from reportlab.graphics.shapes import Polygon
+
+    from hydrosync_core.report.charts import Chart
+
+    x = np.linspace(-1, 1, 201)
+    curves = np.array([0.9 - 0.3 * (x - s) ** 2 for s in np.linspace(0.2, 0.4, 500)])
+    chart = Chart(width=400, height=200).band(x, curves.min(0), curves.max(0),
+                                              label="500 lines: range")
+    chart.line(x, np.median(curves, 0), label="median")
+    drawing = chart.drawing()
+    shapes = [s for g in drawing.contents for s in getattr(g, "contents", [])]
+    assert sum(isinstance(s, Polygon) for s in shapes) == 1
+    strings = [s.text for s in drawing.contents if hasattr(s, "text")]
+    assert "500 lines: range" in strings and "median" in strings

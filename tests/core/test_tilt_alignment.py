@@ -2,9 +2,11 @@
 
 from __future__ import annotations
 
+import json
 import math
 import re
 from dataclasses import replace
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -29,11 +31,13 @@ from hydrosync_core.methods.tilt_alignment.simulate import (
 def _solve(sim, params=None):
     return solve_record(sim["time"], sim["gyro"], sim["accel"], sim["gnss_time"],
                         sim["gnss_ned"], sim["pole_length_m"], params or TiltParams(),
-                        gravity=sim["truth"]["config"].gravity_m_s2)
+                        gravity=sim["truth"]["config"].gravity_m_s2,
+                        imu_convention=sim["truth"]["config"].imu_convention)
 
 
 def test_gyro_propagation_reproduces_the_simulated_attitude():
-    sim = simulate_swing(noise_free(SwingConfig()), seed=1)
+    # interval samples tagged at the start are the increments the propagation chains
+    sim = simulate_swing(noise_free(SwingConfig(imu_convention="interval-start")), seed=1)
     C = propagate(sim["truth"]["C"][0], sim["time"], sim["gyro"])
     assert np.max(np.abs(C - sim["truth"]["C"])) < 1e-9
 
@@ -48,9 +52,15 @@ def test_mahony_levels_a_still_pole_and_keeps_heading_zero():
     assert abs(yaw_of(C[0])) < 1e-12
 
 
-@pytest.mark.parametrize("heading", [123.0, -170.0])
-def test_noise_free_swing_recovers_the_misalignment_exactly_with_every_method(heading):
-    cfg = noise_free(SwingConfig(wobble_deg=0.0, heading_deg=heading, shape_ratio=0.3))
+@pytest.mark.parametrize(("heading", "convention"), [(123.0, "instant"),
+                                                    (-170.0, "interval-end")])
+def test_noise_free_swing_recovers_the_misalignment_with_every_method(heading, convention):
+    """Noise-free: every heading-only method within 0.002° (joint 0.01°), all within 0.5 mm.
+    Not exact: the model grid of instantaneous or end-tagged samples interpolates to
+    second order (Δt²/8·ω̈, 10⁻⁴ of the rate at 100 Hz), and the Mahony levelling of a
+    moving pole is approximate."""
+    cfg = noise_free(SwingConfig(wobble_deg=0.0, heading_deg=heading, shape_ratio=0.3,
+                                 imu_convention=convention))
     sim = simulate_swing(cfg, seed=3)
     sol = _solve(sim, TiltParams(stop_deg=1e-9))
     truth = sim["truth"]["heading_deg"]
@@ -58,13 +68,14 @@ def test_noise_free_swing_recovers_the_misalignment_exactly_with_every_method(he
         m = sol.methods[name]
         assert m.ok, (name, m.undetermined)
         err = (math.degrees(m.psi) - truth + 180) % 360 - 180
-        assert abs(err) < 1e-6, (name, err)
-        assert np.max(np.abs(m.tip - sim["truth"]["tip_ned"])) < 1e-6, name
-    # the descent itself, started far away (ψ0 = 0), converges to the same exact value
+        # the joint heading is weakly tied at small tilt (σ 0.2°): its priors pull 0.005°
+        assert abs(err) < (1e-2 if name == "joint" else 2e-3), (name, err)
+        assert np.max(np.abs(m.tip - sim["truth"]["tip_ned"])) < 5e-4, name
+    # the descent itself, started far away (ψ0 = 0), converges to the closed form
     vec = sol.vectors
     d = align.descend(vec.nav[vec.used], vec.imu[vec.used], 0.0, 0.3, 1e-12, 1000)
     assert d.converged and d.iterations > 10
-    assert abs((math.degrees(d.psi) - truth + 180) % 360 - 180) < 1e-6
+    assert abs(d.psi - sol.methods["closed_form"].psi) < 1e-9
 
 
 def test_gradient_descent_stops_on_the_threshold_and_matches_the_closed_form():
@@ -168,17 +179,20 @@ def test_a_swing_in_one_plane_is_warned_across_the_plane_and_an_ellipse_is_not()
     # 20° swing in one vertical plane, no twist: the accelerometer bias along the swing axis
     # is the tilt out of the plane. The swing plane is body y–z (roll only), at heading
     # 123° the pole leans towards 213°/33°: the weak direction is across it, 123°/303°.
+    # A consumer IMU (bias prior 0.04 m/s²: l·b/g = 7.6 mm at 1σ) leaves the tip beyond
+    # the tolerance at 95 %.
     planar = SwingConfig(tilt_deg=20.0, shape_ratio=0.0, twist_deg=0.0, wobble_deg=0.1,
                          azimuth_deg=0.0, heading_deg=123.0, accel_bias_m_s2=(0.04, 0.0, 0.0))
     sim = simulate_swing(planar, seed=1)
-    sol = _solve(sim)
+    sol = _solve(sim, TiltParams(imu_grade="consumer"))
     j = sol.methods["joint"]
     assert j.ok and j.warning is not None and "ellipse" in j.warning
     assert j.warning in sol.warnings
     weak = sol.joint.weak_direction
     assert abs(abs(math.degrees(math.atan2(weak[1], weak[0])) % 180.0 - 123.0)) < 5.0
-    assert sol.joint.bias_share > 0.9
-    assert 1.96 * sol.joint.weak_sigma_m > 0.01                # σ says it, not only the text
+    assert sol.joint.bias_share > 0.9                 # the bias prior is the weak σ
+
+    assert sol.joint.horizontal_radius_m(0.95) > 0.01          # σ says it, not only the text
     err = j.tip - sim["truth"]["tip_ned"]
     assert abs(err[:2] @ weak) < 1.96 * sol.joint.weak_sigma_m
     # the same pole swung in an ellipse with a twist: no warning, tip well within 1 cm
@@ -228,6 +242,11 @@ def test_accelerometer_windows_are_exact_for_the_discrete_record():
     cfg = noise_free(SwingConfig(tilt_deg=50.0, shape_ratio=0.3, gravity_m_s2=9.79))
     sim = simulate_swing(cfg, seed=5)
     t, C = sim["time"], sim["truth"]["C"]
+    # the specific force of the discrete record: second differences of the antenna
+    p = -C[:, :, 2] * sim["pole_length_m"]
+    acc = np.zeros_like(p)
+    acc[1:-1] = (p[2:] - 2 * p[1:-1] + p[:-2]) / np.diff(t)[0] ** 2
+    sim["accel"] = np.einsum("kji,kj->ki", C, acc - 9.79 * np.array([0.0, 0.0, 1.0]))
     Wq, D = _windows(t, 0.25)
     assert Wq.shape[0] > 15 and np.allclose(D.sum(axis=1), 0.0, atol=1e-9)
     # overlapping Hann windows sum to one inside the record
@@ -301,26 +320,34 @@ def test_horizontal_radius_and_white_noise_level():
 
 
 def test_joint_sigma_is_honest_over_repeated_noise_of_one_planar_swing():
-    """Empirical spread of the tip over 40 noise draws of one consumer-grade planar swing
-    against the σ the joint method reports (across and along the swing plane)."""
+    """Empirical spread of the tip over 16 noise draws of one short consumer-grade planar
+    swing (50 Hz IMU) against the σ the joint method reports, across and along the plane.
+
+    Power: with an honest σ, 16·rms² of the standardised errors is χ²₁₆, so rms lies in
+    0.50–1.57 with probability 0.999 per axis (the bounds below). A σ too small by half
+    (rms ≈ 2, as with mems priors on these consumer biases) fails with probability 0.87
+    per axis, both axes together above 0.95; a σ twice too large (rms ≈ 0.5) half the time.
+    """
     rng = np.random.default_rng(3)
     errs, sds = [], []
-    for _ in range(40):
+    params = TiltParams(imu_grade="consumer")
+    for _ in range(16):
         # heading 0, azimuth 0: the pole swings in the east-down plane, north is across
         cfg = SwingConfig(tilt_deg=30.0, shape_ratio=0.0, twist_deg=3.0, wobble_deg=0.2,
                           azimuth_deg=0.0, heading_deg=0.0, gyro_noise_deg_s_rthz=0.015,
-                          accel_noise_m_s2_rthz=0.002,
+                          accel_noise_m_s2_rthz=0.002, imu_rate_hz=50.0, level_s=1.0,
+                          move_s=0.5, swing_s=2.0, hold_s=0.5,
                           gyro_bias_deg_s=tuple(rng.normal(0, 0.1, 3)),
-                          accel_bias_m_s2=tuple(rng.normal(0, 0.05, 3)))
+                          accel_bias_m_s2=tuple(rng.normal(0, 0.04, 3)))
         sim = simulate_swing(cfg, seed=int(rng.integers(1 << 30)))
-        sol = _solve(sim)
+        sol = _solve(sim, params)
         errs.append(sol.methods["joint"].tip[:2] - sim["truth"]["tip_ned"][:2])
         sds.append(np.sqrt(np.diag(sol.joint.cov[3:5, 3:5])))
     sds = np.array(sds)
     assert np.mean(sds[:, 0]) > 2 * np.mean(sds[:, 1])     # across the plane is the weak one
     z = np.array(errs) / sds
     rms = np.sqrt(np.mean(z ** 2, axis=0))
-    assert np.all((rms > 0.7) & (rms < 1.35)), rms
+    assert np.all((rms > 0.5) & (rms < 1.57)), rms
 
 
 def test_a_gnss_outlier_is_down_weighted_and_named():
@@ -334,3 +361,84 @@ def test_a_gnss_outlier_is_down_weighted_and_named():
     clean = _solve(simulate_swing(replace(cfg, gnss_outliers=0), seed=4))
     assert clean.joint.gnss_downweighted == 0
     assert not any("down-weighted" in w for w in clean.warnings)
+
+
+@pytest.mark.parametrize("true", ["interval-end", "instant"])
+def test_declared_convention_gives_no_offset_and_a_wrong_one_is_named(true):
+    """Declared right, the GNSS offset is consistent with 0 (within 3σ, σ ≈ 0.5 ms on this
+    three-sweep swing); declared as the other, the half-sample offset (±5 ms at 100 Hz) is
+    named with the likely convention."""
+    cfg = SwingConfig(tilt_deg=50.0, sweeps=3, shape_ratio=0.5, imu_convention=true,
+                      gyro_bias_deg_s=(0.03, -0.04, 0.02), accel_bias_m_s2=(0.01, -0.02, 0.015))
+    sim = simulate_swing(cfg, seed=3)
+    sol = _solve(sim)
+    j = sol.joint
+    tau = j.time_offset_s + j.time_offset_applied_s
+    assert abs(tau) < max(3 * j.time_offset_std_s, 0.0015)
+    assert not any("half the" in w for w in sol.warnings)
+    other = "instant" if true != "instant" else "interval-end"
+    sol = solve_record(sim["time"], sim["gyro"], sim["accel"], sim["gnss_time"],
+                       sim["gnss_ned"], sim["pole_length_m"], TiltParams(imu_convention=other))
+    tau = sol.joint.time_offset_s + sol.joint.time_offset_applied_s
+    assert 0.003 < abs(tau) < 0.007
+    hint = [w for w in sol.warnings if "half the 10 ms" in w]
+    likely = "'interval-end'" if true == "interval-end" else "'interval-middle or instant'"
+    assert len(hint) == 1 and likely in hint[0], sol.warnings
+
+
+FOREIGN = Path(__file__).resolve().parents[2] / ".." / "shared" / "data" / "foreign" / "tilt"
+
+
+@pytest.mark.skipif(not FOREIGN.is_dir(), reason=f"foreign swings not at {FOREIGN}")
+def test_foreign_swings_with_the_defaults():
+    """Swings simulated outside the team (MEMS, instantaneous samples, no time offset):
+    with the command's defaults every tip within 1 cm and no warning, the GNSS offset
+    consistent with 0 (mean within ±1.5 ms, each within 3σ) and the IMU noise the joint
+    method reports within 40 % of the data's (0.02°/s, 0.01 m/s² per sample; the record's
+    own measure is within 5 %, the variance components may only raise it, and they rest on
+    about 60 accelerometer windows: ±18 % in variance at 1σ)."""
+    from hydrosync_core.methods.tilt_alignment.io import read_gnss_csv, read_imu_csv
+    from hydrosync_core.methods.tilt_alignment.solve_files import result_document, solve_columns
+
+    offsets = []
+    swings = sorted(FOREIGN.glob("swing_*"))
+    assert swings
+    for d in swings:
+        length = json.loads((d / "pole.json").read_text())["pole_length_m"]
+        truth = json.loads((d / "truth.json").read_text())
+        p = TiltParams()
+        sol, frame = solve_columns(read_imu_csv(d / "imu.csv"), read_gnss_csv(d / "gnss.csv"),
+                                   length, p)
+        doc = result_document(sol, frame, length, p)
+        err = np.array(doc["tip_enu"]) - truth["tip_enu"]
+        assert math.hypot(*err[:2]) < 0.01 and not doc["warnings"], (d.name, err)
+        j = doc["joint"]
+        assert abs(j["time_offset_ms"]) < 3 * j["time_offset_std_ms"], d.name
+        offsets.append(j["time_offset_ms"])
+        assert j["gyro_noise_deg_s_per_sample"] == pytest.approx(0.02, rel=0.4)
+        assert j["accel_noise_m_s2_per_sample"] == pytest.approx(0.01, rel=0.4)
+    assert abs(np.mean(offsets)) < 1.5
+
+
+def test_an_imu_noisier_than_its_grade_is_named():
+    """Consumer noise (0.015°/s/√Hz) declared industrial (0.004): 3.75× the gyro noise,
+    beyond the 3× limit; declared consumer, nothing is said."""
+    sim = simulate_swing(SwingConfig(gyro_noise_deg_s_rthz=0.015, accel_noise_m_s2_rthz=0.002,
+                                     tilt_deg=45.0, shape_ratio=0.5), seed=2)
+    said = _solve(sim, TiltParams(imu_grade="industrial")).warnings
+    assert any("noisier than its grade" in w and "gyro" in w for w in said), said
+    said = _solve(sim, TiltParams(imu_grade="consumer")).warnings
+    assert not any("noisier" in w for w in said)
+
+
+def test_model_error_of_a_fast_swing_at_50_hz_is_not_read_as_noise():
+    """Three sweeps of 50° in 2.5 s sampled at 50 Hz: second differences of the antenna
+    path differ from the instantaneous acceleration by Δt²/12·a'' (~5·10⁻³ m/s² here);
+    with the NED Numerov weights the accelerometer noise the joint method reports stays
+    within 35 % of the simulated 0.0085 m/s² per sample (taken as they are, the rows gave
+    3×: the variance components absorb a model error)."""
+    cfg = SwingConfig(tilt_deg=50, sweeps=3, shape_ratio=0.5, imu_rate_hz=50.0,
+                      wobble_deg=0.0, gyro_bias_deg_s=(0.03, -0.04, 0.02),
+                      accel_bias_m_s2=(0.01, -0.02, 0.015))
+    sol = _solve(simulate_swing(cfg, seed=4))
+    assert sol.joint.accel_noise_m_s2 == pytest.approx(0.0012 * math.sqrt(50), rel=0.35)

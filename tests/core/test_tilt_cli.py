@@ -68,7 +68,8 @@ def test_tilt_command_geodetic_gives_tip_llh(files, capsys):
     assert h == pytest.approx(ORIGIN[2], abs=0.1)
 
 
-@pytest.mark.parametrize("case", ["imu_value", "gnss_header", "pole_key", "imu_gap"])
+@pytest.mark.parametrize("case", ["imu_value", "gnss_header", "pole_key", "imu_gap",
+                                  "pole_convention"])
 def test_bad_input_exits_2_with_one_line(files, tmp_path, capsys, case):
     d, _ = files
     imu, gnss, pole = d / "imu.csv", d / "gnss.csv", d / "pole.json"
@@ -87,6 +88,10 @@ def test_bad_input_exits_2_with_one_line(files, tmp_path, capsys, case):
         pole = tmp_path / "pole.json"
         pole.write_text('{"length": 2.0}')
         want = ("pole.json", "pole_length_m")
+    elif case == "pole_convention":
+        pole = tmp_path / "pole.json"
+        pole.write_text('{"pole_length_m": 2.0, "imu_convention": "average"}')
+        want = ("pole.json", "imu_convention", "interval-end")
     else:
         lines = imu.read_text().splitlines()
         imu = tmp_path / "imu.csv"
@@ -138,3 +143,27 @@ def test_project_form_stores_results(files, tmp_path, capsys):
         assert stored["tip_enu"] == pytest.approx(doc["tip_enu"])
         assert "provenance" in attrs
         assert project.get_table("results/tilt_alignment/montecarlo")["run"].size == 3
+
+
+def test_convention_from_pole_json_and_the_option_and_the_grade_in_the_json(files, tmp_path,
+                                                                            capsys):
+    """The data were simulated as instantaneous samples: pole.json declaring them
+    end-of-interval shifts the attitude by half a sample, which the result names; the
+    option overrides the file; the grade and its priors are in the JSON."""
+    d, _ = files
+    pole = tmp_path / "pole.json"
+    length = json.loads((d / "pole.json").read_text())["pole_length_m"]
+    pole.write_text(json.dumps({"pole_length_m": length, "imu_convention": "interval-end"}))
+    docs = {}
+    for extra in ([], ["--imu-convention", "instant"]):
+        out = tmp_path / f"r{len(extra)}.json"
+        code = main(["tilt", "--imu", str(d / "imu.csv"), "--gnss", str(d / "gnss.csv"),
+                     "--pole", str(pole), "--json", str(out), *extra])
+        assert code == 0, capsys.readouterr().err
+        docs[len(extra)] = json.loads(out.read_text())
+    wrong, right = docs[0], docs[2]
+    assert wrong["imu_convention"] == "interval-end" and right["imu_convention"] == "instant"
+    assert any("'interval-middle or instant'" in w for w in wrong["warnings"])
+    assert not any("half the" in w for w in right["warnings"])
+    assert right["imu_grade"] == "mems"
+    assert right["priors"] == {"gyro_bias_deg_s": 0.05, "accel_bias_m_s2": 0.02}

@@ -453,4 +453,5 @@ def test_project_dock_starts_narrow_on_a_small_screen():
     from hydrosync_gui.window_geometry import DOCK_WIDTH_NARROW, DOCK_WIDTH_WIDE, dock_width
 
     assert dock_width(QRect(0, 0, 1280, 720)) == DOCK_WIDTH_NARROW
+    assert dock_width(QRect(0, 0, 1366, 736)) == DOCK_WIDTH_NARROW
     assert dock_width(QRect(0, 0, 1920, 1080)) == DOCK_WIDTH_WIDE

@@ -131,3 +131,104 @@ def test_param_form_unbounded_tuple_fits_a_narrow_column(qtbot):
     assert arm.minimumSizeHint().width() < 330
     form.set_params({"arm": [-123.456, 0.0, 999.999]})
     assert form.values()["arm"] == (-123.456, 0.0, 999.999)  # narrow, still every digit kept
+
+
+def test_long_headers_wrap_onto_two_lines_when_asked(qtbot):
+    """A wide header made a column of four-digit numbers 170 px wide (#26)."""
+    from hydrosync_gui.widgets.columns_table import wrap_header
+
+    assert wrap_header("predicted σ heading [°]") == "predicted σ\nheading [°]"
+    assert wrap_header("Epochs") == "Epochs"
+    assert wrap_header("σ heading [°]") == "σ heading [°]"  # short: one line
+    assert wrap_header("Joint residual [mm]") == "Joint\nresidual [mm]"  # unit kept
+    table = ColumnsTable(wrap_headers=True)
+    qtbot.addWidget(table)
+    values = {"pred_heading": np.array([0.112, 0.1477]), "n": np.array([592, 592])}
+    labels = {"pred_heading": "predicted σ heading"}
+    table.set_columns(values, units={"pred_heading": "°"}, labels=labels,
+                      formats={"pred_heading": "{:.4f}"})
+    model = table.table_model
+    assert model.headerData(0, Qt.Orientation.Horizontal) == "predicted σ\nheading [°]"
+    assert model.header(0) == "predicted σ heading [°]"
+    plain = ColumnsTable()
+    qtbot.addWidget(plain)
+    plain.set_columns(values, units={"pred_heading": "°"}, labels=labels)
+    table.show()
+    plain.show()
+    qtbot.wait(10)
+    assert table.columnWidth(0) < plain.columnWidth(0)
+
+
+def test_log_console_keeps_library_chatter_out(qtbot):
+    """PyOpenGL's "OpenGL_accelerate module loaded" INFO line appeared at start-up (#26):
+    other libraries' INFO lines stay out, their warnings and HydroSync's own lines show,
+    and with -v (debug) everything shows."""
+    console = LogConsole()
+    qtbot.addWidget(console)
+    root = logging.getLogger()
+    old = root.level
+    root.setLevel(logging.DEBUG)
+    try:
+        console.install(level=logging.INFO)
+        logging.getLogger("OpenGL.acceleratesupport").info("OpenGL_accelerate module loaded")
+        logging.getLogger("OpenGL.acceleratesupport").warning("no GL context")
+        logging.getLogger("hydrosync_gui.plugin_host").info("opened panel 'Latency'")
+        qtbot.waitUntil(lambda: len(console.lines()) == 2)
+        assert [line.split(" ", 1)[1] for line in console.lines()] == [
+            "WARNING OpenGL.acceleratesupport: no GL context",
+            "INFO hydrosync_gui.plugin_host: opened panel 'Latency'"]
+        console.install(level=logging.DEBUG)
+        logging.getLogger("OpenGL.acceleratesupport").info("OpenGL_accelerate module loaded")
+        qtbot.waitUntil(lambda: len(console.lines()) == 3)
+    finally:
+        console.uninstall()
+        root.setLevel(old)
+
+
+@pytest.mark.parametrize(("width", "wrapped"), [(260, True), (900, False)])
+def test_param_form_rows_wrap_all_or_none(qtbot, width, wrapped):
+    """In a narrow column every field goes under its label; in a wide one every field is
+    beside it — never a mix of the two (#26)."""
+    from PySide6.QtWidgets import QFormLayout, QScrollArea
+
+    from hydrosync_core.methods.pool_calibration.params import PoolParams
+
+    form = ParamForm(PoolParams)
+    scroll = QScrollArea()  # as the panels hold it
+    scroll.setWidget(form)
+    scroll.setWidgetResizable(True)
+    qtbot.addWidget(scroll)
+    scroll.resize(width, 600)
+    scroll.show()
+    qtbot.wait(30)
+    assert form.width() <= scroll.viewport().width()  # no horizontal scrolling
+    policy = (QFormLayout.RowWrapPolicy.WrapAllRows if wrapped
+              else QFormLayout.RowWrapPolicy.DontWrapRows)
+    assert form.wrapped is wrapped
+    assert {f.rowWrapPolicy() for f in form.forms} == {policy}
+    qtbot.wait(20)
+    # every visible editor starts at the same x within its form: all beside or all under
+    for layout in form.forms:
+        xs = {layout.itemAt(r, QFormLayout.ItemRole.FieldRole).widget().x()
+              for r in range(layout.rowCount())
+              if layout.itemAt(r, QFormLayout.ItemRole.LabelRole) is not None
+              and layout.itemAt(r, QFormLayout.ItemRole.FieldRole).widget().isVisible()}
+        assert len(xs) <= 1, xs
+
+
+def test_choice_boxes_show_labels_and_return_values(qtbot):
+    """"Reported method: lsq" showed the key; the box shows the words of the panel and PDF
+    and the form still returns the key (#26)."""
+    from hydrosync_core.methods.gnss_attitude.params import GnssAttitudeParams
+
+    labels = {"lsq": "least squares", "direct": "direct (3 antennas)"}
+    form = ParamForm(GnssAttitudeParams, choice_labels={"method": labels})
+    qtbot.addWidget(form)
+    box = form.editors["method"].parts[0]
+    assert box.currentText() == "least squares"
+    assert form.values()["method"] == "lsq"
+    form.set_params({"method": "direct"})
+    assert box.currentText() == "direct (3 antennas)"
+    assert form.params().method == "direct"
+    assert [box.itemData(i) for i in range(box.count())] == list(
+        GnssAttitudeParams.schema()[0].meta.choices)

@@ -38,7 +38,7 @@ def pytest_terminal_summary(terminalreporter, exitstatus, config):
     if not _TABLE:
         return
     tr = terminalreporter
-    tr.section("issue #9 fault cases")
+    tr.section("issues #9 and #28 fault cases")
     tr.write_line(f"{'kind':<46} {'tried':>6} {'clean':>6} {'failed':>7}")
     for kind in sorted(_TABLE):
         tried, clean = _TABLE[kind]

@@ -288,6 +288,13 @@ set +e
 echo $? > {tmp_path}/code
 sha256sum {mount}/P.h5 > {tmp_path}/after
 ls -a {mount} > {tmp_path}/files
+{hs} new {mount}/N.h5 > /dev/null 2> {tmp_path}/err_new
+echo $? > {tmp_path}/code_new
+printf 'name,start,end\nL1,0,10\n' > {tmp_path}/lines.csv
+{hs} import {mount}/P.h5 --lines {tmp_path}/lines.csv > /dev/null 2> {tmp_path}/err_import
+echo $? > {tmp_path}/code_import
+sha256sum {mount}/P.h5 > {tmp_path}/after_import
+ls -a {mount} > {tmp_path}/files_after
 """
     subprocess.run(["unshare", *MOUNT_NS, "sh", "-c", script], check=True, timeout=300,
                    env=cli_env())
@@ -297,8 +304,17 @@ ls -a {mount} > {tmp_path}/files
     same = (tmp_path / "before").read_text() == (tmp_path / "after").read_text()
     ok = (code == 2 and len(lines) == 1 and "no space left" in lines[0] and same
           and files == {".", "..", "P.h5", "filler"})
-    faults.record(f"full disk ({fill})", ok, f"{code} {lines} {files}")
+    faults.record(f"full disk ({fill}): vessel --set", ok, f"{code} {lines} {files}")
     assert ok, (code, lines, files, same)
+    if fill == "all":  # nothing fits: new and import fail alike, leaving no empty lock
+        for command in ("new", "import"):
+            code = int((tmp_path / f"code_{command}").read_text())
+            lines = stderr_lines((tmp_path / f"err_{command}").read_text())
+            ok = code == 2 and len(lines) == 1 and "no space left" in lines[0]
+            faults.record(f"full disk (all): {command}", ok, f"{code} {lines}")
+            assert ok, (command, code, lines)
+        assert set((tmp_path / "files_after").read_text().split()) == files
+        assert (tmp_path / "after_import").read_text() == (tmp_path / "after").read_text()
 
 
 def cli_command_for_shell() -> list[str]:
@@ -357,7 +373,8 @@ def test_closed_stdout_exits_0_quietly(tmp_path):
 def test_import_help_says_repeatable_only_where_it_is():
     done = run_cli("import", "--help")
     text = " ".join(done.stdout.split())
-    assert text.count("repeatable") == 2
+    # the antenna kinds and the two device-log kinds (several logs become one table)
+    assert text.count("repeatable") == 4
     assert "(repeatable: one .pos per antenna)" in text
 
 

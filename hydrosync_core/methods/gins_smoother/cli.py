@@ -82,6 +82,17 @@ def _print(doc: dict) -> None:
                                         ("vn", "ve", "vd"))
                 + " %, roll/pitch/yaw " + " ".join(f"{100 * c[k]['within_95']:.0f}" for k in
                                                    ("roll", "pitch", "yaw")) + " %")
+        off = ev.get("constant_offset")
+        c0 = ev.get("coverage", {}).get("offset_removed", {})
+        if off and c0.get("yaw"):
+            print(f"{'':<9} constant offset from the reference roll/pitch/yaw "
+                  + "/".join(f"{off[k]:+.2f}" for k in ("roll", "pitch", "yaw"))
+                  + " deg, N/E/D " + "/".join(f"{off[k]:+.2f}" for k in ("north", "east",
+                                                                        "down"))
+                  + " m (the reference's own axes and point: not independent, mounting "
+                  "unknown); within 1.96σ with it removed: roll/pitch/yaw "
+                  + " ".join(f"{100 * c0[k]['within_95']:.0f}" for k in ("roll", "pitch",
+                                                                        "yaw")) + " %")
 
 
 def _run_files(args, params: GinsParams) -> int:

@@ -8,7 +8,6 @@ this edge are those of KF-GINS: degrees, deg/h, deg/√h, m/s/√h, mGal, ppm, h
 
 from __future__ import annotations
 
-import json
 import math
 import os
 from dataclasses import dataclass, field, replace
@@ -252,28 +251,12 @@ def config_from_dict(doc: dict, source: str = "config") -> SensorConfig:
 
 def read_config(path: str | os.PathLike) -> SensorConfig:
     """Read a KF-GINS YAML configuration (as it is) or a JSON file with the same keys."""
-    p = Path(path)
-    try:
-        text = p.read_text(encoding="utf-8-sig")
-    except FileNotFoundError:
-        raise InputError(str(p), "file not found") from None
-    except (OSError, UnicodeDecodeError) as exc:
-        raise InputError(str(p), f"cannot read: {exc}") from None
-    if p.suffix.lower() == ".json":
-        try:
-            doc = json.loads(text)
-        except json.JSONDecodeError as exc:
-            raise InputError(str(p), f"not JSON: {exc.msg}", line=exc.lineno) from None
-    else:
-        import yaml
+    from hydrosync_core.configfiles import parse_json, parse_yaml, read_config_text
 
-        try:
-            doc = yaml.safe_load(text)
-        except yaml.YAMLError as exc:
-            mark = getattr(exc, "problem_mark", None)
-            raise InputError(str(p), f"not YAML: {getattr(exc, 'problem', exc)}",
-                             line=None if mark is None else mark.line + 1) from None
-    return config_from_dict(doc, str(p))
+    p = Path(path)
+    text = read_config_text(p, "KF-GINS configuration")  # gated, bounded
+    parse = parse_json if p.suffix.lower() == ".json" else parse_yaml
+    return config_from_dict(parse(text, str(p)), str(p))
 
 
 def initial_covariance(cfg: SensorConfig, ns: int) -> np.ndarray:

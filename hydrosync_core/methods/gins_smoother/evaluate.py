@@ -104,6 +104,23 @@ def coverage(errors: dict[str, np.ndarray], mask: np.ndarray | None = None) -> d
     return out
 
 
+def offset_removed(errors: dict[str, np.ndarray]) -> tuple[dict, dict]:
+    """The errors with each component's mean removed, and those means.
+
+    A reference that is not independent of the sensors, or that describes another point
+    or axes (comma2k19: the camera; its mounting on the IMU is not given), differs from the
+    solution by a constant the σ cannot know about; :func:`coverage` of what is left
+    tells whether the σ describe the varying part honestly.
+    """
+    out = dict(errors)
+    means = {}
+    for name in POS + VEL + ATT:
+        if name in errors and errors[name].size:
+            means[name] = float(np.mean(errors[name]))
+            out[name] = errors[name] - means[name]
+    return out, means
+
+
 def outage_drift(errors: dict[str, np.ndarray], windows) -> dict:
     """Largest horizontal and vertical error inside each outage window (s).
 
@@ -145,8 +162,10 @@ def evaluate(result, ref: NavData, windows=()) -> dict:
 
     ``{"forward": {...}, "smoothed": {...}}`` each with ``all`` (every reference epoch),
     ``gnss_on`` (outside the outage windows) and ``outage`` (:func:`outage_drift`), and
-    ``coverage`` (:func:`coverage` of the solution's own σ) over ``all`` epochs and, with
-    outage windows, ``gnss_on`` and ``in_outage``.
+    ``coverage`` (:func:`coverage` of the solution's own σ) over ``all`` epochs, over all
+    epochs with each component's constant offset removed (``offset_removed``; the offsets
+    in ``constant_offset``, :func:`offset_removed`) and, with outage windows, ``gnss_on``
+    and ``in_outage``.
     """
     out = {}
     for name in ("forward", "smoothed"):
@@ -155,6 +174,10 @@ def evaluate(result, ref: NavData, windows=()) -> dict:
             continue
         e = error_series(sol, ref)
         entry = {"all": statistics(e), "coverage": {"all": coverage(e)}}
+        if e["time"].size:
+            e0, means = offset_removed(e)
+            entry["constant_offset"] = means
+            entry["coverage"]["offset_removed"] = coverage(e0)
         if windows:
             inside = np.zeros(e["time"].size, bool)
             for a, b in windows:

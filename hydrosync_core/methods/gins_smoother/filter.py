@@ -30,6 +30,7 @@ from hydrosync_core.methods.gins_smoother.config import (
 from hydrosync_core.methods.gins_smoother.io import GnssData, ImuData
 from hydrosync_core.methods.gins_smoother.params import RAN, GinsParams
 from hydrosync_core.progress import check_cancel, report
+from hydrosync_core.rotations import euler_zyx_matrix
 
 CHUNK_S = 60.0  # seconds of IMU data per compiled chunk (progress / cancel granularity)
 
@@ -195,18 +196,7 @@ def gnss_residuals(gnss: GnssData, traj: Trajectory, lever) -> np.ndarray:
 
 
 def _lever_vec(att_rad: np.ndarray, lever) -> np.ndarray:
-    r, p, y = att_rad[:, 0], att_rad[:, 1], att_rad[:, 2]
-    cr, sr, cp, sp, cy, sy = np.cos(r), np.sin(r), np.cos(p), np.sin(p), np.cos(y), np.sin(y)
-    C = np.empty((r.size, 3, 3))
-    C[:, 0, 0] = cy * cp
-    C[:, 0, 1] = cy * sp * sr - sy * cr
-    C[:, 0, 2] = cy * sp * cr + sy * sr
-    C[:, 1, 0] = sy * cp
-    C[:, 1, 1] = sy * sp * sr + cy * cr
-    C[:, 1, 2] = sy * sp * cr - cy * sr
-    C[:, 2, 0] = -sp
-    C[:, 2, 1] = cp * sr
-    C[:, 2, 2] = cp * cr
+    C = euler_zyx_matrix(att_rad[:, 0], att_rad[:, 1], att_rad[:, 2])
     return C @ np.asarray(lever, float)
 
 
@@ -238,6 +228,10 @@ K_WHITE_MIN = 0.9
 #: GNSS correlation times (s) tried, by maximum likelihood of the innovations.
 IMU_SCALE_RANGE = (1.0 / 16.0, 64.0)
 TAU_GRID = (3.0, 10.0, 30.0, 100.0, 300.0, 1000.0, 3000.0)
+#: Lags (fix to fix) of the Ljung–Box whiteness test of the innovations, and the p-value
+#: below which they are reported as still correlated.
+LB_LAGS = 10
+LB_ALPHA = 0.01
 
 
 def _lag_pairs(tt: np.ndarray, lag_s: float) -> tuple[np.ndarray, np.ndarray]:
@@ -272,8 +266,29 @@ def innovation_check(gnss_out: dict, lag_s: float = 1.0) -> dict:
            if i.size > 3 else None for c in range(3)]
     _sign, logdet = np.linalg.slogdet(S)
     m = np.einsum("ki,kij,kj->k", nu, np.linalg.inv(S), nu)
+    lb = [ljung_box(u[:, c]) for c in range(3)]
     return {"fixes": int(nu.shape[0]), "rms": np.sqrt(np.mean(u * u, axis=0)).tolist(),
-            "rho_1s": rho, "nll": float(np.mean(0.5 * (logdet + m)))}
+            "rho_1s": rho, "nll": float(np.mean(0.5 * (logdet + m))),
+            "rho_lag1": [r[0] for r in lb], "ljung_box_p": [r[1] for r in lb],
+            "ljung_box_lags": lb[0][2]}
+
+
+def ljung_box(u: np.ndarray, max_lags: int = LB_LAGS) -> tuple[float, float, int]:
+    """Whiteness of a series of normalised innovations (consecutive fixes): the
+    autocorrelation at lag 1 and the Ljung–Box p-value over ``L = min(max_lags, n/5)``
+    lags, ``Q = n(n+2) Σ ρ_l²/(n−l)`` against χ²(L) (small p: correlated — a Kalman
+    filter with the right model has white innovations)."""
+    from scipy.stats import chi2
+
+    n = u.size
+    L = int(min(max_lags, n // 5))
+    if L < 1:
+        return float("nan"), float("nan"), 0
+    e = u - u.mean()
+    v = float(e @ e)
+    rho = np.array([float(e[:-k] @ e[k:]) / v for k in range(1, L + 1)])
+    q = n * (n + 2) * float(np.sum(rho ** 2 / (n - np.arange(1, L + 1))))
+    return float(rho[0]), float(chi2.sf(q, L)), L
 
 
 def _consistent(check: dict) -> bool:
@@ -379,8 +394,16 @@ def _model_summary(info: dict) -> str:
         if chk.get("rms") is None:
             return "no GNSS innovations to check"
         rho = [r for r in chk["rho_1s"] if r is not None]
-        return (f"normalised GNSS innovations RMS N/E/D {f3(chk['rms'])}"
+        text = (f"normalised GNSS innovations RMS N/E/D {f3(chk['rms'])}"
                 + (f", autocorrelation at 1 s ≤ {max(rho):.2f}" if rho else ""))
+        p = [x for x in chk.get("ljung_box_p", []) if x == x]
+        if p and min(p) < LB_ALPHA:
+            text += (f", still correlated fix to fix (lag 1 {f3(chk['rho_lag1'])}, "
+                     f"Ljung–Box p {'/'.join(f'{x:.0e}' for x in chk['ljung_box_p'])}: σ may "
+                     "be optimistic)")
+        elif p:
+            text += f", white (Ljung–Box p ≥ {min(p):.2g})"
+        return text
     if not info["estimated"]:
         return ("GNSS σ from the file" + (f" ×{info['gnss_std_scale']:g}"
                                           if info["gnss_std_scale"] != 1 else "")

@@ -34,6 +34,7 @@ import numpy as np
 
 from hydrosync_core.atomic import write_text_atomic
 from hydrosync_core.errors import InputError, quote
+from hydrosync_core.inputs import input_ok
 
 DEFAULT_GNSS_STD = (0.02, 0.02, 0.04)
 
@@ -89,6 +90,8 @@ class NavData:
 
 def _read_text(path) -> tuple[str, str]:
     p = Path(path)
+    if p.exists():
+        input_ok(p)  # a FIFO, device or sparse file is refused before reading
     try:
         text = p.read_text(encoding="utf-8-sig")
     except FileNotFoundError:

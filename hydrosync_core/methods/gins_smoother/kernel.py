@@ -359,6 +359,100 @@ def compensate(x, dth_raw, dv_raw, dt, ns):
 
 
 @njit(cache=True)
+def start_run(t, inc, i0, x, P, state, ns, nominal_dt, tg, traj, node_idx, xp_n, xf_n, Pp_n,
+              Pf_n, Phi_n):
+    """First call of :func:`forward`: the GNSS pointer past ``t[i0]``, the previous
+    compensated increments (coning and sculling need them) and node 0 at ``t[i0]``."""
+    ng = tg.shape[0]
+    g = 0
+    while g < ng and tg[g] <= t[i0]:
+        g += 1
+    state[4] = g
+    if i0 > 0:
+        dtp = t[i0] - t[i0 - 1]
+        if dtp <= 0.0 or dtp > 0.1:
+            dtp = nominal_dt
+        dth_p, dv_p = compensate(x, inc[i0, 0:3], inc[i0, 3:6], dtp, ns)
+        state[6:9] = dth_p
+        state[9:12] = dv_p
+    node_idx[0] = i0
+    xp_n[0] = x
+    xf_n[0] = x
+    Pp_n[0] = P
+    Pf_n[0] = P
+    Phi_n[0] = np.eye(ns)
+    traj[0] = x[0:10]
+    state[2] = t[i0]
+    state[3] = t[i0]
+    state[5] = 1
+
+
+@njit(cache=True)
+def propagate_covariance(x, P, Phi, fb, wb, tsum, ns, qc, tcorr, tcorr_g):
+    """Covariance over a block of *tsum* seconds with the block's mean specific force *fb*
+    and angular rate *wb*: second-order transition, trapezoidal process noise; *Phi*
+    accumulates the transition since the last node (all in place)."""
+    F = system_matrix(x, fb, wb, ns, tcorr, tcorr_g) * tsum
+    Phb = np.eye(ns) + F + 0.5 * (F @ F)
+    G = noise_gain(x, ns)
+    GQG = (G * qc) @ G.T
+    Q = 0.5 * (Phb @ GQG @ Phb.T + GQG) * tsum
+    P[:, :] = Phb @ P @ Phb.T + Q
+    Phi[:, :] = Phb @ Phi
+
+
+@njit(cache=True)
+def gnss_update(x, P, ns, t_j, tg_g, llh_g_g, std_g_g, lever, gate, innov_g, innov_cov_g):
+    """GNSS position update at IMU epoch time *t_j* with the fix of time *tg_g*: lever
+    arm, time alignment by the velocity, the GNSS error state when present. Writes the
+    innovation and its predicted covariance; True if applied (not gated out)."""
+    c = qdcm(x[6:10])
+    la = c @ lever
+    rm, rn = radii(x[0])
+    dtg = tg_g - t_j
+    zn = (x[0] - llh_g_g[0]) * (rm + x[2]) + la[0] + x[3] * dtg
+    ze = (x[1] - llh_g_g[1]) * (rn + x[2]) * math.cos(x[0]) + la[1] + x[4] * dtg
+    zd = -(x[2] - llh_g_g[2]) + la[2] + x[5] * dtg
+    z = np.array([zn, ze, zd])
+    H = np.zeros((3, ns))
+    H[0, 0] = 1.0
+    H[1, 1] = 1.0
+    H[2, 2] = 1.0
+    H[:, 6:9] = skew(la)
+    ni = n_imu(ns)
+    if ns > ni:  # fix − estimated GNSS error; error state true − estimated
+        for c3 in range(3):
+            z[c3] += x[GNSS_X + c3]
+            H[c3, ni + c3] = -1.0
+    R = np.diag(std_g_g ** 2)
+    innov_g[:] = z
+    innov_cov_g[:, :] = H @ P @ H.T + R
+    return _update(x, P, H, z, R, ns, gate)
+
+
+@njit(cache=True)
+def constraint_update(x, P, ns, is_static, zupt_speed, zupt_std, nhc, nhc_std, c_vb):
+    """Zero-velocity update when the IMU is quiet and the filter slow, else the
+    non-holonomic constraint (lateral and vertical vehicle-frame velocity zero) if on."""
+    c = qdcm(x[6:10])
+    speed = math.sqrt(np.sum(x[3:6] ** 2))
+    if is_static and speed < zupt_speed:
+        H = np.zeros((3, ns))
+        H[0, 3] = 1.0
+        H[1, 4] = 1.0
+        H[2, 5] = 1.0
+        _update(x, P, H, x[3:6].copy(), np.eye(3) * zupt_std ** 2, ns, 0.0)
+    elif nhc:
+        cvn = c_vb @ c.T
+        vv = cvn @ x[3:6]
+        H = np.zeros((2, ns))
+        H[:, 3:6] = cvn[1:3, :]
+        H[:, 6:9] = -(cvn @ skew(x[3:6]))[1:3, :]
+        R = np.eye(2) * nhc_std ** 2
+        _update(x, P, H, vv[1:3].copy(), R, ns, 0.0)
+
+
+@njit(cache=True)
 def forward(t, inc, i0, ja, jb, x, P, Phi, state, qc, ns, tcorr, tcorr_g, nominal_dt, prop_n,
             tg, llh_g, std_g, lever, gate,
             nhc, nhc_std, c_vb, con_interval, static, zupt_std, zupt_speed,
@@ -368,6 +462,11 @@ def forward(t, inc, i0, ja, jb, x, P, Phi, state, qc, ns, tcorr, tcorr_g, nomina
 
     Called repeatedly on consecutive chunks; *x*, *P*, *Phi* and *state* carry the filter
     between calls and are updated in place (``state[5]`` = number of nodes written).
+
+    The named steps are their own compiled functions (:func:`start_run`,
+    :func:`propagate_covariance`, :func:`gnss_update`, :func:`constraint_update`); the
+    epoch loop and its carry stay here, because numba cannot return the dozen scalars the
+    loop carries from a helper without packing them into arrays on every epoch.
 
     Parameters
     ----------
@@ -416,27 +515,8 @@ def forward(t, inc, i0, ja, jb, x, P, Phi, state, qc, ns, tcorr, tcorr_g, nomina
     """
     ng = tg.shape[0]
     if state[5] == 0:
-        g = 0
-        while g < ng and tg[g] <= t[i0]:
-            g += 1
-        state[4] = g
-        if i0 > 0:
-            dtp = t[i0] - t[i0 - 1]
-            if dtp <= 0.0 or dtp > 0.1:
-                dtp = nominal_dt
-            dth_p, dv_p = compensate(x, inc[i0, 0:3], inc[i0, 3:6], dtp, ns)
-            state[6:9] = dth_p
-            state[9:12] = dv_p
-        node_idx[0] = i0
-        xp_n[0] = x
-        xf_n[0] = x
-        Pp_n[0] = P
-        Pf_n[0] = P
-        Phi_n[0] = np.eye(ns)
-        traj[0] = x[0:10]
-        state[2] = t[i0]
-        state[3] = t[i0]
-        state[5] = 1
+        start_run(t, inc, i0, x, P, state, ns, nominal_dt, tg, traj, node_idx, xp_n, xf_n,
+                  Pp_n, Pf_n, Phi_n)
     tsum = state[0]
     nblk = int(state[1])
     last_node_t = state[2]
@@ -466,15 +546,8 @@ def forward(t, inc, i0, ja, jb, x, P, Phi, state, qc, ns, tcorr, tcorr_g, nomina
             nhc or (static[j] and math.sqrt(np.sum(x[3:6] ** 2)) < zupt_speed))
         is_node = has_gnss or con_due or (t[j] - last_node_t >= max_node_dt - 1e-9) or j == i1
         if nblk >= prop_n or is_node:
-            fb = fsum / tsum
-            wb = wsum / tsum
-            F = system_matrix(x, fb, wb, ns, tcorr, tcorr_g) * tsum
-            Phb = np.eye(ns) + F + 0.5 * (F @ F)
-            G = noise_gain(x, ns)
-            GQG = (G * qc) @ G.T
-            Q = 0.5 * (Phb @ GQG @ Phb.T + GQG) * tsum
-            P[:, :] = Phb @ P @ Phb.T + Q
-            Phi[:, :] = Phb @ Phi
+            propagate_covariance(x, P, Phi, fsum / tsum, wsum / tsum, tsum, ns, qc, tcorr,
+                                 tcorr_g)
             fsum[:] = 0.0
             wsum[:] = 0.0
             tsum = 0.0
@@ -485,49 +558,14 @@ def forward(t, inc, i0, ja, jb, x, P, Phi, state, qc, ns, tcorr, tcorr_g, nomina
             Pp_n[k] = P
             Phi_n[k] = Phi
             while g < ng and tg[g] <= t[j]:
-                # GNSS position update with lever arm, time-aligned by the velocity
-                c = qdcm(x[6:10])
-                la = c @ lever
-                rm, rn = radii(x[0])
-                dtg = tg[g] - t[j]
-                zn = (x[0] - llh_g[g, 0]) * (rm + x[2]) + la[0] + x[3] * dtg
-                ze = (x[1] - llh_g[g, 1]) * (rn + x[2]) * math.cos(x[0]) + la[1] + x[4] * dtg
-                zd = -(x[2] - llh_g[g, 2]) + la[2] + x[5] * dtg
-                z = np.array([zn, ze, zd])
-                H = np.zeros((3, ns))
-                H[0, 0] = 1.0
-                H[1, 1] = 1.0
-                H[2, 2] = 1.0
-                H[:, 6:9] = skew(la)
-                ni = n_imu(ns)
-                if ns > ni:  # fix − estimated GNSS error; error state true − estimated
-                    for c3 in range(3):
-                        z[c3] += x[GNSS_X + c3]
-                        H[c3, ni + c3] = -1.0
-                R = np.diag(std_g[g] ** 2)
-                innov[g] = z
-                innov_cov[g] = H @ P @ H.T + R
-                if _update(x, P, H, z, R, ns, gate):
+                if gnss_update(x, P, ns, t[j], tg[g], llh_g[g], std_g[g], lever, gate,
+                               innov[g], innov_cov[g]):
                     gnss_used[g] = 1
                 g += 1
             if con_due:
                 last_con_t = t[j]
-                c = qdcm(x[6:10])
-                speed = math.sqrt(np.sum(x[3:6] ** 2))
-                if static[j] and speed < zupt_speed:
-                    H = np.zeros((3, ns))
-                    H[0, 3] = 1.0
-                    H[1, 4] = 1.0
-                    H[2, 5] = 1.0
-                    _update(x, P, H, x[3:6].copy(), np.eye(3) * zupt_std ** 2, ns, 0.0)
-                elif nhc:
-                    cvn = c_vb @ c.T
-                    vv = cvn @ x[3:6]
-                    H = np.zeros((2, ns))
-                    H[:, 3:6] = cvn[1:3, :]
-                    H[:, 6:9] = -(cvn @ skew(x[3:6]))[1:3, :]
-                    R = np.eye(2) * nhc_std ** 2
-                    _update(x, P, H, vv[1:3].copy(), R, ns, 0.0)
+                constraint_update(x, P, ns, static[j], zupt_speed, zupt_std, nhc, nhc_std,
+                                  c_vb)
             xf_n[k] = x
             Pf_n[k] = P
             Phi[:, :] = np.eye(ns)

@@ -25,6 +25,7 @@ import numpy as np
 
 from hydrosync_core.methods.gins_smoother.config import D2R, ImuNoise, SensorConfig
 from hydrosync_core.methods.gins_smoother.io import GnssData, ImuData, NavData
+from hydrosync_core.rotations import euler_zyx_matrix
 
 WIE = 7.2921151467e-5
 A_WGS = 6378137.0
@@ -126,18 +127,8 @@ def simulate(duration_s: float = 120.0, kind: str = "vehicle", grade: str = "tac
     an = np.gradient(vn, tf, axis=0)
     g = np.column_stack([np.zeros_like(h), np.zeros_like(h), _gravity(lat, h)])
     fn = an - g + np.cross(2 * wie + wen, vn)
-    cr, sr, cp, sp, cy, sy = (np.cos(phi), np.sin(phi), np.cos(theta), np.sin(theta),
-                              np.cos(psi), np.sin(psi))
-    C = np.empty((tf.size, 3, 3))  # C_b^n
-    C[:, 0, 0] = cy * cp
-    C[:, 0, 1] = cy * sp * sr - sy * cr
-    C[:, 0, 2] = cy * sp * cr + sy * sr
-    C[:, 1, 0] = sy * cp
-    C[:, 1, 1] = sy * sp * sr + cy * cr
-    C[:, 1, 2] = sy * sp * cr - cy * sr
-    C[:, 2, 0] = -sp
-    C[:, 2, 1] = cp * sr
-    C[:, 2, 2] = cp * cr
+    cr, sr, cp, sp = np.cos(phi), np.sin(phi), np.cos(theta), np.sin(theta)
+    C = euler_zyx_matrix(phi, theta, psi)  # C_b^n
     dphi, dth, dpsi = (np.gradient(a, tf) for a in (phi, theta, psi))
     wnb = np.column_stack([dphi - dpsi * sp, dth * cr + dpsi * cp * sr,
                            -dth * sr + dpsi * cp * cr])

@@ -10,7 +10,6 @@ other value than ``FRD`` is refused (the sign of y and z would be guessed otherw
 
 from __future__ import annotations
 
-import json
 import math
 import os
 from pathlib import Path
@@ -67,13 +66,8 @@ def check_antennas(document, source: str | None = None) -> dict[str, list[float]
 
 def read_antennas_json(path: str | os.PathLike) -> dict:
     """Read and check ``antennas.json``; returns ``{"frame": "FRD", "antennas": {…}}``."""
+    from hydrosync_core.configfiles import parse_json, read_config_text
+
     p = Path(path)
-    if not p.is_file():
-        raise InputError(str(p), "no such file")
-    try:
-        document = json.loads(p.read_text(encoding="utf-8-sig"))
-    except json.JSONDecodeError as exc:
-        raise InputError(str(p), f"not valid JSON: {exc.msg}", line=exc.lineno) from None
-    except UnicodeDecodeError:
-        raise InputError(str(p), "not a UTF-8 text file") from None
+    document = parse_json(read_config_text(p, "antennas.json"), str(p))
     return {"frame": "FRD", "antennas": check_antennas(document, str(p))}

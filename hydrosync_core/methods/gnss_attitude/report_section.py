@@ -102,8 +102,9 @@ def section(project, ctx) -> list:
         ch = ctx.chart(height=150, fraction=1 / 3, xlabel="time [s]", ylabel=f"{a} [°]")
         # Every epoch, as the range and median of each 1/60 of the record: epoch by
         # epoch the noisy pitch and roll of a long record printed as solid blocks.
-        ch.envelope(direct["time"] - t0, direct[a], label="direct", bins=ENVELOPE_BINS)
-        ch.envelope(lsq["time"] - t0, lsq[a], label="LSQ", bins=ENVELOPE_BINS)
+        ch.envelope(direct["time"] - t0, direct[a], label=LABELS["direct"],
+                    bins=ENVELOPE_BINS)
+        ch.envelope(lsq["time"] - t0, lsq[a], label=LABELS["lsq"], bins=ENVELOPE_BINS)
         charts.append(ch)
     out.append(ctx.figure(charts, "Heading, pitch and roll: direct method (three antennas) "
                           "and least squares overlaid (time from the first epoch). Where "

@@ -36,12 +36,34 @@ ESTIMATOR_CHOICES = ESTIMATORS + ("auto",)
 #: for ``qi2010`` (the published method stays exact), extended for the others.
 SCREENINGS = ("auto", "paper", "extended")
 
+#: The motion sensor's heave filter (:mod:`.heave_filter`): ``unknown`` (not declared: the
+#: delay-model check says when the data show one), ``none`` or ``compensated`` (no phase
+#: at the wave periods: nothing to model), ``highpass`` (causal Butterworth high-pass of
+#: ``heave_filter_order`` and ``heave_filter_period_s``, applied to the heights as well).
+HEAVE_FILTERS = ("unknown", "none", "compensated", "highpass")
+
 ESTIMATOR_NAMES = {
     "qi2010": "correlation of raw series (Qi et al. 2010)",
     "qi2010_antialias": "correlation after anti-alias low-pass (Qi et al. 2010 + filter)",
     "weighted": "coherence-weighted cross-correlation (maximum likelihood)",
     "auto": "the estimator with the smaller uncertainty of qi2010 and weighted",
 }
+
+
+def parse_qualities(text: str) -> tuple[int, ...] | None:
+    """``"auto"`` -> None; ``"4,5"`` -> (4, 5). Raises InputError naming the field."""
+    text = str(text).strip().lower()
+    if text in ("", "auto"):
+        return None
+    try:
+        values = tuple(sorted({int(v) for v in text.replace(" ", "").split(",") if v}))
+    except ValueError:
+        raise InputError(None, f"fix qualities must be 'auto' or numbers like '4,5', got "
+                         f"'{text}'", field="fix_qualities") from None
+    if not values or any(v < 0 or v > 9 for v in values):
+        raise InputError(None, f"fix qualities must be GGA indicators 0-9, got '{text}'",
+                         field="fix_qualities")
+    return values
 
 
 def estimator_label(name: str | None) -> str:
@@ -108,6 +130,23 @@ class LatencyParams(Params):
              "also drop lines whose σ is not credible or that are outliers; auto = paper "
              "for qi2010, extended for the other estimators (a peak on the scan's edge is "
              "never used)")
+    fix_qualities: str = param(
+        "auto", label="GNSS fix qualities", advanced=True,
+        help="GGA fix qualities used: auto = only RTK fixed (4) when the log has any, else "
+             "all with a warning naming them; or a list such as '4,5'")
+    heave_filter: str = param(
+        "unknown", label="Heave filter", choices=HEAVE_FILTERS,
+        help="the motion sensor's heave filter: highpass = a causal high-pass (order and "
+             "cut-off period below), applied to the GNSS heights too so that both carry "
+             "its phase; compensated/none = no phase at wave periods; unknown = not "
+             "declared (the delay-model check flags a filter's phase)")
+    heave_filter_order: int = param(
+        2, label="Heave filter order", minimum=1, maximum=4, advanced=True,
+        help="order of the declared high-pass heave filter")
+    heave_filter_period_s: float = param(
+        20.0, label="Heave filter cut-off period", unit="s", minimum=1.0, maximum=1000.0,
+        decimals=1, step=1.0, advanced=True,
+        help="cut-off period of the declared high-pass heave filter (sensors: 10-30 s)")
     max_line_sigma_s: float = param(
         0.2, label="Largest credible line σ", unit="s", minimum=0.0, min_exclusive=True,
         maximum=100.0, decimals=3, step=0.05, advanced=True,
@@ -140,6 +179,7 @@ class LatencyParams(Params):
         if not hi > lo:
             raise InputError(None, f"range maximum must be above minimum, got {lo:g}..{hi:g}",
                              field="range_s")
+        parse_qualities(self.fix_qualities)
         if self.step_s > hi - lo:
             raise InputError(None, f"step must be within the range, got {self.step_s:g} s",
                              field="step_s")

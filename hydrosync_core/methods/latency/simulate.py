@@ -59,6 +59,24 @@ class DayConfig:
     t0: float = 345600.0
     heave_white_m: float = 0.0
     attitude_noise_deg: float = 0.0
+    heave_filter_order: int = 0
+    """Order of the motion sensor's causal Butterworth high-pass heave filter (0: none)."""
+    heave_filter_period_s: float = 20.0
+    """Its cut-off period (s); sensors use 10–30 s."""
+    heave_filter_compensated: bool = False
+    """The vendor's phase compensation: the same filter run forwards and backwards
+    (zero phase), as a delayed heave output does."""
+    gnss_blend_tau_s: float = 0.0
+    """> 0: INS-blended heights: the GNSS errors pass a first-order low-pass of this time
+    constant (the complementary filter's GNSS branch; the motion is the INS's), instead of
+    raw RTK white noise."""
+    attitude_out_hz: float = 0.0
+    attitude_tag_delay_s: float = 0.0
+    """The attitude's time-tag convention: records tagged this long after they were
+    measured (e.g. half a sample for a tag at the end of the integration interval). The
+    relative delay to find is then ``latency_s − attitude_tag_delay_s``."""
+    """> 0: the attitude is reported at this rate (every k-th sample of the internal
+    *attitude_hz* record), e.g. 1 Hz like the Seapath logs' PSXN records."""
 
 
 SCENARIOS: dict[str, dict] = {
@@ -122,6 +140,29 @@ def _gauss_markov(rng, n: int, dt: float, tau: float, std: float) -> np.ndarray:
     return lfilter([1.0], [1.0, -phi], e)
 
 
+def _first_order_lowpass(x: np.ndarray, dt: float, tau: float) -> np.ndarray:
+    """*x* (sampled every *dt* s) through a first-order low-pass of time constant *tau*
+    (s), scaled back to the input's standard deviation (a blend moves errors in frequency,
+    it does not remove them)."""
+    from scipy.signal import lfilter
+
+    a = np.exp(-dt / tau)
+    y = lfilter([1.0 - a], [1.0, -a], x, zi=[a * x[0]])[0]
+    return y * (x.std() / max(y.std(), 1e-300))
+
+
+def _sensor_heave_filter(heave: np.ndarray, fs: float, cfg: DayConfig) -> np.ndarray:
+    """The motion sensor's heave: causal high-pass (or zero-phase when compensated)."""
+    from scipy.signal import sosfilt, sosfiltfilt
+
+    from hydrosync_core.methods.latency.heave_filter import highpass_sos
+
+    sos = highpass_sos(cfg.heave_filter_order, cfg.heave_filter_period_s, fs)
+    if cfg.heave_filter_compensated:
+        return sosfiltfilt(sos, heave)
+    return sosfilt(sos, heave)
+
+
 def simulate_day(config: DayConfig | None = None, seed: int = 0) -> dict:
     """Simulate a survey day.
 
@@ -169,8 +210,11 @@ def simulate_day(config: DayConfig | None = None, seed: int = 0) -> dict:
     t_meas = np.arange(t[0] + abs(cfg.latency_s) + 1.0, t[-1] - abs(cfg.latency_s) - 1.0, g_dt)
     height = np.interp(t_meas, t, height_att_rate)
     m = t_meas.size
-    height += rng.standard_normal(m) * cfg.gnss_white_m
-    height += _gauss_markov(rng, m, g_dt, cfg.multipath_tau_s, cfg.multipath_m)
+    errors = rng.standard_normal(m) * cfg.gnss_white_m
+    errors += _gauss_markov(rng, m, g_dt, cfg.multipath_tau_s, cfg.multipath_m)
+    if cfg.gnss_blend_tau_s > 0:
+        errors = _first_order_lowpass(errors, g_dt, cfg.gnss_blend_tau_s)
+    height += errors
     tags = t_meas + cfg.latency_s
 
     heave_meas = heave + _gauss_markov(rng, n, 1.0 / fs, cfg.heave_error_tau_s, cfg.heave_error_m)
@@ -182,6 +226,13 @@ def simulate_day(config: DayConfig | None = None, seed: int = 0) -> dict:
         noise = np.radians(cfg.attitude_noise_deg)
         roll_meas = roll + rng.standard_normal(n) * noise
         pitch_meas = pitch + rng.standard_normal(n) * noise
+    if cfg.heave_filter_order > 0:
+        heave_meas = _sensor_heave_filter(heave_meas, fs, cfg)
+    t_out = t + cfg.attitude_tag_delay_s
+    if cfg.attitude_out_hz > 0:
+        keep = slice(None, None, max(int(round(fs / cfg.attitude_out_hz)), 1))
+        t_out, heading = t_out[keep], heading[keep]
+        roll_meas, pitch_meas, heave_meas = roll_meas[keep], pitch_meas[keep], heave_meas[keep]
 
     starts = cfg.t0 + np.arange(cfg.n_lines) * period
     if not cfg.lines_include_run_in:
@@ -192,12 +243,13 @@ def simulate_day(config: DayConfig | None = None, seed: int = 0) -> dict:
     return {
         "gnss": {"time": tags, "height": height},
         "attitude": {
-            "time": t, "roll": np.degrees(roll_meas), "pitch": np.degrees(pitch_meas),
+            "time": t_out, "roll": np.degrees(roll_meas), "pitch": np.degrees(pitch_meas),
             "heading": heading, "heave": heave_meas,
         },
         "lines": {"name": names, "start": starts, "end": ends},
         "truth": {
-            "latency_s": cfg.latency_s, "lever_arm_m": lever.tolist(),
+            "latency_s": cfg.latency_s - cfg.attitude_tag_delay_s,
+            "lever_arm_m": lever.tolist(),
             "gnss_true_time": t_meas,
         },
     }

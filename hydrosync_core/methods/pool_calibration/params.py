@@ -72,6 +72,13 @@ class PoolParams(Params):
     min_points: int = param(
         30, label="Min points per face", minimum=3, maximum=1_000_000, group=SEG,
         help="faces with fewer points in either cloud are not used")
+    min_soundings: int = param(
+        10, label="Min soundings per face (joint)", minimum=3, maximum=1_000_000, group=SEG,
+        advanced=True,
+        help="the joint adjustment uses a face with at least this many soundings: each is "
+             "one observation against the face's laser reference plane (no plane is fitted "
+             "to them), so a small top seen at a grazing angle still fixes the vertical "
+             "lever arm")
     tol_deg: float = param(
         1e-4, label="Angle tolerance", unit="°", minimum=0.0, min_exclusive=True,
         maximum=1.0, decimals=7, step=1e-5, group=SOLVE,

@@ -19,8 +19,8 @@ def segmentation_preview(seg: Segmentation, n_max: int = 20000,
 
     Returns
     -------
-    faces : dict of 1-D arrays ``face, role, water, points_laser, points_mbes``, one row
-        per design face in design order (the face index used by the clouds).
+    faces : dict of 1-D arrays ``face, role, water, points_laser, points_mbes, pairing``,
+        one row per design face in design order (the face index used by the clouds).
     clouds : dict ``laser_xyz`` (n, 3), ``laser_face`` (n,), ``mbes_before_xyz`` (m, 3)
         coarse georeference, ``mbes_after_xyz`` None, ``mbes_face`` (m,) (-1 = no face);
         at most *n_max* random points per cloud.
@@ -32,7 +32,8 @@ def segmentation_preview(seg: Segmentation, n_max: int = 20000,
     faces = {"face": np.array(names, dtype=str),
              "role": np.array([seg.roles[n].role for n in names], dtype=str),
              "water": np.array([seg.roles[n].water for n in names], dtype=str),
-             "points_laser": n_laser, "points_mbes": n_mbes}
+             "points_laser": n_laser, "points_mbes": n_mbes,
+             "pairing": np.array([seg.pairing.get(n, "") for n in names], dtype=str)}
     parts = [seg.laser_points[n] for n in names if n in seg.laser_points]
     laser = np.concatenate(parts) if parts else np.zeros((0, 3))
     laser_face = np.repeat(np.arange(len(names)), n_laser).astype(np.int32)

@@ -194,6 +194,7 @@ def _twin_table(project, ctx) -> list[Flowable]:
     if "reference" not in t:
         return []
     rows = []
+    small = ParagraphStyle("Pairing", parent=ctx.styles["Cell"], fontSize=7.5, leading=9)
     pairing = t.get("pairing")
     for i, name in enumerate(t["face"]):
         if str(t["water"][i]) == "above":
@@ -202,14 +203,16 @@ def _twin_table(project, ctx) -> list[Flowable]:
         offs = [float(t[f"twin_d{a}_m"][i]) for a in "enu"]
         how = str(pairing[i]) if pairing is not None else (
             "own laser plane" if ref == "own" else ref or "\u2014")
-        rows.append([str(name), how, *(fmt(v, 3) for v in offs), str(int(t["points_mbes"][i])),
-                     str(t["used_for"][i]).replace(",", ", ") or "\u2014"])
+        rows.append([Paragraph(esc(str(name)), small), Paragraph(esc(how), small),
+                     *(fmt(v, 3) for v in offs), str(int(t["points_mbes"][i])),
+                     Paragraph(esc(str(t["used_for"][i]).replace(",", ", ") or "\u2014"),
+                               small)])
     if not rows:
         return []
     return [ctx.heading("Face pairing and reference planes", 2)] + ctx.table(
         ["Face (multibeam)", "Pairing (rule, twin) or why none", "\u0394E [m]", "\u0394N [m]",
          "\u0394U [m]", "MBES pts", "Carries"], rows,
-        col_widths=[0.16, 0.33, 0.08, 0.08, 0.08, 0.08, 0.19], numeric_from=2,
+        col_widths=[0.2, 0.3, 0.075, 0.075, 0.075, 0.075, 0.2], numeric_from=2,
         left_columns=[6], font_size=7.5,
         caption="Reference plane of each face the multibeam may see: a face that crosses the "
         "water is compared with its own laser plane; a below-water face with the laser plane "

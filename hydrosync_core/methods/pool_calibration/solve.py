@@ -173,14 +173,25 @@ def face_usage(ctx, obs, fit, min_gain: float = 0.1) -> dict[str, list[str]]:
     return out
 
 
+def _sigmas(joint: JointSolution | None) -> dict[str, float]:
+    """Parameter -> 1σ (° / m) of a joint solution."""
+    if joint is None:
+        return {}
+    return {**joint.sigma_boresight_deg,
+            **{f"lever_{k}": v for k, v in joint.sigma_lever_arm_m.items()}}
+
+
 def contradictions(final_deg: dict, final_m: dict, coarse: dict, p: PoolParams,
-                   held: set[str], usage: dict[str, list[str]]) -> dict[str, str]:
+                   held: set[str], usage: dict[str, list[str]],
+                   sigma: dict[str, float] | None = None) -> dict[str, str]:
     """Parameters whose correction exceeds the stated coarse accuracy -> message.
 
     The coarse accuracy (``coarse_tol_deg``/``coarse_tol_m``) is a half-width the user vouches
-    for; a larger correction means the data contradict the setup (a wrong sign or axis in
-    the drawing, a mis-paired face, a target moved since it was surveyed), so it is flagged
-    with the faces that carry the parameter and is not a calibration.
+    for; a correction beyond it by more than 3σ of the estimate (*sigma*: parameter -> σ in
+    ° / m) means the data contradict the setup (a wrong sign or axis in the drawing, a
+    mis-paired face, a target moved since it was surveyed), so it is flagged with the faces
+    that carry the parameter and is not a calibration. Within 3σ of the bound the data
+    cannot tell, and a true error right at the stated accuracy is not a contradiction.
     """
     b, la = coarse["boresight_deg"], coarse["lever_arm_m"]
     out = {}
@@ -193,7 +204,8 @@ def contradictions(final_deg: dict, final_m: dict, coarse: dict, p: PoolParams,
         else:
             corr = (final_deg[name] - b[name] + 180.0) % 360.0 - 180.0
             tol, unit = p.coarse_tol_deg, "°"
-        if abs(corr) > tol:
+        s = (sigma or {}).get(name)
+        if abs(corr) > tol + 3.0 * (s if s is not None and np.isfinite(s) else 0.0):
             faces = sorted(f for f, used in usage.items() if name in used)
             out[name] = (f"correction {corr:+.3g}{unit} exceeds the coarse accuracy "
                          f"±{tol:g}{unit}: the data contradict the setup (faces carrying it: "
@@ -261,11 +273,11 @@ def _joint(seg, p, mfaces, r_a, l_a, cancel):
               build_sigma=b_sig, coarse=theta_c, coarse_sigma=c_sig)
     obs = {}
     try:
-        obs = _joint_obs(seg, mfaces, p.min_points)
+        obs = _joint_obs(seg, mfaces, p.min_soundings)
         first = adjust(seg.ctx, obs, r_a, l_a, fix=structural_fix(seg.roles, obs),
                        covariance=False, huber_m=p.huber_m, cancel=cancel)
         mfaces = _resegment(seg, p, first.r_m, first.lever, cancel)
-        obs = _joint_obs(seg, mfaces, p.min_points)
+        obs = _joint_obs(seg, mfaces, p.min_soundings)
         fit = adjust(seg.ctx, obs, first.r_m, first.lever,
                      fix=structural_fix(seg.roles, obs), **kw)
     except (ValueError, np.linalg.LinAlgError) as exc:
@@ -357,7 +369,8 @@ def solve(seg, params: PoolParams | None = None, progress=None, cancel=None) -> 
         warnings.append(f"joint adjustment: {name} cannot be determined ({why}); kept at "
                         "the coarse value")
     contradicted = (contradictions(_angles(r_final), _lever(l_final), seg.coarse, p,
-                                   set(undetermined), usage) if method == "joint" else {})
+                                   set(undetermined), usage, _sigmas(joint))
+                    if method == "joint" else {})
     for name, why in contradicted.items():
         flagged[name] = why + (f"; {flagged[name]}" if name in flagged else "")
     for name, why in flagged.items():

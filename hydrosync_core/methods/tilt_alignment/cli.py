@@ -32,22 +32,26 @@ EXIT_UNDETERMINED = 3
 
 
 def _print(doc: dict) -> None:
-    key = "tip_enu" if "tip_enu" in doc else "tip_llh"
-    print(f"{'method':<12} {'heading mis. [deg]':>18} {'±':>7}  {key:<40} {'σ e/n/u [mm]':>18}")
-    for name, m in doc["methods"].items():
-        if m["undetermined"]:
-            print(f"{name:<12} undetermined: {m['undetermined']}")
-            continue
-        tip = ", ".join(f"{v:.9f}" if key == "tip_llh" and i < 2 else f"{v:.4f}"
-                        for i, v in enumerate(m[key]))
-        sd = "/".join(f"{1000 * s:.1f}" for s in m["tip_std_enu_m"])
-        hs = m["heading_std_deg"]
-        mark = " *" if name == doc["method"] else ""
-        print(f"{name:<12} {m['heading_misalignment_deg']:>18.4f} "
-              f"{(f'{hs:.3f}' if hs is not None else '-'):>7}  {tip:<40} {sd:>18}{mark}")
+    from hydrosync_core.methods.tilt_alignment.present import (
+        COLUMNS,
+        imu_text,
+        joint_text,
+        method_rows,
+        tip_header,
+    )
+
+    rows = method_rows(doc)
+    heads = {**COLUMNS, "tip": tip_header(doc)}
+    width = {k: max(len(heads[k]), *(len(r[k]) for r in rows)) for k in heads}
+    print("  ".join(f"{heads[k]:<{width[k]}}" for k in heads).rstrip())
+    for r in rows:
+        print("  ".join(f"{r[k]:<{width[k]}}" for k in heads).rstrip())
     print(f"vectors used {doc['vectors_used']}, rejected {doc['vectors_rejected']}, "
           f"too short {doc['vectors_short']}; tilt max {doc['tilt_deg']['max']:.1f}°, "
           f"shot {doc['tilt_deg']['shot']:.1f}°")
+    print(imu_text(doc))
+    if doc.get("joint"):
+        print(joint_text(doc))
     for w in doc["warnings"]:
         print(f"warning: {w}")
 
@@ -97,9 +101,10 @@ def cmd_tilt(args: argparse.Namespace) -> int:
 
     imu = read_imu_csv(args.imu)
     gnss = read_gnss_csv(args.gnss)
-    length = read_pole_json(args.pole)["pole_length_m"]
+    pole = read_pole_json(args.pole)
+    length = pole["pole_length_m"]
     sol, frame = solve_columns(imu, gnss, length, params, (str(args.imu), str(args.gnss)),
-                               progress, None)
+                               progress, None, pole.get("imu_convention"))
     progress.done()
     doc = result_document(sol, frame, length, params)
     with out:

@@ -2,7 +2,8 @@
 
 Frames: body x forward, y right, z down along the pole towards the tip; navigation NED.
 ``C`` is the body→NED rotation matrix, ``C = Rz(heading)·Ry(pitch)·Rx(roll)``.
-Gyro sample *k* (rad/s, body frame) is the constant rate over ``[t_k, t_(k+1))``, so
+On the model grid (:mod:`.imu_convention`) gyro sample *k* (rad/s, body frame) is the
+constant rate over ``[t_k, t_(k+1))``, so
 ``C_(k+1) = C_k · Exp((ω_k − b_g)·Δt_k)``; accelerometer sample *k* is the specific
 force at ``t_k`` (m/s², body frame), ``f = Cᵀ(a − g·e_down)``.
 """
@@ -14,37 +15,29 @@ import math
 import numpy as np
 from scipy.spatial.transform import Rotation
 
+from hydrosync_core.rotations import euler_zyx_matrix, exp_so3, rot_z, skew, wrap_pi
+from hydrosync_core.rotations import yaw_of as _yaw_of
+
+__all__ = ["E_DOWN", "exp_so3", "skew", "rz", "yaw_of", "wrap", "tilt_of", "propagate",
+           "mahony", "coarse_level", "level_from_accel", "pole_vectors",
+           "interpolate_vectors"]
+
 E_DOWN = np.array([0.0, 0.0, 1.0])
-
-
-def skew(v: np.ndarray) -> np.ndarray:
-    """Cross-product matrices ``[v]×`` of vectors of shape (..., 3) → (..., 3, 3)."""
-    v = np.asarray(v, float)
-    z = np.zeros(v.shape[:-1])
-    return np.stack([np.stack([z, -v[..., 2], v[..., 1]], -1),
-                     np.stack([v[..., 2], z, -v[..., 0]], -1),
-                     np.stack([-v[..., 1], v[..., 0], z], -1)], -2)
 
 
 def rz(psi: float) -> np.ndarray:
     """Rotation about the down axis by *psi* (rad, clockwise seen from above)."""
-    c, s = math.cos(psi), math.sin(psi)
-    return np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])
-
-
-def exp_so3(rotvec: np.ndarray) -> np.ndarray:
-    """Rotation matrix of a rotation vector (rad)."""
-    return Rotation.from_rotvec(np.asarray(rotvec, float)).as_matrix()
+    return rot_z(float(psi))
 
 
 def yaw_of(matrix: np.ndarray) -> float:
     """Heading (rad) of ``Rz·Ry·Rx`` (the ZYX yaw), in (−π, π]."""
-    return float(math.atan2(matrix[1, 0], matrix[0, 0]))
+    return float(_yaw_of(matrix))
 
 
 def wrap(angle):
     """Angle(s) wrapped to (−π, π]."""
-    return np.angle(np.exp(1j * np.asarray(angle, float)))
+    return wrap_pi(angle)
 
 
 def tilt_of(C: np.ndarray) -> np.ndarray:
@@ -117,7 +110,7 @@ def mahony(time: np.ndarray, gyro: np.ndarray, accel: np.ndarray, level_s: float
     bias : (3,) rad/s, the gyro bias estimated by the integral term.
     """
     roll, pitch = coarse_level(time, gyro, accel, level_s)
-    C = Rotation.from_euler("ZYX", [0.0, pitch, roll]).as_matrix()
+    C = euler_zyx_matrix(roll, pitch, 0.0)
     n_level = int(np.searchsorted(time, time[0] + level_s, side="right"))
     n_level = max(1, min(n_level, time.size))
     out = np.empty((time.size, 3, 3))

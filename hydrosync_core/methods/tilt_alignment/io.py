@@ -3,7 +3,8 @@
 ``imu.csv``: ``time, gx, gy, gz, ax, ay, az`` — angular rate (rad/s) and specific force
 (m/s²) in the IMU body frame (x forward, y right, z down along the pole towards the tip).
 ``gnss.csv``: ``time, e, n, u`` (local ENU, m) or ``time, lat, lon, height`` (deg, deg, m
-ellipsoidal): the antenna phase centre. ``pole.json``: ``{"pole_length_m": 1.865}``.
+ellipsoidal): the antenna phase centre. ``pole.json``: ``{"pole_length_m": 1.865}``, and
+optionally ``"imu_convention"`` (what an ``imu.csv`` row is, :mod:`.imu_convention`).
 Every error is one :class:`InputError` naming the file, line and field.
 """
 
@@ -19,6 +20,7 @@ from hydrosync_core import plausible
 from hydrosync_core.errors import InputError
 from hydrosync_core.importers.csv_table import read_numeric_csv
 from hydrosync_core.importers.pool_json import finite_number, read_json
+from hydrosync_core.inputs import input_ok
 
 IMU_COLUMNS = ("time", "gx", "gy", "gz", "ax", "ay", "az")
 RATE: plausible.Limits = (-100.0, 100.0, "rad/s")
@@ -35,6 +37,7 @@ POLE_LIMITS: plausible.Limits = (0.05, 20.0, "m")
 
 def read_imu_csv(path: str | os.PathLike) -> dict[str, np.ndarray]:
     """Columns of ``imu.csv`` sorted by time (at least 50 rows, gaps checked)."""
+    input_ok(path, "IMU CSV")
     cols = read_numeric_csv(path, IMU_COLUMNS, min_rows=50, limits=IMU_LIMITS)
     check_imu_times(cols["time"], str(path))
     return cols
@@ -68,6 +71,7 @@ def read_gnss_csv(path: str | os.PathLike) -> dict[str, np.ndarray]:
 
     The form is decided by the header: ENU when it has ``e, n, u``, else geodetic.
     """
+    input_ok(path, "GNSS CSV")
     path = Path(path)
     names = _header_names(path)
     wanted = ENU if all(c in names for c in ENU) or not all(c in names for c in LLH) else LLH
@@ -88,9 +92,28 @@ def check_pole(document, source: str) -> float:
     return finite_number(source, document["pole_length_m"], "pole_length_m", POLE_LIMITS)
 
 
+def pole_convention(document, source: str) -> str | None:
+    """The IMU sample convention ``pole.json`` declares (``imu_convention``), or None."""
+    from hydrosync_core.methods.tilt_alignment.imu_convention import CONVENTIONS
+
+    value = document.get("imu_convention") if isinstance(document, dict) else None
+    if value is None:
+        return None
+    if value not in CONVENTIONS:
+        raise InputError(source, f"must be one of {', '.join(CONVENTIONS)}, got "
+                         f"{str(value)[:40]!r}", field="imu_convention")
+    return str(value)
+
+
 def read_pole_json(path: str | os.PathLike) -> dict:
-    """``pole.json`` as a checked document ``{"pole_length_m": l}``."""
-    return {"pole_length_m": check_pole(read_json(path), str(path))}
+    """``pole.json`` as a checked document ``{"pole_length_m": l}`` (with
+    ``imu_convention`` when it declares one)."""
+    doc = read_json(path)
+    out: dict = {"pole_length_m": check_pole(doc, str(path))}
+    convention = pole_convention(doc, str(path))
+    if convention is not None:
+        out["imu_convention"] = convention
+    return out
 
 
 def gnss_to_local(cols: dict[str, np.ndarray]) -> tuple[np.ndarray, dict]:

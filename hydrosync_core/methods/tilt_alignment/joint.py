@@ -181,7 +181,45 @@ def _windows(time: np.ndarray, block_s: float, overlap: bool = True
     return Wq, D
 
 
-def _model(C, time, accel, gnss_t, length, tip, ba, g, windows):
+def numerov_weights(Wq: np.ndarray) -> np.ndarray:
+    """Window weights for instantaneous accelerometer rows: ``Wq·N`` with N the filter
+    ``(y_(k−1) + 10·y_k + y_(k+1))/12`` applied to the NED specific force ``y = C·f``.
+
+    The windows compare ``Σ Wq·y`` with second differences of the antenna path, which
+    equal the acceleration plus ``Δt²/12`` times its second derivative; N adds that term
+    to instantaneous samples, in NED (in the body frame the pole's rotation would leave
+    ``Δt²/12·C̈·f``, 5·10⁻³ m/s² on a fast swing at 50 Hz).
+    """
+    out = Wq * (10.0 / 12.0)
+    out[:, :-1] += Wq[:, 1:] / 12.0
+    out[:, 1:] += Wq[:, :-1] / 12.0
+    return out
+
+
+def interval_weights(Wq: np.ndarray) -> np.ndarray:
+    """Window weights for interval-mean accelerometer rows (row *k* the mean over
+    ``[t_k, t_(k+1))``, rotated to NED with the attitude in the middle of the interval):
+    ``Wq·M`` with M the fourth-order map from interval means to the value the second
+    differences see at ``t_k``, ``(13(Y_(k−1) + Y_k) − Y_(k−2) − Y_(k+1))/24``."""
+    out = np.zeros_like(Wq)
+    out[:, :-1] += 13.0 / 24.0 * Wq[:, 1:]
+    out += 13.0 / 24.0 * Wq
+    out[:, :-2] -= Wq[:, 2:] / 24.0
+    out[:, 1:] -= Wq[:, :-1] / 24.0
+    return out
+
+
+def _force_attitude(C: np.ndarray, mid: bool) -> np.ndarray:
+    """The attitude that rotates accelerometer row k to NED: at ``t_k``, or (interval
+    means, *mid*) halfway to ``t_(k+1)`` (mean of the two matrices, second order)."""
+    if not mid:
+        return C
+    out = C.copy()
+    out[:-1] = 0.5 * (C[:-1] + C[1:])
+    return out
+
+
+def _model(C, time, accel, gnss_t, length, tip, ba, g, windows, mid=False):
     """Residuals (GNSS (M,3), accelerometer windows (B,3)) and their Jacobians
     ((M,3,12), (B,3,12))."""
     n = time.size
@@ -203,9 +241,10 @@ def _model(C, time, accel, gnss_t, length, tip, ba, g, windows):
     # accelerometers, window i: e = Σ_k Wq·(C(f − b_a) + g·e_d) + Σ_k D·u
     # (= ∫w·a dt − ∫w·ü dt with the antenna acceleration a = −ü: no velocities needed)
     Wq, D = windows
-    y = np.einsum("kij,kj->ki", C, accel - ba)
+    Cf = _force_attitude(C, mid)
+    y = np.einsum("kij,kj->ki", Cf, accel - ba)
     Dy = -skew(y) @ Phi
-    Dy[:, :, BA] -= C
+    Dy[:, :, BA] -= Cf
     ea = Wq @ (y + g * E_DOWN) + D @ u
     Da = np.einsum("bk,kij->bij", Wq, Dy) + np.einsum("bk,kij->bij", D, Du)
     return u_at, Dg, ea, Da
@@ -259,13 +298,183 @@ def _gyro_noise_design(C, time, gnss_t, u, y, windows, chunk):
     return H.reshape(H.shape[0], -1)
 
 
+@dataclass
+class _Problem:
+    """The fixed data of one adjustment and its covariance components (R × R)."""
+
+    time: np.ndarray
+    gyro: np.ndarray
+    accel: np.ndarray
+    gnss_t: np.ndarray
+    gnss_p: np.ndarray
+    length: float
+    g: float
+    windows: tuple[np.ndarray, np.ndarray]
+    gyro_noise: float
+    accel_noise: float
+    chunk: int
+    mid: bool                   # interval-mean accelerometer rows
+    gyro_bias_sigma: float
+    accel_bias_sigma: float
+    Qh: np.ndarray              # diagonal, GNSS horizontal
+    Qv: np.ndarray              # diagonal, GNSS vertical
+    Qa: np.ndarray              # accelerometer windows
+
+    @property
+    def m(self) -> int:
+        return self.gnss_t.size
+
+
+@dataclass
+class _State:
+    """The unknowns and the attitudes they imply."""
+
+    C0: np.ndarray
+    tip: np.ndarray
+    bg: np.ndarray
+    ba: np.ndarray
+    C: np.ndarray
+
+
+def _problem(time, gyro, accel, gnss_t, gnss_p, length, g, block_s, sigma_h, sigma_v,
+             gyro_noise, accel_noise, gyro_bias_sigma, accel_bias_sigma, accel_rows
+             ) -> _Problem:
+    """Windows, IMU noise levels (from the record when not given) and the fixed
+    covariance components (GNSS horizontal and vertical, accelerometer windows)."""
+    windows = _windows(time, block_s)
+    if accel_rows == "instant":
+        windows = (numerov_weights(windows[0]), windows[1])
+    elif accel_rows == "interval":
+        windows = (interval_weights(windows[0]), windows[1])
+    Wq = windows[0]
+    m, nb = gnss_t.size, Wq.shape[0]
+    dt_med = float(np.median(np.diff(time)))
+    sw = gyro_noise if gyro_noise is not None else white_sigma(gyro)
+    sf = accel_noise if accel_noise is not None else white_sigma(accel)
+    sw = sw if math.isfinite(sw) and sw > 0 else math.radians(0.01) / math.sqrt(dt_med)
+    sf = sf if math.isfinite(sf) and sf > 0 else 0.001 / math.sqrt(dt_med)
+    R = 3 * (m + nb)
+    Qh, Qv = np.zeros(R), np.zeros(R)
+    Qh[:3 * m] = np.tile([sigma_h ** 2, sigma_h ** 2, 0.0], m)
+    Qv[:3 * m] = np.tile([0.0, 0.0, sigma_v ** 2], m)
+    Qa = np.zeros((R, R))
+    Qa[3 * m:, 3 * m:] = np.kron(Wq @ Wq.T, np.eye(3)) * sf ** 2
+    return _Problem(time, gyro, accel, gnss_t, gnss_p, length, g, windows, sw, sf,
+                    max(1, int(round(0.02 / dt_med))), accel_rows == "interval",
+                    gyro_bias_sigma, accel_bias_sigma,
+                    Qh, Qv, Qa)
+
+
+def _prior_rows(pb: _Problem, st: _State) -> tuple[np.ndarray, np.ndarray]:
+    """Whitened bias priors about zero: design (6, 12) and residuals (6,)."""
+    P = np.zeros((6, NPAR))
+    P[:3, BG] = np.eye(3) / pb.gyro_bias_sigma
+    P[3:, BA] = np.eye(3) / pb.accel_bias_sigma
+    return P, np.concatenate([st.bg / pb.gyro_bias_sigma, st.ba / pb.accel_bias_sigma])
+
+
+def _linearise(pb: _Problem, st: _State) -> tuple[np.ndarray, np.ndarray]:
+    """Residuals (GNSS rows, then windows) and their Jacobian at the state."""
+    u_at, Dg, ea, Da = _model(st.C, pb.time, pb.accel, pb.gnss_t, pb.length, st.tip, st.ba,
+                              pb.g, pb.windows, pb.mid)
+    e = np.concatenate([(pb.gnss_p - st.tip + u_at).ravel(), ea.ravel()])
+    return e, np.vstack([Dg.reshape(-1, NPAR), Da.reshape(-1, NPAR)])
+
+
+def _gyro_cov(pb: _Problem, st: _State) -> np.ndarray:
+    """The gyro-noise covariance component σ_ω²·H·Hᵀ at the state."""
+    u = st.C[:, :, 2] * pb.length
+    y = np.einsum("kij,kj->ki", _force_attitude(st.C, pb.mid), pb.accel - st.ba)
+    H = _gyro_noise_design(st.C, pb.time, pb.gnss_t, u, y, pb.windows, pb.chunk)
+    return (H @ H.T) * pb.gyro_noise ** 2
+
+
+def _whitened(pb: _Problem, st: _State, L: np.ndarray):
+    """Whitened design and residuals, observations (by the Cholesky factor L) then priors."""
+    from scipy.linalg import solve_triangular
+
+    e, A = _linearise(pb, st)
+    P, rp = _prior_rows(pb, st)
+    Aw = np.vstack([solve_triangular(L, A, lower=True), P])
+    rw = np.concatenate([solve_triangular(L, e, lower=True), rp])
+    return Aw, rw
+
+
+def _gauss_newton(pb: _Problem, st: _State, L: np.ndarray, max_iterations: int,
+                  cancel_check) -> tuple[_State, int, bool]:
+    """Gauss-Newton with a fixed covariance (Cholesky factor L) until the step is below
+    10⁻¹⁰ rad, 10⁻⁸ m, 10⁻¹⁰ rad/s and 10⁻⁹ m/s²."""
+    for it in range(1, max_iterations + 1):
+        if cancel_check is not None:
+            cancel_check()
+        Aw, rw = _whitened(pb, st, L)
+        dx, *_ = np.linalg.lstsq(Aw, -rw, rcond=None)
+        C0 = exp_so3(dx[TH]) @ st.C0
+        bg = st.bg + dx[BG]
+        st = _State(C0, st.tip + dx[TIP], bg, st.ba + dx[BA],
+                    propagate(C0, pb.time, pb.gyro, bg))
+        if (np.linalg.norm(dx[TH]) < 1e-10 and np.linalg.norm(dx[TIP]) < 1e-8
+                and np.linalg.norm(dx[BG]) < 1e-10 and np.linalg.norm(dx[BA]) < 1e-9):
+            return st, it, True
+    return st, max_iterations, False
+
+
+def _variance_components(pb: _Problem, st: _State, Sigma: np.ndarray, comps: tuple,
+                         theta: np.ndarray) -> np.ndarray:
+    """Förstner's update ``θ_i ← θ_i·vᵀWΣ_iWv / tr(P·Σ_i)``, with ``P = W − W·A·N⁻¹·Aᵀ·W``,
+    ``W = Σ⁻¹`` (the bias priors are observations without a component of their own),
+    clipped to [1, 50²] for the GNSS and [1, 20²] for the IMU components."""
+    from scipy.linalg import cho_factor, cho_solve
+
+    e, A = _linearise(pb, st)
+    Pr, rp = _prior_rows(pb, st)
+    cf = cho_factor(Sigma, lower=True)
+    We, WA = cho_solve(cf, e), cho_solve(cf, A)
+    Ninv = np.linalg.pinv(A.T @ WA + Pr.T @ Pr)
+    v = We - WA @ (Ninv @ (WA.T @ e + Pr.T @ rp))     # W·v at the solution
+    Pm = cho_solve(cf, np.eye(Sigma.shape[0])) - WA @ Ninv @ WA.T
+    new = theta.copy()
+    for i, S in enumerate(comps):
+        red_i = float(np.sum(Pm * S))                  # tr(P·Σ_i), Σ_i symmetric
+        if red_i > 1.0:
+            new[i] = theta[i] * float(v @ S @ v) / red_i
+    # no σ may shrink below its a-priori value: a dozen epochs (2 Hz) estimate the GNSS σ
+    # to ±20 %, and a receiver's stated RTK σ is a floor; the IMU noise is measured from
+    # the record itself (third differences, to a few %); its components have little
+    # redundancy in a swing, so they may grow (a model error) but not fall below the
+    # measured noise (issue #30)
+    return np.clip(new, 1.0, np.array([50.0, 50.0, 20.0, 20.0]) ** 2)
+
+
+def _huber_inflation(pb: _Problem, st: _State, theta: np.ndarray) -> np.ndarray:
+    """Variance inflation per observation row (1 = full weight): a GNSS epoch whose
+    residual, standardised by the white GNSS σ, is beyond HUBER_K (χ²₃ 99 %) has its
+    variance grow with the residual."""
+    m = pb.m
+    e, _ = _linearise(pb, st)
+    sd = np.sqrt(theta[0] * pb.Qh[:3 * m] + theta[1] * pb.Qv[:3 * m]).reshape(m, 3)
+    d = np.sqrt(np.sum((e[:3 * m].reshape(m, 3) / sd) ** 2, axis=1))
+    infl = np.ones(pb.Qh.size)
+    infl[:3 * m] = np.repeat(np.maximum(1.0, d / HUBER_K), 3)
+    return infl
+
+
+def _covariance(pb: _Problem, theta: np.ndarray, infl: np.ndarray, Qw: np.ndarray
+                ) -> np.ndarray:
+    """Σ = inflated GNSS components + θ_a·Q_a + θ_ω·Q_ω, with a 10⁻¹² relative jitter."""
+    Sigma = (np.diag(infl * (theta[0] * pb.Qh + theta[1] * pb.Qv)) + theta[2] * pb.Qa
+             + theta[3] * Qw)
+    Sigma[np.diag_indices(Sigma.shape[0])] += 1e-12 * np.max(np.diag(Sigma))
+    return Sigma
+
+
 def joint_lsq(time: np.ndarray, gyro: np.ndarray, accel: np.ndarray, gnss_t: np.ndarray,
               gnss_p: np.ndarray, length: float, C0: np.ndarray, tip0: np.ndarray, *,
               sigma_h: float, sigma_v: float, g: float, block_s: float = 0.25,
               gyro_noise: float | None = None, accel_noise: float | None = None,
-              gyro_bias_sigma: float = math.radians(0.2), accel_bias_sigma: float = 0.05,
-              max_iterations: int = 30, vce_rounds: int = 4, cancel_check=None
-              ) -> JointResult:
+              gyro_bias_sigma: float = math.radians(0.05), accel_bias_sigma: float = 0.02,
+              max_iterations: int = 30, vce_rounds: int = 4, cancel_check=None,
+              accel_rows: str = "model") -> JointResult:
     """Estimate initial attitude, tip and IMU biases from the whole record.
 
     Generalised least squares: the observations' covariance holds the GNSS white noise
@@ -274,142 +483,79 @@ def joint_lsq(time: np.ndarray, gyro: np.ndarray, accel: np.ndarray, gnss_t: np.
     common to every later observation (angle random walk: it correlates all of them and
     is the limit of what a short swing can tell). Its four scale factors are re-estimated
     from the residuals (variance components, Förstner's redundancy form), and each GNSS
-    epoch gets a robust (Huber) weight from its standardised residual.
+    epoch gets a robust (Huber) weight from its standardised residual. The matrices are a
+    few hundred rows: BLAS runs on one thread (several threads on a loaded two-core
+    machine made it ten times slower).
 
     Parameters
     ----------
-    time : (N,) IMU times (s). gyro : (N, 3) rad/s. accel : (N, 3) m/s² (body frame).
+    time : (N,) IMU model times (s). gyro : (N, 3) rad/s, mean over ``[t_k, t_(k+1))``.
+    accel : (N, 3) m/s² at ``t_k`` (body frame; :func:`.imu_convention.to_model_grid`).
     gnss_t : (M,) s. gnss_p : (M, 3) antenna NED (m). length : pole length (m).
     C0 : initial attitude guess (body→NED) at ``time[0]``. tip0 : tip guess (NED, m).
     sigma_h, sigma_v : a-priori GNSS σ (m). g : gravity (m/s²).
     gyro_noise, accel_noise : per-sample white-noise σ of the gyros (rad/s) and
     accelerometers (m/s²); None: from the record (:func:`white_sigma`).
     gyro_bias_sigma, accel_bias_sigma : a-priori 1σ of the biases about zero (rad/s,
-    m/s², the IMU datasheet's bias stability): a swing in one plane cannot separate the
+    m/s², the IMU grade's bias stability): a swing in one plane cannot separate the
     accelerometer bias along the swing axis from the tilt out of that plane, so the
-    datasheet bounds it.
+    prior bounds it.
     block_s : step of the accelerometer windows (s; each twice as long).
     vce_rounds : re-weighting rounds from the residuals.
+    accel_rows : ``"instant"`` (samples at ``t_k``, :func:`numerov_weights`),
+    ``"interval"`` (means over ``[t_k, t_(k+1))``, :func:`interval_weights`) or
+    ``"model"`` (already as the second differences of the antenna path see them).
     """
-    from scipy.linalg import cho_factor, cho_solve, solve_triangular
+    from threadpoolctl import threadpool_limits
 
-    C0 = np.array(C0, float)
-    tip = np.array(tip0, float)
-    bg, ba = np.zeros(3), np.zeros(3)
-    windows = _windows(time, block_s)
-    Wq = windows[0]
-    m, nb = gnss_t.size, Wq.shape[0]
-    dt_med = float(np.median(np.diff(time)))
-    sw = gyro_noise if gyro_noise is not None else white_sigma(gyro)
-    sf = accel_noise if accel_noise is not None else white_sigma(accel)
-    sw = sw if math.isfinite(sw) and sw > 0 else math.radians(0.01) / math.sqrt(dt_med)
-    sf = sf if math.isfinite(sf) and sf > 0 else 0.001 / math.sqrt(dt_med)
-    chunk = max(1, int(round(0.02 / dt_med)))
-    # covariance components (R × R): GNSS horizontal, GNSS vertical, accelerometer, gyro
-    R = 3 * (m + nb)
-    Qh, Qv = np.zeros(R), np.zeros(R)
-    Qh[:3 * m] = np.tile([sigma_h ** 2, sigma_h ** 2, 0.0], m)
-    Qv[:3 * m] = np.tile([0.0, 0.0, sigma_v ** 2], m)
-    Qa = np.zeros((R, R))
-    Qa[3 * m:, 3 * m:] = np.kron(Wq @ Wq.T, np.eye(3)) * sf ** 2
-    theta = np.ones(4)
-
-    def prior_rows():
-        P = np.zeros((6, NPAR))
-        P[:3, BG] = np.eye(3) / gyro_bias_sigma
-        P[3:, BA] = np.eye(3) / accel_bias_sigma
-        return P, np.concatenate([bg / gyro_bias_sigma, ba / accel_bias_sigma])
-
-    def linearise():
-        u_at, Dg, ea, Da = _model(C, time, accel, gnss_t, length, tip, ba, g, windows)
-        e = np.concatenate([(gnss_p - tip + u_at).ravel(), ea.ravel()])
-        A = np.vstack([Dg.reshape(-1, NPAR), Da.reshape(-1, NPAR)])
-        return e, A
-
-    def gyro_cov():
-        u = C[:, :, 2] * length
-        y = np.einsum("kij,kj->ki", C, accel - ba)
-        H = _gyro_noise_design(C, time, gnss_t, u, y, windows, chunk)
-        return (H @ H.T) * sw ** 2
-
-    it_total, converged = 0, False
-    C = propagate(C0, time, gyro, bg)
-    Qw = gyro_cov()
-    infl = np.ones(R)          # Huber: variance inflation of each GNSS epoch (1 = full weight)
-    for rnd in range(vce_rounds + 1):
-        Sigma = np.diag(infl * (theta[0] * Qh + theta[1] * Qv)) + theta[2] * Qa + theta[3] * Qw
-        Sigma[np.diag_indices(R)] += 1e-12 * np.max(np.diag(Sigma))
-        L = np.linalg.cholesky(Sigma)
-        converged = False
-        for _ in range(max_iterations):
-            if cancel_check is not None:
-                cancel_check()
-            it_total += 1
-            e, A = linearise()
-            P, rp = prior_rows()
-            Aw = np.vstack([solve_triangular(L, A, lower=True), P])
-            rw = np.concatenate([solve_triangular(L, e, lower=True), rp])
-            dx, *_ = np.linalg.lstsq(Aw, -rw, rcond=None)
-            C0 = exp_so3(dx[TH]) @ C0
-            tip = tip + dx[TIP]
-            bg = bg + dx[BG]
-            ba = ba + dx[BA]
-            C = propagate(C0, time, gyro, bg)
-            if (np.linalg.norm(dx[TH]) < 1e-10 and np.linalg.norm(dx[TIP]) < 1e-8
-                    and np.linalg.norm(dx[BG]) < 1e-10 and np.linalg.norm(dx[BA]) < 1e-9):
-                converged = True
+    with threadpool_limits(limits=1, user_api="blas"):
+        pb = _problem(time, gyro, accel, gnss_t, gnss_p, length, g, block_s, sigma_h,
+                      sigma_v, gyro_noise, accel_noise, gyro_bias_sigma, accel_bias_sigma,
+                      accel_rows)
+        C0 = np.array(C0, float)
+        st = _State(C0, np.array(tip0, float), np.zeros(3), np.zeros(3),
+                    propagate(C0, time, gyro, np.zeros(3)))
+        theta, infl = np.ones(4), np.ones(pb.Qh.size)
+        Qw = _gyro_cov(pb, st)
+        it_total, converged = 0, False
+        for rnd in range(vce_rounds + 1):
+            Sigma = _covariance(pb, theta, infl, Qw)
+            L = np.linalg.cholesky(Sigma)
+            st, its, converged = _gauss_newton(pb, st, L, max_iterations, cancel_check)
+            it_total += its
+            Qw = _gyro_cov(pb, st)
+            if rnd == vce_rounds:
                 break
-        Qw = gyro_cov()
-        if rnd == vce_rounds:
-            break
-        # variance components (Förstner): θ_i ← θ_i·vᵀWΣ_iWv / tr(P·Σ_i), with
-        # P = W − W·A·N⁻¹·Aᵀ·W, W = Σ⁻¹ (the bias priors are observations without a
-        # component of their own)
-        e, A = linearise()
-        Pr, rp = prior_rows()
-        cf = cho_factor(Sigma, lower=True)
-        We, WA = cho_solve(cf, e), cho_solve(cf, A)
-        Ninv = np.linalg.pinv(A.T @ WA + Pr.T @ Pr)
-        v = We - WA @ (Ninv @ (WA.T @ e + Pr.T @ rp))     # W·v at the solution
-        comps = (np.diag(infl * theta[0] * Qh), np.diag(infl * theta[1] * Qv), theta[2] * Qa,
-                 theta[3] * Qw)
-        Wm = cho_solve(cf, np.eye(R))
-        Pm = Wm - WA @ Ninv @ WA.T
-        new = theta.copy()
-        for i, S in enumerate(comps):
-            red_i = float(np.sum(Pm * S))                  # tr(P·Σ_i), Σ_i symmetric
-            if red_i > 1.0:
-                new[i] = theta[i] * float(v @ S @ v) / red_i
-        # the GNSS σ may grow from the a-priori values, not shrink below them: a dozen
-        # epochs (2 Hz) estimate it to ±20 %, and a receiver's stated RTK σ is a floor
-        lo = np.array([1.0, 1.0, 0.05, 0.05]) ** 2
-        hi = np.array([50.0, 50.0, 20.0, 20.0]) ** 2
-        theta = np.clip(new, lo, hi)
-        # robust weights (Huber) per GNSS epoch, from its residual standardised by the
-        # white GNSS σ: beyond HUBER_K (χ²₃ 99 %) the variance grows with the residual
-        sd = np.sqrt(theta[0] * Qh[:3 * m] + theta[1] * Qv[:3 * m]).reshape(m, 3)
-        d = np.sqrt(np.sum((e[:3 * m].reshape(m, 3) / sd) ** 2, axis=1))
-        infl[:3 * m] = np.repeat(np.maximum(1.0, d / HUBER_K), 3)
-    e, A = linearise()
-    P, rp = prior_rows()
-    Aw = np.vstack([solve_triangular(L, A, lower=True), P])
-    rw = np.concatenate([solve_triangular(L, e, lower=True), rp])
-    red = max(R - NPAR, 1)
-    var_factor = max(float(rw @ rw) / red, 1.0)
+            comps = (np.diag(infl * theta[0] * pb.Qh), np.diag(infl * theta[1] * pb.Qv),
+                     theta[2] * pb.Qa, theta[3] * Qw)
+            theta = _variance_components(pb, st, Sigma, comps, theta)
+            infl = _huber_inflation(pb, st, theta)
+        return _result(pb, st, L, theta, infl, it_total, converged, sigma_h, sigma_v)
+
+
+def _result(pb: _Problem, st: _State, L: np.ndarray, theta: np.ndarray, infl: np.ndarray,
+            iterations: int, converged: bool, sigma_h: float, sigma_v: float
+            ) -> JointResult:
+    """Covariance (scaled by the a-posteriori variance factor when above one), the weak
+    direction, the time-offset check and the a-posteriori noise levels."""
+    m, nb = pb.m, pb.windows[0].shape[0]
+    Aw, rw = _whitened(pb, st, L)
+    var_factor = max(float(rw @ rw) / max(L.shape[0] - NPAR, 1), 1.0)
     normal = Aw.T @ Aw
     cov = np.linalg.pinv(normal) * var_factor
-    share, weak = _bias_share(normal, cov, var_factor, accel_bias_sigma)
+    share, weak = _bias_share(normal, cov, var_factor, pb.accel_bias_sigma)
     # second-order check of the GNSS↔IMU time alignment: one Gauss-Newton step of the
     # solution augmented by a time offset τ (GNSS tag t_j is the pole at t_j + τ:
     # ∂e_j/∂τ = du/dt(t_j)), from the converged solution; the solution itself is kept
-    tau, tau_std = _time_offset(Aw, rw, L, C, time, gnss_t, length, var_factor)
+    tau, tau_std = _time_offset(Aw, rw, L, st.C, pb.time, pb.gnss_t, pb.length, var_factor)
+    e, _ = _linearise(pb, st)
     eg = e[:3 * m].reshape(m, 3)
-    s_window = float(np.sqrt(np.mean(np.diag(Qa)[3 * m:]) * theta[2])) if nb else math.nan
-    return JointResult(C0, tip, bg, ba, cov, C, it_total, converged,
+    s_window = float(np.sqrt(np.mean(np.diag(pb.Qa)[3 * m:]) * theta[2])) if nb else math.nan
+    return JointResult(st.C0, st.tip, st.bg, st.ba, cov, st.C, iterations, converged,
                        sigma_h * math.sqrt(theta[0]), s_window,
                        float(np.sqrt(np.mean(eg ** 2))), eg, int(nb), share, weak, tau,
-                       tau_std, gyro_noise_rad_s=sw * math.sqrt(theta[3]),
-                       accel_noise_m_s2=sf * math.sqrt(theta[2]),
+                       tau_std, gyro_noise_rad_s=pb.gyro_noise * math.sqrt(theta[3]),
+                       accel_noise_m_s2=pb.accel_noise * math.sqrt(theta[2]),
                        sigma_gnss_v_m=sigma_v * math.sqrt(theta[1]),
                        gnss_downweighted=int(np.sum(infl[:3 * m:3] > 2.0)))
 

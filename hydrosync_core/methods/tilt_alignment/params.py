@@ -18,6 +18,34 @@ from hydrosync_core.params import Params, param
 #: (Wahba) solution and the closed-form heading-only least squares.
 METHODS = ("joint", "mbgd", "bgd", "sgd", "svd", "closed_form")
 HEADING_ONLY = ("mbgd", "bgd", "sgd", "svd", "closed_form")
+#: What one row of imu.csv means (see :mod:`.imu_convention`, kept here without imports).
+IMU_CONVENTIONS = ("instant", "interval-start", "interval-middle", "interval-end")
+
+
+@dataclass(frozen=True)
+class ImuGrade:
+    """Documented numbers of one IMU grade (1σ, per axis; noise as a density).
+
+    The bias σ are the joint method's priors (constant over a swing: the run-to-run bias
+    after the pole's own calibration); the noise densities the fallback when a record is
+    too short to measure its own, and the level beyond which a record is called noisier
+    than its grade. Per sample at rate f the noise is density·√f.
+    """
+
+    gyro_bias_deg_s: float
+    accel_bias_m_s2: float
+    gyro_noise_deg_s_rthz: float
+    accel_noise_m_s2_rthz: float
+
+
+#: ``--imu-grade``: consumer (phone-class), mems (a survey pole's MEMS IMU, the default:
+#: gyro bias 0.05°/s, accelerometer bias 0.02 m/s², as issue #30's swings), industrial
+#: (a tactical-grade MEMS).
+IMU_GRADES = {
+    "consumer": ImuGrade(0.10, 0.040, 0.015, 0.0020),
+    "mems": ImuGrade(0.05, 0.020, 0.008, 0.0012),
+    "industrial": ImuGrade(0.02, 0.008, 0.004, 0.0006),
+}
 
 
 @dataclass(frozen=True)
@@ -90,19 +118,31 @@ class TiltParams(Params):
         0.25, label="Accelerometer block", unit="s", minimum=0.02, maximum=5.0, decimals=3,
         advanced=True, help="joint method: accelerometers enter in Hann windows twice this "
                             "long, one every this many seconds (overlapping by half)")
-    gyro_bias_sigma_deg_s: float = param(
-        0.2, label="Gyro bias σ", unit="°/s", minimum=0.0, min_exclusive=True, maximum=10.0,
-        decimals=3, advanced=True,
+    imu_grade: str = param(
+        "mems", label="IMU grade", choices=tuple(IMU_GRADES),
+        help="the IMU's class, whose documented bias σ are the joint method's priors: "
+             + "; ".join(f"{k} gyro {g.gyro_bias_deg_s:g}°/s, accelerometer "
+                         f"{g.accel_bias_m_s2:g} m/s²" for k, g in IMU_GRADES.items()))
+    imu_convention: str | None = param(
+        None, label="IMU samples", choices=IMU_CONVENTIONS,
+        none_label="as pole.json declares (imu_convention), else instant",
+        help="what one IMU row is: instant = rate and specific force at the time tag; "
+             "interval-start/-middle/-end = their means (increments / interval) over one "
+             "sample interval, tagged at its start, middle or end. A wrong choice shows as "
+             "a GNSS time offset of half a sample")
+    gyro_bias_sigma_deg_s: float | None = param(
+        None, label="Gyro bias σ", unit="°/s", minimum=0.0, min_exclusive=True,
+        maximum=10.0, decimals=3, advanced=True, none_label="from the IMU grade",
         help="joint method: a-priori 1σ of the gyro bias (datasheet bias stability)")
-    accel_bias_sigma_m_s2: float = param(
-        0.05, label="Accelerometer bias σ", unit="m/s²", minimum=0.0, min_exclusive=True,
-        maximum=5.0, decimals=4, advanced=True,
+    accel_bias_sigma_m_s2: float | None = param(
+        None, label="Accelerometer bias σ", unit="m/s²", minimum=0.0, min_exclusive=True,
+        maximum=5.0, decimals=4, advanced=True, none_label="from the IMU grade",
         help="joint method: a-priori 1σ of the accelerometer bias; a swing in one plane "
              "cannot tell it from the tilt out of that plane, so this bound matters")
     tip_tolerance_m: float = param(
         0.01, label="Tip tolerance", unit="m", minimum=0.0, min_exclusive=True, maximum=1.0,
         decimals=4, step=0.001,
-        help="warn when the horizontal circle holding the tip with 99 % probability is "
+        help="warn when the horizontal circle holding the tip with 95 % probability is "
              "wider than this (a swing nearly in one plane leaves the accelerometer bias "
              "along the swing axis mixed with the tilt out of the plane)")
     gravity_m_s2: float | None = param(
@@ -111,9 +151,26 @@ class TiltParams(Params):
                                   "9.80665",
         help="magnitude of gravity at the point")
     monte_carlo_runs: int = param(
-        20, label="Monte-Carlo runs", minimum=0, maximum=10000, advanced=True,
+        0, label="Monte-Carlo runs", minimum=0, maximum=10000, advanced=True,
         help="simulated swings like this one (pole, rate, tilt, noise) solved by every method "
-             "for the error histogram and tip scatter; 0 = none")
+             "for the error histogram and tip scatter (about 2-6 s each); 0 = none "
+             "(benchmarks/bench_tilt.py runs the full study)")
+
+    @property
+    def grade(self) -> ImuGrade:
+        return IMU_GRADES[self.imu_grade]
+
+    @property
+    def gyro_bias_prior_deg_s(self) -> float:
+        """The gyro-bias prior in use (°/s): the option, else the grade's."""
+        v = self.gyro_bias_sigma_deg_s
+        return self.grade.gyro_bias_deg_s if v is None else v
+
+    @property
+    def accel_bias_prior_m_s2(self) -> float:
+        """The accelerometer-bias prior in use (m/s²): the option, else the grade's."""
+        v = self.accel_bias_sigma_m_s2
+        return self.grade.accel_bias_m_s2 if v is None else v
 
     def validate(self) -> None:
         if self.sigma_v_m < 0.2 * self.sigma_h_m:

@@ -35,7 +35,7 @@ import numpy as np
 from hydrosync_core.errors import InputError
 from hydrosync_core.methods.tilt_alignment import VERSION, align
 from hydrosync_core.methods.tilt_alignment.geometry import interpolate_vectors, pole_vectors
-from hydrosync_core.methods.tilt_alignment.io import check_pole
+from hydrosync_core.methods.tilt_alignment.io import check_pole, pole_convention
 from hydrosync_core.methods.tilt_alignment.params import TiltParams
 from hydrosync_core.progress import check_cancel, report, sub_progress
 from hydrosync_core.provenance import record
@@ -60,12 +60,14 @@ def run(project, params: TiltParams | Mapping | None = None, progress=None, canc
     for path in (IMU, GNSS, POLE):
         if not project.exists(path):
             raise InputError(f"/{path}", "missing (import imu.csv, gnss.csv and pole.json)")
-    length = check_pole(project.get_json(POLE, {}), f"/{POLE}")
+    pole = project.get_json(POLE, {})
+    length = check_pole(pole, f"/{POLE}")
+    convention = pole_convention(pole, f"/{POLE}")
     imu = project.get_table(IMU)
     gnss = project.get_table(GNSS)
     report(progress, 0.02, "tilt-pole record read")
     sol, frame = solve_columns(imu, gnss, length, p, (f"/{IMU}", f"/{GNSS}"),
-                               sub_progress(progress, 0.02, 0.4), cancel)
+                               sub_progress(progress, 0.02, 0.4), cancel, convention)
     doc = result_document(sol, frame, length, p)
     mc = None
     if p.monte_carlo_runs > 0:
@@ -88,8 +90,7 @@ def run(project, params: TiltParams | Mapping | None = None, progress=None, canc
         if C is None:
             R = chosen.C0 @ sol.C_imu[0].T
             C = np.einsum("ij,kjl->kil", R, sol.C_imu)
-        u, _, _ = interpolate_vectors(_imu_time(imu), pole_vectors(C, length),
-                                      sol.gnss_time)
+        u, _, _ = interpolate_vectors(sol.time, pole_vectors(C, length), sol.gnss_time)
         tip = ned + u
         epochs.update(tip_e=tip[:, 1], tip_n=tip[:, 0], tip_u=-tip[:, 2])
     vec = sol.vectors
@@ -121,10 +122,6 @@ def run(project, params: TiltParams | Mapping | None = None, progress=None, canc
     record(project, RESULT, (IMU, GNSS, POLE), p, plugin_version=VERSION)
     report(progress, 1.0, "tilt alignment stored")
     return doc
-
-
-def _imu_time(imu) -> np.ndarray:
-    return np.asarray(imu["time"], float)
 
 
 def _clean(obj):

@@ -14,26 +14,26 @@ import json
 import numpy as np
 
 from hydrosync_core.methods.tilt_alignment.params import METHODS, TiltParams
+from hydrosync_core.methods.tilt_alignment.present import (
+    COLUMNS,
+    LABELS,
+    heading_text,
+    imu_text,
+    joint_text,
+    method_rows,
+    sigma_enu_text,
+    tip_header,
+    tip_text,
+)
 from hydrosync_core.methods.tilt_alignment.project_run import RESULT
 from hydrosync_core.params import stored
 from hydrosync_core.report.context import fmt
 
 HEADING = "Tilt-pole heading alignment and tip"
-LABELS = {"joint": "joint batch LSQ", "mbgd": "MBGD (Li et al.)", "bgd": "BGD",
-          "sgd": "SGD", "svd": "SVD (Wahba)", "closed_form": "closed form"}
 
 
 def _doc(project) -> dict:
     return json.loads(project.attrs(RESULT)["result"])
-
-
-def _tip_text(m: dict) -> str:
-    if "tip_enu" in m and m["tip_enu"] is not None:
-        return ", ".join(f"{v:.4f}" for v in m["tip_enu"])
-    if m.get("tip_llh") is not None:
-        lat, lon, h = m["tip_llh"]
-        return f"{lat:.9f}, {lon:.9f}, {h:.4f}"
-    return "—"
 
 
 def summary(project) -> list[tuple[str, str]]:
@@ -41,12 +41,10 @@ def summary(project) -> list[tuple[str, str]]:
     doc = _doc(project)
     m = doc["methods"][doc["method"]]
     key = "tip E, N, U [m]" if "tip_enu" in doc else "tip lat, lon, h"
-    rows = [(f"Tilt pole {key} ({LABELS[doc['method']]})", _tip_text(m))]
+    rows = [(f"Tilt pole {key} ({LABELS[doc['method']]})", tip_text(m))]
     if m["tip_std_enu_m"] is not None:
-        rows.append(("Tilt pole tip σ E/N/U", "/".join(f"{1000 * s:.1f}" for s in
-                                                      m["tip_std_enu_m"]) + " mm"))
-    rows.append(("Tilt pole heading misalignment",
-                 f"{fmt(m['heading_misalignment_deg'], 3)}°"))
+        rows.append(("Tilt pole tip σ E/N/U", sigma_enu_text(m) + " mm"))
+    rows.append(("Tilt pole heading misalignment", heading_text(m)))
     return rows
 
 
@@ -72,23 +70,14 @@ def section(project, ctx) -> list:
         "heading-only least squares and a joint batch least squares over the whole swing "
         "(initial attitude, tip, gyro and accelerometer biases from accelerometers, gyros "
         "and GNSS), the reported method by default. Tips in ENU (m); σ 1σ."))
-    rows = []
-    for name in METHODS:
-        m = doc["methods"][name]
-        if m["undetermined"]:
-            rows.append([LABELS[name], "undetermined", m["undetermined"][:50], "", "", ""])
-            continue
-        rows.append([LABELS[name] + (" *" if name == doc["method"] else ""),
-                     fmt(m["heading_misalignment_deg"], 3),
-                     _tip_text(m),
-                     "/".join(f"{1000 * s:.1f}" for s in m["tip_std_enu_m"]),
-                     str(m["vectors"]), str(m["iterations"])])
-    out += ctx.table(["Method", "ψ [°]", "tip", "σ E/N/U [mm]", "vectors", "iter."], rows,
-                     col_widths=[0.2, 0.1, 0.36, 0.14, 0.1, 0.1],
+    heads = {**COLUMNS, "tip": tip_header(doc)}
+    rows = [[r[k] for k in heads] for r in method_rows(doc)]
+    out += ctx.table(list(heads.values()), rows,
+                     col_widths=[0.17, 0.16, 0.3, 0.15, 0.1, 0.12],
                      caption=f"Every method on this record (* reported). Vectors used "
                      f"{doc['vectors_used']}, rejected {doc['vectors_rejected']}; tilt up to "
                      f"{doc['tilt_deg']['max']:.1f}°, {doc['tilt_deg']['shot']:.1f}° at the "
-                     "shot.")
+                     f"shot. {imu_text(doc)}. {joint_text(doc)}.")
     for w in doc.get("warnings", []):
         out.append(ctx.warning(w))
     ep = project.get_table(f"{RESULT}/epochs")

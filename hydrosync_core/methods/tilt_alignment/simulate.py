@@ -5,12 +5,14 @@ wobble — a hand-held pole is never still), a move to one end of the swing, the
 (2-3 s, one or three sweeps, along a line or an ellipse, with a twist about the pole) and
 the hold at the end of the swing (the shot). Attitude ``C = Rz(heading)·Ry(pitch)·
 Rx(roll)`` (body x forward, y right, z down along the pole; NED). The IMU sits at the
-antenna: gyro sample k is the exact mean rate over ``[t_k, t_(k+1))`` and accelerometer
-sample k the specific force ``Cᵀ(a − g·e_down)`` with the antenna acceleration from the
-trajectory; noise is white (density × √rate) or, with ``imu_noise_taps``, through a
-sensor's moving-average low-pass (same random walk), biases constant. GNSS antenna positions
-(NED, m) at 5-20 Hz with white noise, optionally a gap. The IMU's own heading starts at 0,
-so the true heading at the start is the misalignment to find.
+antenna and reports in one of the conventions of :mod:`.imu_convention` (``imu_convention``):
+the motion is computed on a grid eight times finer than the IMU's, and a sample is either
+the rate and specific force ``Cᵀ(a − g·e_down)`` at its tag (``instant``) or their exact
+means over its interval, tagged at the interval's start, middle or end; noise is white
+(density × √rate) or, with ``imu_noise_taps``, through a sensor's moving-average low-pass
+(same random walk), biases constant. GNSS antenna positions (NED, m) at 5-20 Hz with white
+noise, optionally a gap. The IMU's own heading starts at 0, so the true heading at the
+start is the misalignment to find.
 """
 
 from __future__ import annotations
@@ -19,17 +21,19 @@ import math
 from dataclasses import dataclass, field, replace
 
 import numpy as np
-from scipy.spatial.transform import Rotation
 
 from hydrosync_core.methods.tilt_alignment.geometry import E_DOWN
+from hydrosync_core.methods.tilt_alignment.imu_convention import CONVENTIONS, TAG_FRACTION
+from hydrosync_core.methods.tilt_alignment.params import IMU_GRADES
+from hydrosync_core.rotations import euler_zyx_matrix, log_so3
 
-#: IMU grades: gyro noise (°/s/√Hz), gyro bias 1σ (°/s), accel noise (m/s²/√Hz),
-#: accel bias 1σ (m/s²). "mems" is the issue's example (0.05°/s, 0.02 m/s²).
-GRADES = {
-    "consumer": (0.015, 0.10, 0.0020, 0.040),
-    "mems": (0.008, 0.05, 0.0012, 0.020),
-    "industrial": (0.004, 0.02, 0.0006, 0.008),
-}
+#: IMU grades as simulated: gyro noise (°/s/√Hz), gyro bias 1σ (°/s), accel noise
+#: (m/s²/√Hz), accel bias 1σ (m/s²) — the documented numbers of ``params.IMU_GRADES``.
+GRADES = {name: (g.gyro_noise_deg_s_rthz, g.gyro_bias_deg_s, g.accel_noise_m_s2_rthz,
+                 g.accel_bias_m_s2) for name, g in IMU_GRADES.items()}
+#: IMU samples per interval of the simulator's fine motion grid (even: a middle tag falls
+#: on it)
+OVERSAMPLE = 8
 
 
 @dataclass(frozen=True)
@@ -62,6 +66,7 @@ class SwingConfig:
     gnss_outliers: int = 0             # epochs with a 5-15 cm error (multipath, a bad fix)
     imu_noise_taps: int = 1            # IMU noise through a moving average of this many
                                        # samples (a sensor's digital low-pass), same ARW
+    imu_convention: str = "instant"    # what a sample means (:mod:`.imu_convention`)
     wobble: tuple = field(default=(), compare=False)   # (freqs, phases) filled by random
 
 
@@ -72,11 +77,13 @@ def noise_free(config: SwingConfig) -> SwingConfig:
                    accel_bias_m_s2=(0.0, 0.0, 0.0))
 
 
-def random_config(rng: np.random.Generator, tilt_range=(15.0, 60.0), **overrides
-                  ) -> SwingConfig:
-    """A random realistic swing: amplitude, shape, pole, IMU grade, rate, noise colour
-    and biases, GNSS rate, noise and gap (up to 1 s)."""
-    grade = GRADES[rng.choice(list(GRADES))]
+def random_config(rng: np.random.Generator, tilt_range=(15.0, 60.0), grade: str | None = None,
+                  **overrides) -> SwingConfig:
+    """A random realistic swing: amplitude, shape, pole, IMU grade (*grade* fixes it),
+    rate, noise colour, biases and sample convention, GNSS rate, noise and gap (up to 1 s).
+    """
+    drawn = rng.choice(list(GRADES))
+    grade = GRADES[grade or drawn]
     gn, gb, an, ab = grade
     cfg = SwingConfig(
         pole_length_m=float(rng.uniform(1.2, 2.5)),
@@ -104,7 +111,8 @@ def random_config(rng: np.random.Generator, tilt_range=(15.0, 60.0), **overrides
     # harder cases added later (drawn after the others): the IMU at 50/100/200 Hz and its
     # noise through a sensor's digital low-pass in half the runs
     cfg = replace(cfg, imu_rate_hz=float(rng.choice([50.0, 100.0, 100.0, 200.0])),
-                  imu_noise_taps=int(rng.choice([1, 1, 2, 4])))
+                  imu_noise_taps=int(rng.choice([1, 1, 2, 4])),
+                  imu_convention=str(rng.choice(CONVENTIONS)))
     return replace(cfg, **overrides)
 
 
@@ -141,7 +149,7 @@ def _angles(cfg: SwingConfig, t: np.ndarray, wob: tuple, scale: float) -> np.nda
 
 
 def _matrices(angles: np.ndarray) -> np.ndarray:
-    return Rotation.from_euler("ZYX", angles[:, [2, 1, 0]]).as_matrix()
+    return euler_zyx_matrix(angles[:, 0], angles[:, 1], angles[:, 2])
 
 
 def _noise(rng: np.random.Generator, sigma: float, shape: tuple, taps: int) -> np.ndarray:
@@ -153,6 +161,42 @@ def _noise(rng: np.random.Generator, sigma: float, shape: tuple, taps: int) -> n
     raw = rng.normal(0, sigma * math.sqrt(taps), (shape[0] + taps - 1, *shape[1:]))
     c = np.cumsum(np.vstack([np.zeros((1, *shape[1:])), raw]), axis=0)
     return (c[taps:] - c[:-taps]) / taps
+
+
+def _imu_samples(cfg: SwingConfig, t: np.ndarray, wob: tuple, scale: float
+                 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Noise-free gyro (rad/s) and accelerometer (m/s²) rows at the tags *t* in the
+    record's convention, and the true attitudes (N, 3, 3) at the tags.
+
+    The motion is sampled every ``Δt/OVERSAMPLE`` from one interval before the first tag to
+    one after the last; the antenna acceleration is the second difference there. An
+    interval sample's rate is the rotation over its interval divided by ``Δt`` (an
+    increment, exact), its specific force the trapezoid mean over the interval.
+    """
+    dt = 1.0 / cfg.imu_rate_hz
+    m = OVERSAMPLE
+    h = dt / m
+    tf = t[0] - dt + h * np.arange((t.size + 1) * m + 1)
+    Cf = _matrices(_angles(cfg, tf, wob, scale))
+    pf = -Cf[:, :, 2] * cfg.pole_length_m
+    acc = np.zeros_like(pf)
+    acc[1:-1] = (pf[2:] - 2 * pf[1:-1] + pf[:-2]) / h ** 2
+    acc[0], acc[-1] = acc[1], acc[-2]
+    ff = np.einsum("kji,kj->ki", Cf, acc - cfg.gravity_m_s2 * E_DOWN)
+    tags = m * (np.arange(t.size) + 1)               # fine index of each tag
+    if cfg.imu_convention == "instant":
+        rel = np.einsum("kji,kjl->kil", Cf[tags - 1], Cf[tags + 1])
+        gyro = log_so3(rel) / (2 * h)
+        f = ff[tags]
+    else:
+        start = tags - int(round(TAG_FRACTION[cfg.imu_convention] * m))
+        rel = np.einsum("kji,kjl->kil", Cf[start], Cf[start + m])
+        gyro = log_so3(rel) / dt
+        idx = start[:, None] + np.arange(m + 1)[None, :]
+        wts = np.full(m + 1, 1.0 / m)
+        wts[[0, -1]] *= 0.5
+        f = np.einsum("kjc,j->kc", ff[idx], wts)
+    return gyro, f, Cf[tags]
 
 
 def simulate_swing(config: SwingConfig | None = None, seed: int = 0) -> dict:
@@ -180,17 +224,10 @@ def simulate_swing(config: SwingConfig | None = None, seed: int = 0) -> dict:
         C = _matrices(_angles(cfg, t, wob, scale))
         max_tilt = math.degrees(float(np.max(np.arccos(np.clip(C[:, 2, 2], -1, 1)))))
         scale *= cfg.tilt_deg / max(max_tilt, 1e-6)
-    C = _matrices(_angles(cfg, t, wob, scale))
     length = cfg.pole_length_m
     tip = np.zeros(3)
+    gyro, f, C = _imu_samples(cfg, t, wob, scale)
     p = tip - C[:, :, 2] * length
-    steps = Rotation.from_matrix(np.einsum("kji,kjl->kil", C[:-1], C[1:])).as_rotvec() / dt
-    gyro = np.vstack([steps, steps[-1:]])
-    acc = np.zeros_like(p)
-    acc[1:-1] = (p[2:] - 2 * p[1:-1] + p[:-2]) / dt ** 2
-    acc[0], acc[-1] = acc[1], acc[-2]
-    g = cfg.gravity_m_s2
-    f = np.einsum("kji,kj->ki", C, acc - g * E_DOWN)
     bg = np.radians(np.array(cfg.gyro_bias_deg_s))
     ba = np.array(cfg.accel_bias_m_s2)
     gyro = gyro + bg + _noise(rng, math.radians(cfg.gyro_noise_deg_s_rthz)

@@ -26,9 +26,11 @@ IMU_KEYS = ("time", "gx", "gy", "gz", "ax", "ay", "az")
 
 
 def solve_columns(imu: dict, gnss: dict, length: float, params: TiltParams,
-                  sources=("imu.csv", "gnss.csv"), progress=None, cancel=None
-                  ) -> tuple[TiltSolution, dict]:
-    """Solve from IMU and GNSS columns; returns the solution and the GNSS frame."""
+                  sources=("imu.csv", "gnss.csv"), progress=None, cancel=None,
+                  imu_convention: str | None = None) -> tuple[TiltSolution, dict]:
+    """Solve from IMU and GNSS columns; returns the solution and the GNSS frame.
+
+    *imu_convention*: what the data set declares (``pole.json``); the option wins."""
     for key in IMU_KEYS:
         if key not in imu:
             raise InputError(sources[0], "missing column", field=key)
@@ -45,7 +47,7 @@ def solve_columns(imu: dict, gnss: dict, length: float, params: TiltParams,
         g = normal_gravity(frame["origin_llh"][0], frame["origin_llh"][2])
     try:
         sol = solve_record(time, gyro, accel, gt, ned, length, params, gravity=g,
-                           progress=progress, cancel=cancel)
+                           progress=progress, cancel=cancel, imu_convention=imu_convention)
     except InputError as exc:
         raise InputError(sources[1], exc.message, field=exc.field) from None
     return sol, frame
@@ -82,6 +84,10 @@ def result_document(sol: TiltSolution, frame: dict, length: float, params: TiltP
         "tilt_deg": {"max": math.degrees(float(np.max(sol.epoch_tilt))),
                      "shot": math.degrees(float(np.mean(sol.epoch_tilt[sol.tip_window])))},
         "gravity_m_s2": sol.gravity,
+        "imu_grade": params.imu_grade,
+        "imu_convention": sol.imu_convention,
+        "priors": {"gyro_bias_deg_s": params.gyro_bias_prior_deg_s,
+                   "accel_bias_m_s2": params.accel_bias_prior_m_s2},
         "methods": methods,
         "undetermined": undetermined,
         "warnings": sol.warnings,

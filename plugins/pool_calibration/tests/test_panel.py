@@ -18,6 +18,8 @@ from PySide6.QtCore import Qt
 
 from hydrosync_core.methods.pool_calibration import project_run
 from hydrosync_core.methods.pool_calibration.demo import DEMO_CONFIG, fill_demo
+from hydrosync_core.methods.pool_calibration.project_run import PASSES, pass_names
+from hydrosync_core.methods.pool_calibration.result import parameter_text
 from hydrosync_core.project import Project
 from plugins.pool_calibration.cloud_views import ProjectionView, gl_available
 from plugins.pool_calibration.panel import PoolCalibrationPanel
@@ -61,9 +63,10 @@ def _copy(project: Project, tmp_path) -> Project:
 
 
 def _thin(project: Project, step: int = 3) -> None:
-    """Keep every *step*-th multibeam sounding: the same pass, a faster worker run."""
-    mbes = project.get_table("raw/pool/mbes")
-    project.put_table("raw/pool/mbes", {k: v[::step] for k, v in mbes.items()})
+    """Keep every *step*-th multibeam sounding of every pass: a faster worker run."""
+    for path in ["raw/pool/mbes"] + [f"{PASSES}/{k}/mbes" for k in pass_names(project)]:
+        mbes = project.get_table(path)
+        project.put_table(path, {k: v[::step] for k, v in mbes.items()})
 
 
 def _snapshot(project: Project) -> dict:
@@ -97,6 +100,12 @@ def _same(a: dict, b: dict) -> bool:
         elif x != y:
             return False
     return True
+
+
+def _shown(text: str) -> tuple[float, float]:
+    """A number as shown and half a unit of its last decimal (its rounding)."""
+    decimals = len(text.split(".")[1]) if "." in text else 0
+    return float(text), 0.5 * 10.0 ** -decimals + 1e-12
 
 
 def test_empty_project_needs_data(panel):
@@ -150,8 +159,13 @@ def test_demo_results_shown(panel, demo, qtbot):
     ref_col = list(FACE_COLUMNS).index("reference")
     row = names.index("N1_dn_top")
     assert model.text(row, ref_col) == "N1_up_top"
-    assert float(model.text(row, ref_col + 3)) == pytest.approx(faces["twin_du_m"][row])
+    du_col = list(FACE_COLUMNS).index("twin_du_m")
+    assert float(model.text(row, du_col)) == pytest.approx(faces["twin_du_m"][row])
     assert model.text(names.index("wall"), ref_col) == "own"
+    # The pairing column says which rule paired each face, or why none.
+    pair_col = list(FACE_COLUMNS).index("pairing")
+    assert model.text(row, pair_col) == "parallel offset with N1_up_top"
+    assert model.text(names.index("N1_dn_bottom"), pair_col) == "unpaired: an underside"
     # Iteration table and convergence curves hold the stored iterations.
     iters = project.get_table(f"{RESULT}/iterations")
     assert panel.iteration_table.model().rowCount() == len(iters["iteration"]) > 3
@@ -168,19 +182,24 @@ def test_demo_results_shown(panel, demo, qtbot):
     assert tol_x is None or len(tol_x) == 0  # tolerance drawn in log scale only
     panel.log_check.setChecked(True)
 
-    # Final values, σ, seed and coarse setup as stored (4 decimals shown).
+    # Final values and σ as stored, to the digits σ supports — the very text the CLI and
+    # the PDF print (parameter_text).
     result = project.get_json(f"{RESULT}/result")
     for row, (_label, key, group, unit) in enumerate(VALUE_ROWS):
         attr = f"{key}_deg" if unit == "°" else f"lever_{key}_m"
-        assert float(panel.values.value(row, 0)) == pytest.approx(attrs[attr], abs=5e-5)
+        value, tol = _shown(panel.values.value(row, 0))
+        assert value == pytest.approx(attrs[attr], abs=tol)
         sigma_text = panel.values.value(row, 1).rstrip(" ⚑")
-        assert float(sigma_text) == pytest.approx(attrs[f"sigma_{attr}"], abs=5e-5)
+        assert float(sigma_text) == pytest.approx(attrs[f"sigma_{attr}"], abs=tol)
+        assert (f"{panel.values.value(row, 0)} ± {sigma_text}"
+                == parameter_text(attrs[attr], attrs[f"sigma_{attr}"], ""))
+        # Seed, coarse and Δ to the same digits (one rounding each).
         assert float(panel.values.value(row, 2)) == pytest.approx(result["seed"][group][key],
-                                                                  abs=5e-5)
+                                                                  abs=tol)
         coarse = result["coarse"][group][key]
-        assert float(panel.values.value(row, 3)) == pytest.approx(coarse, abs=5e-5)
+        assert float(panel.values.value(row, 3)) == pytest.approx(coarse, abs=tol)
         assert float(panel.values.value(row, 4)) == pytest.approx(attrs[attr] - coarse,
-                                                                  abs=5e-5)
+                                                                  abs=tol)
     # Warnings as stored: prominent box when present, hidden when none.
     warnings = json.loads(attrs["warnings"])
     assert panel.warnings.isVisible() == bool(warnings)
@@ -297,8 +316,8 @@ def test_segment_then_run_in_worker(panel, demo, qtbot, tmp_path):
     for row, (_label, key, group, _unit) in enumerate(VALUE_ROWS):
         # Final = the seed solution, shown in both columns.
         assert panel.values.value(row, 0) == panel.values.value(row, 2)
-        assert float(panel.values.value(row, 0)) == pytest.approx(result["seed"][group][key],
-                                                                  abs=5e-5)
+        value, tol = _shown(panel.values.value(row, 0))
+        assert value == pytest.approx(result["seed"][group][key], abs=tol)
     assert panel.face_table.model().rowCount() == 49
     assert panel.after_radio.isEnabled()
     assert any(s.startswith("Pool calibration: ") for s in statuses)

@@ -1,0 +1,89 @@
+"""IMU sample conventions: what one row of ``imu.csv`` means, and the model grid.
+
+An IMU either reports *instantaneous* samples (the rate and specific force at the time
+tag) or *interval* samples (the mean rate and mean specific force — increments divided by
+the interval — over one sample interval), and the tag of an interval sample sits at its
+start, middle or end. Taking one for another shifts the attitude by half a sample (10 ms
+samples: 5 ms), which the joint adjustment then reads as a GNSS time offset and as extra
+IMU noise (issue #30).
+
+:func:`to_model_grid` turns any convention into the one the solver integrates: on model
+times ``τ_k``, gyro row *k* is the mean rate over ``[τ_k, τ_(k+1))`` and accelerometer row
+*k* the specific force at ``τ_k`` or its mean over the interval; the joint model's window
+weights turn either into what its second differences of the antenna path see (the
+acceleration plus ``Δt²/12`` of its second derivative), in NED. Fourth-order formulas do
+it: midpoint averages of two neighbours (second order) left a systematic error that the
+adjustment read as six times the gyro noise on a fast three-sweep swing at 50 Hz.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+#: The declared conventions (``--imu-convention``, ``pole.json`` key ``imu_convention``).
+CONVENTIONS = ("instant", "interval-start", "interval-middle", "interval-end")
+#: Where the tag sits in the sample's interval (fraction of the interval from its start).
+TAG_FRACTION = {"interval-start": 0.0, "interval-middle": 0.5, "interval-end": 1.0}
+#: The convention assumed when neither the options nor the data set declare one.
+DEFAULT = "instant"
+
+
+def _interval_means(x: np.ndarray) -> np.ndarray:
+    """Means over ``[t_k, t_(k+1))`` of instantaneous samples *x* (N, 3): the integral of
+    the cubic through four neighbours, ``(−x_(k−1) + 13x_k + 13x_(k+1) − x_(k+2))/24``
+    (fourth order); the trapezoid at the ends; the last row repeated."""
+    x = np.asarray(x, float)
+    out = np.vstack([0.5 * (x[:-1] + x[1:]), x[-1:]])
+    if x.shape[0] >= 4:
+        out[1:-2] = (-x[:-3] + 13 * x[1:-2] + 13 * x[2:-1] - x[3:]) / 24.0
+    return out
+
+
+def to_model_grid(time: np.ndarray, gyro: np.ndarray, accel: np.ndarray, convention: str
+                  ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The record on the solver's grid.
+
+    Parameters
+    ----------
+    time : (N,) time tags (s). gyro : (N, 3) rad/s. accel : (N, 3) m/s² (body frame).
+    convention : one of :data:`CONVENTIONS`.
+
+    Returns
+    -------
+    tau : (N,) model times (s). gyro : (N, 3) mean rate over ``[τ_k, τ_(k+1))`` (rad/s).
+    accel : (N, 3) specific force (m/s²) as recorded: at ``τ_k`` (instant) or the mean
+    over ``[τ_k, τ_(k+1))`` (interval); :func:`.joint.numerov_weights` and
+    :func:`.joint.interval_weights` turn either into what the model's second differences
+    of the antenna path see.
+    """
+    time = np.asarray(time, float)
+    if convention == "instant":
+        return time, _interval_means(gyro), np.asarray(accel, float)
+    if convention not in TAG_FRACTION:
+        raise ValueError(f"unknown IMU convention {convention!r}")
+    dt = float(np.median(np.diff(time)))
+    tau = time - TAG_FRACTION[convention] * dt
+    return tau, np.asarray(gyro, float), np.asarray(accel, float)
+
+
+def mismatch_hint(offset_s: float, offset_std_s: float, dt: float, convention: str
+                  ) -> str | None:
+    """Name the likely convention mismatch when a GNSS offset looks like half a sample.
+
+    A tag half an interval off moves the IMU attitude by ``±Δt/2`` against the GNSS. The
+    hint is given when the offset is nearer ``±Δt/2`` than 0 or ``±Δt`` and more than 2σ
+    from zero. Returns None otherwise.
+    """
+    half = 0.5 * dt
+    if not (abs(offset_s) > 2 * offset_std_s and 0.5 * half <= abs(offset_s) <= 1.5 * half):
+        return None
+    # GNSS tags late (+τ) ⇔ the IMU attitude runs early: its tags sit later in the
+    # interval than declared (an interval-end record declared as instant, and so on)
+    shift = TAG_FRACTION.get(convention, 0.5) + (0.5 if offset_s > 0 else -0.5)
+    likely = [c for c, f in TAG_FRACTION.items() if abs(f - shift) < 1e-9]
+    if convention != "instant" and abs(shift - 0.5) < 1e-9:
+        likely.append("instant")
+    names = " or ".join(likely) if likely else "another convention"
+    return (f"the GNSS↔IMU offset {1000 * offset_s:+.1f} ms (±{1000 * offset_std_s:.1f}) is "
+            f"about half the {1000 * dt:.0f} ms IMU interval: the IMU samples are probably "
+            f"'{names}', not '{convention}' as declared (--imu-convention)")

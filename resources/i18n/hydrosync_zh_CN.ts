@@ -465,7 +465,7 @@
         </message>
         <message>
             <source>Elevation of the target seen from the vessel (north against up): laser points above the water line and multibeam soundings below it, georeferenced with the final values and coloured by the role of their face; design outlines in grey.</source>
-            <translation>从船上看标靶的立面图(北向对天向):水线以上为激光点,水线以下为多波束测深点,用最终值进行地理参考,并按所在面的作用着色;设计轮廓为灰色。</translation>
+            <translation>从船上看目标物的立面图(北向对天向):水线以上为激光点,水线以下为多波束测深点,用最终值进行地理参考,并按所在面的作用着色;设计轮廓为灰色。</translation>
         </message>
         <message>
             <source>Epoch matching</source>
@@ -553,7 +553,7 @@
         </message>
         <message>
             <source>Faces of the target design, their role inferred from geometry, points segmented in each cloud, plane-fit RMS, the angle between the laser and the final multibeam plane normals, and the parameters each face determines.</source>
-            <translation>标靶设计中的各面、由几何推断的作用、各点云中分割出的点数、平面拟合 RMS、激光与最终多波束平面法向的夹角,以及各面所确定的参数。</translation>
+            <translation>目标物设计中的各面、由几何推断的作用、各点云中分割出的点数、平面拟合 RMS、激光与最终多波束平面法向的夹角,以及各面所确定的参数。</translation>
         </message>
         <message>
             <source>Fewest vectors</source>
@@ -1149,7 +1149,7 @@
         </message>
         <message>
             <source>Method: pool calibration against a laser-scanned target (patent CN 105425246 B). Both point clouds are segmented into the design faces of the target; planes are fitted by total least squares. The patent method iterates the boresight angles from the angles between multibeam and laser plane normals (roll from the wall, pitch and yaw from the oblique faces), then derives the lever arm offsets (x from the wall, y from the oblique faces, z from the horizontal faces). The joint adjustment estimates all six parameters at once by minimising the point-to-plane distances of the multibeam soundings to the laser planes, with their covariance. Angles follow setup.json: R&lt;sub&gt;m&lt;/sub&gt; = Rz(yaw)·Ry(pitch)·Rx(roll); the lever arm is in the body frame (x forward, y starboard, z down).</source>
-            <translation>方法:以激光扫描标靶进行水池检校(专利 CN 105425246 B)。两组点云均分割为标靶的设计面;用整体最小二乘拟合平面。专利方法由多波束平面与激光平面法向间的夹角迭代求安装偏角(横摇取自墙面,纵摇和艏摇取自斜面),然后求杆臂偏移量(x 取自墙面,y 取自斜面,z 取自水平面)。联合平差通过最小化多波束测深点到激光平面的点面距离,一次估计全部六个参数及其协方差。角度遵循 setup.json:R&lt;sub&gt;m&lt;/sub&gt; = Rz(艏摇)·Ry(纵摇)·Rx(横摇);杆臂在载体坐标系中(x 向前,y 右舷,z 向下)。</translation>
+            <translation>方法:以激光扫描目标物进行水池检校(专利 CN 105425246 B)。两组点云均分割为目标物的设计面;用整体最小二乘拟合平面。专利方法由多波束平面与激光平面法向间的夹角迭代求安装偏角(横摇取自中心墙,纵摇和艏摇取自斜面),然后求杆臂偏移量(x 取自中心墙,y 取自斜面,z 取自水平面)。联合平差通过最小化多波束测深点到激光平面的点面距离,一次估计全部六个参数及其协方差。角度遵循 setup.json:R&lt;sub&gt;m&lt;/sub&gt; = Rz(艏摇)·Ry(纵摇)·Rx(横摇);杆臂在载体坐标系中(x 向前,y 右舷,z 向下)。</translation>
         </message>
         <message>
             <source>Min points per face</source>
@@ -1197,7 +1197,7 @@
         </message>
         <message>
             <source>Multibeam boresight angles and lever arm from a pool target seen by a calibrated laser scanner (patent CN 105425246 B) plus a joint least-squares adjustment.</source>
-            <translation>由已检校激光扫描仪观测的水池标靶求多波束安装偏角和杆臂(专利 CN 105425246 B),并进行联合最小二乘平差。</translation>
+            <translation>由已检校激光扫描仪观测的水池目标物求多波束安装偏角和杆臂(专利 CN 105425246 B),并进行联合最小二乘平差。</translation>
         </message>
         <message>
             <source>Multibeam georeferenced:</source>
@@ -1349,7 +1349,7 @@
         </message>
         <message>
             <source>Plan view of the segmented clouds in the target frame (ENU): laser points coloured by the role of their face, multibeam soundings on faces georeferenced with the final values (black), design face outlines in grey. The vertical scale is stretched (axes not to the same scale) to separate the faces.</source>
-            <translation>标靶坐标系(ENU)中分割点云的平面图:激光点按所在面的作用着色,面上的多波束测深点用最终值进行地理参考(黑色),设计面轮廓为灰色。垂直比例经拉伸(两轴比例不同)以区分各面。</translation>
+            <translation>目标物坐标系(ENU)中分割点云的平面图:激光点按所在面的作用着色,面上的多波束测深点用最终值进行地理参考(黑色),设计面轮廓为灰色。垂直比例经拉伸(两轴比例不同)以区分各面。</translation>
         </message>
         <message>
             <source>Plot Options</source>
@@ -1809,7 +1809,7 @@
         </message>
         <message>
             <source>Target faces</source>
-            <translation>标靶面</translation>
+            <translation>目标物面</translation>
         </message>
         <message>
             <source>The application keeps running; save your work. The details are in the log.</source>
@@ -2169,7 +2169,7 @@
         </message>
         <message>
             <source>crop tolerance around the faces once the first solution is known</source>
-            <translation>得到首次解后标靶面周围的裁剪容差</translation>
+            <translation>得到首次解后目标物面周围的裁剪容差</translation>
         </message>
         <message>
             <source>crossing</source>
@@ -2205,7 +2205,7 @@
         </message>
         <message>
             <source>distance from the laser plane of wall</source>
-            <translation>到墙面激光平面的距离</translation>
+            <translation>到中心墙激光平面的距离</translation>
         </message>
         <message>
             <source>down error</source>
@@ -2389,7 +2389,7 @@
         </message>
         <message>
             <source>how far from the design faces soundings are first looked for (halved twice while the coarse setup is aligned); at least the error of the coarse setup at the target</source>
-            <translation>首先在距设计面多远以内寻找测深点(粗标定对准过程中减半两次);至少为粗标定在标靶处的误差</translation>
+            <translation>首先在距设计面多远以内寻找测深点(粗标定对准过程中减半两次);至少为粗标定在目标物处的误差</translation>
         </message>
         <message>
             <source>how well a below-water block is oriented relative to its above-water twin (± per axis, half-width; σ = tol/√3), propagated into the σ of the result</source>
@@ -3049,15 +3049,15 @@
         </message>
         <message>
             <source>wall</source>
-            <translation>墙面</translation>
+            <translation>中心墙</translation>
         </message>
         <message>
             <source>wall (laser)</source>
-            <translation>墙面(激光)</translation>
+            <translation>中心墙(激光)</translation>
         </message>
         <message>
             <source>wall (multibeam)</source>
-            <translation>墙面(多波束)</translation>
+            <translation>中心墙(多波束)</translation>
         </message>
         <message>
             <source>warn when the horizontal circle holding the tip with 95 % probability is wider than this (a swing nearly in one plane leaves the accelerometer bias along the swing axis mixed with the tilt out of the plane)</source>

@@ -3328,7 +3328,7 @@
         </message>
         <message>
             <source>Figure {0}.</source>
-            <translation>图 {0}.</translation>
+            <translation>图 {0}</translation>
         </message>
         <message>
             <source>GNSS σ from the file (white), IMU noise from the configuration; normalised GNSS innovations RMS N/E/D {0}, autocorrelation at 1 s ≤ {1}</source>
@@ -3416,7 +3416,7 @@
         </message>
         <message>
             <source>Table {0}.</source>
-            <translation>表 {0}.</translation>
+            <translation>表 {0}</translation>
         </message>
         <message>
             <source>The campaign could not run: {0}</source>

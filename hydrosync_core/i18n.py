@@ -1,27 +1,31 @@
 """Translations of user-visible text, keyed by the English source text (no Qt).
 
 HydroSync's strings are written in English in the code. A translation catalogue is a Qt
-Linguist ``.ts`` file under ``resources/i18n/`` (``hydrosync_<lang>.ts``): the GUI loads its
-compiled ``.qm`` through ``QTranslator``; the PDF report, which must run without Qt, reads
-the same ``.ts`` here. One catalogue, two readers.
+Linguist ``.ts`` file under ``resources/i18n/`` (``hydrosync_<lang>.ts``), plus any an
+installed plugin ships (``<package>/i18n/*_<lang>.ts``): the GUI loads their compiled
+``.qm`` through ``QTranslator``; the PDF report, which must run without Qt, reads the same
+``.ts`` here. One catalogue, two readers.
 
-Two kinds of entries:
+Entries:
 
-* exact: ``<source>Lever arm</source>`` → ``杆臂``;
-* patterns, for text assembled at run time: ``{0}``, ``{1}``… in the source stand for any
-  text (``Table {0}.`` → ``表 {0}.``). What a placeholder captured is translated in turn
-  (a module name inside a sentence), numbers pass through unchanged.
+* exact (context ``hydrosync``): ``<source>Pool Calibration</source>`` → ``水池检校``;
+* patterns (context ``hydrosync-patterns``), for text assembled at run time: ``{0}``,
+  ``{1}``… stand for any part of one line (``Table {0}.`` → ``表 {0}``). What a
+  placeholder captured is translated in turn (a module name inside a sentence); numbers
+  pass through unchanged;
+* other contexts hold a second meaning of one English word, asked for by name
+  (``tr("Name", context="signoff")`` → ``姓名``, a person's, not a file's ``名称``).
 
-A text of several lines (``\n`` or ``<br>``) without an entry of its own is translated line
-by line. A text with no entry is returned as it is, so an untranslated string shows in
-English rather than not at all. A trailing unit in brackets (``Roll [°]``) is kept and the label in
-front of it translated.
+A text of several lines (``\\n`` or ``<br>``) without an entry of its own is translated
+line by line. A trailing unit in brackets (``Roll [°]``) or a colon is kept and the label
+in front of it translated. A text with no entry is returned as it is, so an untranslated
+string shows in English rather than not at all.
 
 Example
 -------
 >>> with using("zh_CN"):
-...     tr("Lever arm")
-'杆臂'
+...     tr("Pool Calibration")
+'水池检校'
 """
 
 from __future__ import annotations

@@ -44,6 +44,7 @@ from PySide6.QtGui import QAction, QActionGroup
 from PySide6.QtWidgets import (
     QAbstractButton,
     QApplication,
+    QComboBox,
     QDockWidget,
     QGroupBox,
     QLabel,
@@ -238,6 +239,16 @@ def _item_headers(view) -> None:
             _sync(view, f"head{i}", item.text(i), lambda t, i=i: item.setText(i, t))
 
 
+def _combo_labels(box: QComboBox) -> None:
+    """Choice labels ("least squares"); a choice shown as its key ("lsq", "auto") is a
+    value the user may type or script, and stays."""
+    for i in range(box.count()):
+        data = box.itemData(i)
+        source = box.property(f"i18n_src_item{i}") or box.itemText(i)
+        if isinstance(data, str) and data != source:
+            _sync(box, f"item{i}", box.itemText(i), lambda t, i=i: box.setItemText(i, t))
+
+
 def _plot_texts(widget: QWidget) -> None:
     """Axis titles, plot titles and legend entries of a pyqtgraph view."""
     scene = widget.scene() if isinstance(widget, pg.GraphicsView) else None
@@ -265,6 +276,8 @@ def relabel_widget(widget: QWidget) -> None:
         _sync(widget, "placeholder", widget.placeholderText(), widget.setPlaceholderText)
     elif isinstance(widget, QTableWidget | QTreeWidget):
         _item_headers(widget)
+    elif isinstance(widget, QComboBox):
+        _combo_labels(widget)
     if isinstance(widget, QMenu):
         _sync(widget.menuAction(), "text", widget.title(), widget.setTitle)
     if widget.actions():

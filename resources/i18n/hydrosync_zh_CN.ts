@@ -60,6 +60,10 @@
             <translation>视图(&amp;V)</translation>
         </message>
         <message>
+            <source>(no recent projects)</source>
+            <translation>(无最近项目)</translation>
+        </message>
+        <message>
             <source>(not saved)</source>
             <translation>(未保存)</translation>
         </message>
@@ -88,12 +92,20 @@
             <translation>;惯导姿态视为无误差(未给出惯导精度):σ 为下限</translation>
         </message>
         <message>
+            <source>&lt;h3&gt;No analysis plugin is available&lt;/h3&gt;&lt;p&gt;See Help → Plugins and the log for what failed to load.&lt;/p&gt;</source>
+            <translation>&lt;h3&gt;没有可用的分析插件&lt;/h3&gt;&lt;p&gt;请查看“帮助 → 插件”和日志,了解加载失败的原因。&lt;/p&gt;</translation>
+        </message>
+        <message>
             <source>&lt;span style='color:#777'&gt;no iterations yet (Run all)&lt;/span&gt;</source>
             <translation>&lt;span style='color:#777'&gt;尚无迭代(全部运行)&lt;/span&gt;</translation>
         </message>
         <message>
             <source>&lt;span style='color:#d62728'&gt;━&lt;/span&gt;&amp;nbsp;Δ roll&amp;nbsp;&amp;nbsp; &lt;span style='color:#1f77b4'&gt;━&lt;/span&gt;&amp;nbsp;Δ pitch&amp;nbsp;&amp;nbsp; &lt;span style='color:#2ca02c'&gt;━&lt;/span&gt;&amp;nbsp;Δ yaw&amp;nbsp;&amp;nbsp; &lt;span style='color:#6e6e6e'&gt;╌&lt;/span&gt;&amp;nbsp;tolerance&amp;nbsp;&amp;nbsp; &lt;span style='color:#aaa'&gt;┆&lt;/span&gt;&amp;nbsp;new round</source>
             <translation>&lt;span style='color:#d62728'&gt;━&lt;/span&gt;&amp;nbsp;Δ 横摇&amp;nbsp;&amp;nbsp; &lt;span style='color:#1f77b4'&gt;━&lt;/span&gt;&amp;nbsp;Δ 纵摇&amp;nbsp;&amp;nbsp; &lt;span style='color:#2ca02c'&gt;━&lt;/span&gt;&amp;nbsp;Δ 艏摇&amp;nbsp;&amp;nbsp; &lt;span style='color:#6e6e6e'&gt;╌&lt;/span&gt;&amp;nbsp;收敛阈值&amp;nbsp;&amp;nbsp; &lt;span style='color:#aaa'&gt;┆&lt;/span&gt;&amp;nbsp;新一轮</translation>
+        </message>
+        <message>
+            <source>A task is running</source>
+            <translation>有任务正在运行</translation>
         </message>
         <message>
             <source>A-priori σ horizontal</source>
@@ -114,6 +126,10 @@
         <message>
             <source>Accepted solutions</source>
             <translation>采用的解</translation>
+        </message>
+        <message>
+            <source>Add sensor</source>
+            <translation>添加传感器</translation>
         </message>
         <message>
             <source>Advanced</source>
@@ -150,6 +166,10 @@
         <message>
             <source>Appendix: pool calibration, every patent iteration</source>
             <translation>附录:水池检校,专利方法的每次迭代</translation>
+        </message>
+        <message>
+            <source>Apply to vessel sheet</source>
+            <translation>应用到船舶参数表</translation>
         </message>
         <message>
             <source>Apply to vessel sheet…</source>
@@ -240,6 +260,10 @@
             <translation>艏摇安装偏角(最终值,1σ)</translation>
         </message>
         <message>
+            <source>Browse…</source>
+            <translation>浏览…</translation>
+        </message>
+        <message>
             <source>Build tolerance</source>
             <translation>建造容差</translation>
         </message>
@@ -252,12 +276,32 @@
             <translation>建造容差(位置)</translation>
         </message>
         <message>
+            <source>Campaign file</source>
+            <translation>批处理文件</translation>
+        </message>
+        <message>
             <source>Cancel</source>
             <translation>取消</translation>
         </message>
         <message>
             <source>Cancel the running task</source>
             <translation>取消正在运行的任务</translation>
+        </message>
+        <message>
+            <source>Cancel the running task and quit?</source>
+            <translation>取消正在运行的任务并退出?</translation>
+        </message>
+        <message>
+            <source>Cancelled: the steps that finished are saved in their projects; running the campaign again does only the rest.</source>
+            <translation>已取消:已完成的步骤保存在各自项目中;再次运行批处理只做其余部分。</translation>
+        </message>
+        <message>
+            <source>Cancelling: steps already finished stay saved…</source>
+            <translation>正在取消:已完成的步骤保持已保存…</translation>
+        </message>
+        <message>
+            <source>Cannot open project</source>
+            <translation>无法打开项目</translation>
         </message>
         <message>
             <source>Carries</source>
@@ -272,8 +316,20 @@
             <translation>校核</translation>
         </message>
         <message>
+            <source>Choose…</source>
+            <translation>选择…</translation>
+        </message>
+        <message>
+            <source>Clear list</source>
+            <translation>清除列表</translation>
+        </message>
+        <message>
             <source>Clip to View</source>
             <translation>裁剪到视图</translation>
+        </message>
+        <message>
+            <source>Close</source>
+            <translation>关闭</translation>
         </message>
         <message>
             <source>Cluster distance (laser)</source>
@@ -356,6 +412,10 @@
             <translation>测深点面聚类的 DBSCAN 邻域</translation>
         </message>
         <message>
+            <source>Dask scheduler</source>
+            <translation>Dask 调度器</translation>
+        </message>
+        <message>
             <source>Data ready. &lt;b&gt;Segment&lt;/b&gt; to check the faces found with the coarse setup, or &lt;b&gt;Run all&lt;/b&gt; to calibrate.</source>
             <translation>数据已就绪。按&lt;b&gt;分割&lt;/b&gt;检查用粗标定找到的各面,或按&lt;b&gt;全部运行&lt;/b&gt;进行检校。</translation>
         </message>
@@ -374,6 +434,10 @@
         <message>
             <source>Detail of the correlation peaks: each dot is one line's (Δt, R&lt;sub&gt;max&lt;/sub&gt;), the vertical line the weighted mean and the band its 95 % interval.</source>
             <translation>相关峰细节:每个点为一条测线的 (Δt, R&lt;sub&gt;max&lt;/sub&gt;),竖线为加权平均,色带为其 95 % 区间。</translation>
+        </message>
+        <message>
+            <source>Details</source>
+            <translation>详情</translation>
         </message>
         <message>
             <source>Detrend degree</source>
@@ -401,7 +465,7 @@
         </message>
         <message>
             <source>Elevation of the target seen from the vessel (north against up): laser points above the water line and multibeam soundings below it, georeferenced with the final values and coloured by the role of their face; design outlines in grey.</source>
-            <translation>从船上看标靶的立面图(北向对天向):水线以上为激光点,水线以下为多波束测深点,用最终值进行地理参考,并按所在面的作用着色;设计轮廓为灰色。</translation>
+            <translation>从船上看目标物的立面图(北向对天向):水线以上为激光点,水线以下为多波束测深点,用最终值进行地理参考,并按所在面的作用着色;设计轮廓为灰色。</translation>
         </message>
         <message>
             <source>Epoch matching</source>
@@ -452,6 +516,22 @@
             <translation>每隔</translation>
         </message>
         <message>
+            <source>Export JSON…</source>
+            <translation>导出 JSON…</translation>
+        </message>
+        <message>
+            <source>Export report</source>
+            <translation>导出报告</translation>
+        </message>
+        <message>
+            <source>Export vessel sheet</source>
+            <translation>导出船舶参数表</translation>
+        </message>
+        <message>
+            <source>Exporting report</source>
+            <translation>正在导出报告</translation>
+        </message>
+        <message>
             <source>Face</source>
             <translation>面</translation>
         </message>
@@ -473,7 +553,7 @@
         </message>
         <message>
             <source>Faces of the target design, their role inferred from geometry, points segmented in each cloud, plane-fit RMS, the angle between the laser and the final multibeam plane normals, and the parameters each face determines.</source>
-            <translation>标靶设计中的各面、由几何推断的作用、各点云中分割出的点数、平面拟合 RMS、激光与最终多波束平面法向的夹角,以及各面所确定的参数。</translation>
+            <translation>目标物设计中的各面、由几何推断的作用、各点云中分割出的点数、平面拟合 RMS、激光与最终多波束平面法向的夹角,以及各面所确定的参数。</translation>
         </message>
         <message>
             <source>Fewest vectors</source>
@@ -524,6 +604,10 @@
             <translation>前向滤波中断漂移(最大水平)</translation>
         </message>
         <message>
+            <source>GGA fix qualities used: auto = only RTK fixed (4) when the log has any, else all with a warning naming them; or a list such as '4,5'</source>
+            <translation>采用的 GGA 解算质量:auto = 日志中有 RTK 固定解(4)时只用固定解,否则全部采用并发出警告列出它们;或列表,如 '4,5'</translation>
+        </message>
+        <message>
             <source>GNSS</source>
             <translation>GNSS</translation>
         </message>
@@ -542,6 +626,10 @@
         <message>
             <source>GNSS error correlation time</source>
             <translation>GNSS 误差相关时间</translation>
+        </message>
+        <message>
+            <source>GNSS fix qualities</source>
+            <translation>GNSS 解算质量</translation>
         </message>
         <message>
             <source>GNSS fixes in span / used</source>
@@ -600,6 +688,10 @@
             <translation>惯导姿态误差的高斯–马尔可夫相关时间</translation>
         </message>
         <message>
+            <source>Goes to:</source>
+            <translation>导入到:</translation>
+        </message>
+        <message>
             <source>Gravity</source>
             <translation>重力</translation>
         </message>
@@ -644,8 +736,24 @@
             <translation>模拟摆动的航向误差直方图(参见 Li 等,图 4)。</translation>
         </message>
         <message>
+            <source>Heave filter</source>
+            <translation>升沉滤波器</translation>
+        </message>
+        <message>
+            <source>Heave filter cut-off period</source>
+            <translation>升沉滤波器截止周期</translation>
+        </message>
+        <message>
+            <source>Heave filter order</source>
+            <translation>升沉滤波器阶数</translation>
+        </message>
+        <message>
             <source>Heave sign in file</source>
             <translation>文件中的升沉符号</translation>
+        </message>
+        <message>
+            <source>Heave:</source>
+            <translation>升沉:</translation>
         </message>
         <message>
             <source>Horizontal tip errors of the simulated swings (cf. Li et al., figs. 6-9).</source>
@@ -656,6 +764,10 @@
             <translation>Huber 阈值</translation>
         </message>
         <message>
+            <source>HydroSync — unexpected error</source>
+            <translation>HydroSync — 意外错误</translation>
+        </message>
+        <message>
             <source>IMU epochs</source>
             <translation>IMU 历元数</translation>
         </message>
@@ -664,8 +776,16 @@
             <translation>IMU 历元数 / 采用的 GNSS 定位数</translation>
         </message>
         <message>
+            <source>IMU grade</source>
+            <translation>IMU 等级</translation>
+        </message>
+        <message>
             <source>IMU mounting angles</source>
             <translation>IMU 安装角</translation>
+        </message>
+        <message>
+            <source>IMU samples</source>
+            <translation>IMU 采样</translation>
         </message>
         <message>
             <source>INS accuracy (1σ)</source>
@@ -696,8 +816,28 @@
             <translation>惯导横摇、纵摇和航向的标称精度,传播到结果的 σ 中(0:视惯导为无误差,σ 为下限)</translation>
         </message>
         <message>
+            <source>Import JSON…</source>
+            <translation>导入 JSON…</translation>
+        </message>
+        <message>
             <source>Import a data file into the project</source>
             <translation>将数据文件导入项目</translation>
+        </message>
+        <message>
+            <source>Import data</source>
+            <translation>导入数据</translation>
+        </message>
+        <message>
+            <source>Import failed</source>
+            <translation>导入失败</translation>
+        </message>
+        <message>
+            <source>Import file</source>
+            <translation>导入文件</translation>
+        </message>
+        <message>
+            <source>Import vessel sheet</source>
+            <translation>导入船舶参数表</translation>
         </message>
         <message>
             <source>Import warning</source>
@@ -770,6 +910,10 @@
         <message>
             <source>Kind / shape</source>
             <translation>类型 / 形状</translation>
+        </message>
+        <message>
+            <source>Kind:</source>
+            <translation>类型:</translation>
         </message>
         <message>
             <source>LSQ</source>
@@ -848,6 +992,14 @@
             <translation>杆臂 GNSS 天线 − 姿态传感器(x 向前,y 右舷,z 向下)</translation>
         </message>
         <message>
+            <source>Lever arm gnss − motion: fix the table first.</source>
+            <translation>杆臂 gnss − 姿态传感器:请先修正表格。</translation>
+        </message>
+        <message>
+            <source>Lever arm gnss − motion: needs sensors named 'gnss' and 'motion' (the Latency plugin uses it).</source>
+            <translation>杆臂 gnss − 姿态传感器:需要名为 'gnss' 和 'motion' 的传感器(时间延迟插件使用)。</translation>
+        </message>
+        <message>
             <source>Lever arm x (forward)</source>
             <translation>杆臂 x(向前)</translation>
         </message>
@@ -894,6 +1046,10 @@
         <message>
             <source>Loaded and failed plugins</source>
             <translation>已加载和加载失败的插件</translation>
+        </message>
+        <message>
+            <source>Local workers</source>
+            <translation>本地工作进程</translation>
         </message>
         <message>
             <source>Log</source>
@@ -993,11 +1149,15 @@
         </message>
         <message>
             <source>Method: pool calibration against a laser-scanned target (patent CN 105425246 B). Both point clouds are segmented into the design faces of the target; planes are fitted by total least squares. The patent method iterates the boresight angles from the angles between multibeam and laser plane normals (roll from the wall, pitch and yaw from the oblique faces), then derives the lever arm offsets (x from the wall, y from the oblique faces, z from the horizontal faces). The joint adjustment estimates all six parameters at once by minimising the point-to-plane distances of the multibeam soundings to the laser planes, with their covariance. Angles follow setup.json: R&lt;sub&gt;m&lt;/sub&gt; = Rz(yaw)·Ry(pitch)·Rx(roll); the lever arm is in the body frame (x forward, y starboard, z down).</source>
-            <translation>方法:以激光扫描标靶进行水池检校(专利 CN 105425246 B)。两组点云均分割为标靶的设计面;用整体最小二乘拟合平面。专利方法由多波束平面与激光平面法向间的夹角迭代求安装偏角(横摇取自墙面,纵摇和艏摇取自斜面),然后求杆臂偏移量(x 取自墙面,y 取自斜面,z 取自水平面)。联合平差通过最小化多波束测深点到激光平面的点面距离,一次估计全部六个参数及其协方差。角度遵循 setup.json:R&lt;sub&gt;m&lt;/sub&gt; = Rz(艏摇)·Ry(纵摇)·Rx(横摇);杆臂在载体坐标系中(x 向前,y 右舷,z 向下)。</translation>
+            <translation>方法:以激光扫描目标物进行水池检校(专利 CN 105425246 B)。两组点云均分割为目标物的设计面;用整体最小二乘拟合平面。专利方法由多波束平面与激光平面法向间的夹角迭代求安装偏角(横摇取自中心墙,纵摇和艏摇取自斜面),然后求杆臂偏移量(x 取自中心墙,y 取自斜面,z 取自水平面)。联合平差通过最小化多波束测深点到激光平面的点面距离,一次估计全部六个参数及其协方差。角度遵循 setup.json:R&lt;sub&gt;m&lt;/sub&gt; = Rz(艏摇)·Ry(纵摇)·Rx(横摇);杆臂在载体坐标系中(x 向前,y 右舷,z 向下)。</translation>
         </message>
         <message>
             <source>Min points per face</source>
             <translation>每面最少点数</translation>
+        </message>
+        <message>
+            <source>Min soundings per face (joint)</source>
+            <translation>每面最少测深点数(联合)</translation>
         </message>
         <message>
             <source>Minimum epochs per line</source>
@@ -1037,7 +1197,7 @@
         </message>
         <message>
             <source>Multibeam boresight angles and lever arm from a pool target seen by a calibrated laser scanner (patent CN 105425246 B) plus a joint least-squares adjustment.</source>
-            <translation>由已检校激光扫描仪观测的水池标靶求多波束安装偏角和杆臂(专利 CN 105425246 B),并进行联合最小二乘平差。</translation>
+            <translation>由已检校激光扫描仪观测的水池目标物求多波束安装偏角和杆臂(专利 CN 105425246 B),并进行联合最小二乘平差。</translation>
         </message>
         <message>
             <source>Multibeam georeferenced:</source>
@@ -1092,6 +1252,10 @@
             <translation>北</translation>
         </message>
         <message>
+            <source>Not applied</source>
+            <translation>未应用</translation>
+        </message>
+        <message>
             <source>Notes</source>
             <translation>备注</translation>
         </message>
@@ -1110,6 +1274,14 @@
         <message>
             <source>Open a project</source>
             <translation>打开项目</translation>
+        </message>
+        <message>
+            <source>Open project</source>
+            <translation>打开项目</translation>
+        </message>
+        <message>
+            <source>Open summary</source>
+            <translation>打开汇总</translation>
         </message>
         <message>
             <source>Outage</source>
@@ -1177,11 +1349,19 @@
         </message>
         <message>
             <source>Plan view of the segmented clouds in the target frame (ENU): laser points coloured by the role of their face, multibeam soundings on faces georeferenced with the final values (black), design face outlines in grey. The vertical scale is stretched (axes not to the same scale) to separate the faces.</source>
-            <translation>标靶坐标系(ENU)中分割点云的平面图:激光点按所在面的作用着色,面上的多波束测深点用最终值进行地理参考(黑色),设计面轮廓为灰色。垂直比例经拉伸(两轴比例不同)以区分各面。</translation>
+            <translation>目标物坐标系(ENU)中分割点云的平面图:激光点按所在面的作用着色,面上的多波束测深点用最终值进行地理参考(黑色),设计面轮廓为灰色。垂直比例经拉伸(两轴比例不同)以区分各面。</translation>
         </message>
         <message>
             <source>Plot Options</source>
             <translation>绘图选项</translation>
+        </message>
+        <message>
+            <source>Plugin</source>
+            <translation>插件</translation>
+        </message>
+        <message>
+            <source>Plugins</source>
+            <translation>插件</translation>
         </message>
         <message>
             <source>Points</source>
@@ -1256,6 +1436,10 @@
             <translation>项目文件 SHA-256</translation>
         </message>
         <message>
+            <source>Project is read-only</source>
+            <translation>项目为只读</translation>
+        </message>
+        <message>
             <source>Project last saved</source>
             <translation>项目最后保存时间</translation>
         </message>
@@ -1312,6 +1496,10 @@
             <translation>再裁剪容差</translation>
         </message>
         <message>
+            <source>Ready: up-to-date results are not computed again.</source>
+            <translation>就绪:已是最新的结果不再重新计算。</translation>
+        </message>
+        <message>
             <source>Records</source>
             <translation>记录数</translation>
         </message>
@@ -1336,8 +1524,20 @@
             <translation>剔除限值</translation>
         </message>
         <message>
+            <source>Remove sensor</source>
+            <translation>删除传感器</translation>
+        </message>
+        <message>
             <source>Report date</source>
             <translation>报告日期</translation>
+        </message>
+        <message>
+            <source>Report failed</source>
+            <translation>报告生成失败</translation>
+        </message>
+        <message>
+            <source>Report not available</source>
+            <translation>报告不可用</translation>
         </message>
         <message>
             <source>Reported method</source>
@@ -1376,6 +1576,10 @@
             <translation>全部运行</translation>
         </message>
         <message>
+            <source>Run campaign</source>
+            <translation>运行批处理</translation>
+        </message>
+        <message>
             <source>SGD</source>
             <translation>SGD</translation>
         </message>
@@ -1390,6 +1594,14 @@
         <message>
             <source>Save &amp;As…</source>
             <translation>另存为(&amp;A)…</translation>
+        </message>
+        <message>
+            <source>Save failed</source>
+            <translation>保存失败</translation>
+        </message>
+        <message>
+            <source>Save project as</source>
+            <translation>项目另存为</translation>
         </message>
         <message>
             <source>Save the project</source>
@@ -1438,6 +1650,10 @@
         <message>
             <source>Sensor positions and mounting angles of the vessel</source>
             <translation>船上各传感器的位置和安装角</translation>
+        </message>
+        <message>
+            <source>Sensor positions from the reference point in the body frame: x forward, y starboard, z down (metres). Mounting angles in degrees; leave them blank if not given.</source>
+            <translation>传感器相对参考点在载体坐标系中的位置:x 向前、y 右舷、z 向下(米)。安装角以度为单位;未给出时留空。</translation>
         </message>
         <message>
             <source>Set aside</source>
@@ -1540,6 +1756,10 @@
             <translation>开始 – 结束</translation>
         </message>
         <message>
+            <source>Starting the Dask cluster…</source>
+            <translation>正在启动 Dask 集群…</translation>
+        </message>
+        <message>
             <source>Static alignment time</source>
             <translation>静态对准时间</translation>
         </message>
@@ -1589,7 +1809,15 @@
         </message>
         <message>
             <source>Target faces</source>
-            <translation>标靶面</translation>
+            <translation>目标物面</translation>
+        </message>
+        <message>
+            <source>The application keeps running; save your work. The details are in the log.</source>
+            <translation>程序仍在运行;请保存您的工作。详情见日志。</translation>
+        </message>
+        <message>
+            <source>The campaign file has a problem: fix it and choose it again.</source>
+            <translation>批处理文件有问题:请修正后重新选择。</translation>
         </message>
         <message>
             <source>The laser and multibeam clouds are drawn here after &lt;b&gt;Segment&lt;/b&gt; or &lt;b&gt;Run all&lt;/b&gt;.</source>
@@ -1680,6 +1908,10 @@
             <translation>不确定度模型</translation>
         </message>
         <message>
+            <source>Unsaved changes</source>
+            <translation>未保存的修改</translation>
+        </message>
+        <message>
             <source>Untitled project</source>
             <translation>未命名项目</translation>
         </message>
@@ -1708,12 +1940,20 @@
             <translation>船舶</translation>
         </message>
         <message>
+            <source>Vessel name</source>
+            <translation>船名</translation>
+        </message>
+        <message>
             <source>Vessel offset sheet as stored in the project (body frame, relative to the reference point).</source>
             <translation>项目中保存的船体偏移量表(载体坐标系,相对于参考点)。</translation>
         </message>
         <message>
             <source>Vessel offsets</source>
             <translation>船体偏移量</translation>
+        </message>
+        <message>
+            <source>Vessel offsets updated</source>
+            <translation>船体偏移量已更新</translation>
         </message>
         <message>
             <source>View All</source>
@@ -1730,6 +1970,10 @@
         <message>
             <source>Wahba (closed form)</source>
             <translation>Wahba(闭合形式)</translation>
+        </message>
+        <message>
+            <source>Wait for the running task to finish, or press Cancel in the status bar, then try again.</source>
+            <translation>请等待正在运行的任务结束,或按状态栏中的“取消”,然后再试。</translation>
         </message>
         <message>
             <source>Warn above |correlation|</source>
@@ -1756,12 +2000,20 @@
             <translation>权</translation>
         </message>
         <message>
+            <source>Welcome</source>
+            <translation>欢迎</translation>
+        </message>
+        <message>
             <source>What ran</source>
             <translation>运行内容</translation>
         </message>
         <message>
             <source>Write the PDF report of the project</source>
             <translation>生成项目的 PDF 报告</translation>
+        </message>
+        <message>
+            <source>Write the final boresight angles and lever arm into the vessel sheet's multibeam entry? The previous entry is kept in the project history.</source>
+            <translation>将最终安装偏角和杆臂写入船舶参数表的多波束条目?原条目保留在项目历史中。</translation>
         </message>
         <message>
             <source>X axis</source>
@@ -1864,6 +2116,10 @@
             <translation>采用的天线位置:fixed = 仅 RTK 固定解(Q=1),float = 固定解或浮点解(Q&lt;=2),any = 全部解</translation>
         </message>
         <message>
+            <source>as pole.json declares (imu_convention), else instant</source>
+            <translation>按 pole.json 的声明(imu_convention),否则为 instant</translation>
+        </message>
+        <message>
             <source>auto</source>
             <translation>自动</translation>
         </message>
@@ -1888,6 +2144,10 @@
             <translation>建造容差</translation>
         </message>
         <message>
+            <source>choose a campaign file (.toml)</source>
+            <translation>选择批处理文件(.toml)</translation>
+        </message>
+        <message>
             <source>closed form</source>
             <translation>闭合形式</translation>
         </message>
@@ -1909,11 +2169,15 @@
         </message>
         <message>
             <source>crop tolerance around the faces once the first solution is known</source>
-            <translation>得到首次解后标靶面周围的裁剪容差</translation>
+            <translation>得到首次解后目标物面周围的裁剪容差</translation>
         </message>
         <message>
             <source>crossing</source>
             <translation>跨水线</translation>
+        </message>
+        <message>
+            <source>cut-off period of the declared high-pass heave filter (sensors: 10-30 s)</source>
+            <translation>所声明的高通升沉滤波器的截止周期(传感器:10-30 s)</translation>
         </message>
         <message>
             <source>data</source>
@@ -1941,11 +2205,15 @@
         </message>
         <message>
             <source>distance from the laser plane of wall</source>
-            <translation>到墙面激光平面的距离</translation>
+            <translation>到中心墙激光平面的距离</translation>
         </message>
         <message>
             <source>down error</source>
             <translation>天向误差</translation>
+        </message>
+        <message>
+            <source>e.g. MV Example</source>
+            <translation>例如 MV Example</translation>
         </message>
         <message>
             <source>east</source>
@@ -1954,6 +2222,10 @@
         <message>
             <source>east error</source>
             <translation>东向误差</translation>
+        </message>
+        <message>
+            <source>empty: local cluster (or DASK_SCHEDULER_ADDRESS); e.g. tcp://host:8786</source>
+            <translation>空:本地集群(或 DASK_SCHEDULER_ADDRESS);例如 tcp://host:8786</translation>
         </message>
         <message>
             <source>end (time of week) of the statistics interval</source>
@@ -1988,6 +2260,10 @@
             <translation>文件</translation>
         </message>
         <message>
+            <source>file to import</source>
+            <translation>要导入的文件</translation>
+        </message>
+        <message>
             <source>final</source>
             <translation>最终值</translation>
         </message>
@@ -2018,6 +2294,10 @@
         <message>
             <source>forward EKF only (no smoothing)</source>
             <translation>仅前向 EKF(无平滑)</translation>
+        </message>
+        <message>
+            <source>from the IMU grade</source>
+            <translation>由 IMU 等级确定</translation>
         </message>
         <message>
             <source>from the data</source>
@@ -2109,7 +2389,7 @@
         </message>
         <message>
             <source>how far from the design faces soundings are first looked for (halved twice while the coarse setup is aligned); at least the error of the coarse setup at the target</source>
-            <translation>首先在距设计面多远以内寻找测深点(粗标定对准过程中减半两次);至少为粗标定在标靶处的误差</translation>
+            <translation>首先在距设计面多远以内寻找测深点(粗标定对准过程中减半两次);至少为粗标定在目标物处的误差</translation>
         </message>
         <message>
             <source>how well a below-water block is oriented relative to its above-water twin (± per axis, half-width; σ = tol/√3), propagated into the σ of the result</source>
@@ -2130,10 +2410,6 @@
         <message>
             <source>integral gain of the Mahony levelling filter (gyro-bias estimate)</source>
             <translation>Mahony 调平滤波器的积分增益(陀螺零偏估计)</translation>
-        </message>
-        <message>
-            <source>iter.</source>
-            <translation>迭代</translation>
         </message>
         <message>
             <source>iterate and adjust on the faces found by Segment, then store the results</source>
@@ -2308,6 +2584,10 @@
             <translation>滤波速度超过此值时不做零速修正(匀速运动中平稳的 IMU 并非静止)</translation>
         </message>
         <message>
+            <source>no correlation peak for this line</source>
+            <translation>此测线没有相关峰</translation>
+        </message>
+        <message>
             <source>none</source>
             <translation>无</translation>
         </message>
@@ -2354,6 +2634,10 @@
         <message>
             <source>observation vectors (antenna displacements between two epochs) shorter than this horizontally are not used: their heading is dominated by noise</source>
             <translation>水平长度短于此值的观测矢量(两历元间的天线位移)不予采用:其航向主要由噪声决定</translation>
+        </message>
+        <message>
+            <source>order of the declared high-pass heave filter</source>
+            <translation>所声明的高通升沉滤波器的阶数</translation>
         </message>
         <message>
             <source>out of date</source>
@@ -2462,6 +2746,14 @@
         <message>
             <source>position covariance of each antenna: file = the std columns of the .pos files (a-priori σ when absent), apriori = the a-priori σ above</source>
             <translation>各天线的位置协方差:file = .pos 文件中的标准差列(缺失时用先验 σ),apriori = 上方的先验 σ</translation>
+        </message>
+        <message>
+            <source>positive down</source>
+            <translation>向下为正</translation>
+        </message>
+        <message>
+            <source>positive up</source>
+            <translation>向上为正</translation>
         </message>
         <message>
             <source>pred.</source>
@@ -2576,8 +2868,8 @@
             <translation>分割、迭代、平差并保存结果</translation>
         </message>
         <message>
-            <source>simulated swings like this one (pole, rate, tilt, noise) solved by every method for the error histogram and tip scatter; 0 = none</source>
-            <translation>与本次相同(对中杆、速率、倾斜、噪声)的模拟摆动,用每种方法解算,得到误差直方图和杆尖离散;0 = 不做</translation>
+            <source>simulated swings like this one (pole, rate, tilt, noise) solved by every method for the error histogram and tip scatter (about 2-6 s each); 0 = none (benchmarks/bench_tilt.py runs the full study)</source>
+            <translation>与本次相同(对中杆、速率、倾斜、噪声)的模拟摆动,用每种方法解算,得到误差直方图和杆尖离散(每次约 2-6 s);0 = 不做(完整研究由 benchmarks/bench_tilt.py 运行)</translation>
         </message>
         <message>
             <source>smoothed</source>
@@ -2616,12 +2908,20 @@
             <translation>static:在起始静止段调平,航向由陀螺寻北(陀螺优于 1 °/h)、给定航向或开始运动后的 GNSS 航迹确定(步行、靠码头的船);moving:航向取超过对准速度时的 GNSS 航迹向;given:使用给定的初始姿态;auto:依次采用配置或给定的姿态、陀螺寻北、动态对准,否则用航迹航向的静态对准</translation>
         </message>
         <message>
+            <source>statistics interval: drag it or its edges</source>
+            <translation>统计区间:拖动区间或其边缘</translation>
+        </message>
+        <message>
             <source>survey the as-built below-water blocks (smaller build tolerance)</source>
             <translation>实测水下块体的竣工尺寸(减小建造容差)</translation>
         </message>
         <message>
             <source>symmetric band (in robust σ) around each face's own plane kept by the refit (0: off)</source>
             <translation>重拟合在各面自身平面两侧保留的对称带宽(以稳健 σ 计;0:关闭)</translation>
+        </message>
+        <message>
+            <source>the IMU's class, whose documented bias σ are the joint method's priors: consumer gyro 0.1°/s, accelerometer 0.04 m/s²; mems gyro 0.05°/s, accelerometer 0.02 m/s²; industrial gyro 0.02°/s, accelerometer 0.008 m/s²</source>
+            <translation>IMU 的等级,其标称零偏 σ 作为联合法的先验:consumer 陀螺 0.1°/s、加速度计 0.04 m/s²;mems 陀螺 0.05°/s、加速度计 0.02 m/s²;industrial 陀螺 0.02°/s、加速度计 0.008 m/s²</translation>
         </message>
         <message>
             <source>the covariance is propagated over blocks of IMU epochs this long (the mechanisation runs at every IMU epoch)</source>
@@ -2632,8 +2932,16 @@
             <translation>记录开头对中杆近乎竖直的若干秒,Mahony 滤波器在摆动前用其调平 IMU</translation>
         </message>
         <message>
+            <source>the joint adjustment uses a face with at least this many soundings: each is one observation against the face's laser reference plane (no plane is fitted to them), so a small top seen at a grazing angle still fixes the vertical lever arm</source>
+            <translation>联合平差只用测深点数不少于此值的面:每个测深点都是相对该面激光参考平面的一个观测(不对其拟合平面),因此以掠射角看到的小顶面仍能确定垂直杆臂</translation>
+        </message>
+        <message>
             <source>the least-squares iteration stops when every angle correction is below this</source>
             <translation>所有角度改正数都小于此值时最小二乘迭代停止</translation>
+        </message>
+        <message>
+            <source>the motion sensor's heave filter: highpass = a causal high-pass (order and cut-off period below), applied to the GNSS heights too so that both carry its phase; compensated/none = no phase at wave periods; unknown = not declared (the delay-model check flags a filter's phase)</source>
+            <translation>姿态传感器的升沉滤波器:highpass = 因果高通滤波(阶数和截止周期见下),同样作用于 GNSS 高程,使两者具有相同相位;compensated/none = 在波浪周期上无相位;unknown = 未声明(时延模型检验会标记滤波器的相位)</translation>
         </message>
         <message>
             <source>the patent's iteration stops when every angle correction is below this</source>
@@ -2741,19 +3049,19 @@
         </message>
         <message>
             <source>wall</source>
-            <translation>墙面</translation>
+            <translation>中心墙</translation>
         </message>
         <message>
             <source>wall (laser)</source>
-            <translation>墙面(激光)</translation>
+            <translation>中心墙(激光)</translation>
         </message>
         <message>
             <source>wall (multibeam)</source>
-            <translation>墙面(多波束)</translation>
+            <translation>中心墙(多波束)</translation>
         </message>
         <message>
-            <source>warn when the horizontal circle holding the tip with 99 % probability is wider than this (a swing nearly in one plane leaves the accelerometer bias along the swing axis mixed with the tilt out of the plane)</source>
-            <translation>以 99 % 概率包含杆尖的水平圆宽于此值时警告(近乎单平面的摆动会使沿摆动轴的加速度计零偏与平面外倾斜混叠)</translation>
+            <source>warn when the horizontal circle holding the tip with 95 % probability is wider than this (a swing nearly in one plane leaves the accelerometer bias along the swing axis mixed with the tilt out of the plane)</source>
+            <translation>以 95 % 概率包含杆尖的水平圆宽于此值时警告(近乎单平面的摆动会使沿摆动轴的加速度计零偏与平面外倾斜混叠)</translation>
         </message>
         <message>
             <source>water level</source>
@@ -2768,12 +3076,20 @@
             <translation>测线均值的权:r = 各测线的 R_max(Qi 等 2010),inverse_variance = 1/不确定度²</translation>
         </message>
         <message>
+            <source>what one IMU row is: instant = rate and specific force at the time tag; interval-start/-middle/-end = their means (increments / interval) over one sample interval, tagged at its start, middle or end. A wrong choice shows as a GNSS time offset of half a sample</source>
+            <translation>一行 IMU 数据的含义:instant = 时间标签时刻的角速率和比力;interval-start/-middle/-end = 一个采样间隔内的平均值(增量 / 间隔),标签在间隔的开始、中间或结束。选错时表现为半个采样的 GNSS 时间偏移</translation>
+        </message>
+        <message>
             <source>when the per-vector headings spread more than this (robust σ), the vector set is refused as faulty (noise or IMU fault): undetermined</source>
             <translation>各矢量航向的离散(稳健 σ)超过此值时,该矢量集视为异常(噪声或 IMU 故障)而拒绝:无法确定</translation>
         </message>
         <message>
             <source>window of the IMU statistics that detect a standstill</source>
             <translation>检测静止的 IMU 统计窗口</translation>
+        </message>
+        <message>
+            <source>worker processes of the local cluster</source>
+            <translation>本地集群的工作进程数</translation>
         </message>
         <message>
             <source>worst</source>
@@ -2951,8 +3267,20 @@
             <translation>&lt;b&gt;联合平差解&lt;/b&gt;,已收敛。{0}</translation>
         </message>
         <message>
+            <source>&lt;b&gt;Lever arm needed&lt;/b&gt;: {0}</source>
+            <translation>&lt;b&gt;需要杆臂&lt;/b&gt;:{0}</translation>
+        </message>
+        <message>
             <source>&lt;b&gt;No latency&lt;/b&gt;: {0}</source>
             <translation>&lt;b&gt;无时间延迟结果&lt;/b&gt;:{0}</translation>
+        </message>
+        <message>
+            <source>&lt;b&gt;Out of date&lt;/b&gt;: the results shown no longer match the project — {0}</source>
+            <translation>&lt;b&gt;已过期&lt;/b&gt;:显示的结果与项目不再一致 — {0}</translation>
+        </message>
+        <message>
+            <source>&lt;b&gt;Parameter error&lt;/b&gt;: {0}</source>
+            <translation>&lt;b&gt;参数错误&lt;/b&gt;:{0}</translation>
         </message>
         <message>
             <source>&lt;b&gt;Patent method solution&lt;/b&gt;, &lt;b&gt;NOT converged&lt;/b&gt;. {0}</source>
@@ -2961,6 +3289,14 @@
         <message>
             <source>&lt;b&gt;Patent method solution&lt;/b&gt;, converged. {0}</source>
             <translation>&lt;b&gt;专利方法解&lt;/b&gt;,已收敛。{0}</translation>
+        </message>
+        <message>
+            <source>&lt;b&gt;Read-only.&lt;/b&gt; {0}</source>
+            <translation>&lt;b&gt;只读。&lt;/b&gt;{0}</translation>
+        </message>
+        <message>
+            <source>&lt;h3&gt;{0}&lt;/h3&gt;&lt;p style='color:#c00000'&gt;This plugin's panel could not be loaded:&lt;/p&gt;&lt;pre&gt;{1}&lt;/pre&gt;&lt;p&gt;Details are in the log.&lt;/p&gt;</source>
+            <translation>&lt;h3&gt;{0}&lt;/h3&gt;&lt;p style='color:#c00000'&gt;无法加载此插件的面板:&lt;/p&gt;&lt;pre&gt;{1}&lt;/pre&gt;&lt;p&gt;详情见日志。&lt;/p&gt;</translation>
         </message>
         <message>
             <source>&lt;h3&gt;{0}&lt;/h3&gt;&lt;p&gt;{1}&lt;/p&gt;&lt;p&gt;&lt;i&gt;Loading…&lt;/i&gt;&lt;/p&gt;</source>
@@ -2992,7 +3328,7 @@
         </message>
         <message>
             <source>Figure {0}.</source>
-            <translation>图 {0}.</translation>
+            <translation>图 {0}</translation>
         </message>
         <message>
             <source>GNSS σ from the file (white), IMU noise from the configuration; normalised GNSS innovations RMS N/E/D {0}, autocorrelation at 1 s ≤ {1}</source>
@@ -3007,8 +3343,20 @@
             <translation>HydroSync 报告 — {0}</translation>
         </message>
         <message>
+            <source>Imported {0}</source>
+            <translation>已导入 {0}</translation>
+        </message>
+        <message>
+            <source>Importing {0}</source>
+            <translation>正在导入 {0}</translation>
+        </message>
+        <message>
             <source>Least-squares precision versus baseline length for this layout scaled, with σ = {0} mm horizontal and {1} mm vertical per antenna (cf. Liu et al., fig. 15).</source>
             <translation>按本布设缩放时最小二乘精度随基线长度的变化,每个天线水平 σ = {0} mm、垂直 {1} mm(参见 Liu 等,图 15)。</translation>
+        </message>
+        <message>
+            <source>Lever arm gnss − motion (body FRD): x = {0}</source>
+            <translation>杆臂 gnss − 姿态传感器(载体坐标系 FRD):x = {0}</translation>
         </message>
         <message>
             <source>Line {0}, the {1} used line (R&lt;sub&gt;max&lt;/sub&gt; = {2}): σ&lt;sub&gt;0&lt;/sub&gt; {3} m before, {4} m after synchronisation over the whole line; a {5}-s excerpt from its middle (as fig. 4 of Qi et al. 2010).</source>
@@ -3039,6 +3387,10 @@
             <translation>筛选后矢量上的目标函数 J(ψ)(归一化)及梯度下降迭代过程(学习率 {0},ε {1}°;参见 Li 等,图 11)。</translation>
         </message>
         <message>
+            <source>Opened {0}</source>
+            <translation>已打开 {0}</translation>
+        </message>
+        <message>
             <source>Opening {0}</source>
             <translation>正在打开 {0}</translation>
         </message>
@@ -3051,8 +3403,24 @@
             <translation>专利迭代,每轮的最后一次迭代:累计角度及剩余的最大法向夹角。杆臂重新估计后开始新的一轮;全部 {0} 次迭代列于附录。</translation>
         </message>
         <message>
+            <source>Report written to {0}</source>
+            <translation>报告已写入 {0}</translation>
+        </message>
+        <message>
+            <source>Saved {0}</source>
+            <translation>已保存 {0}</translation>
+        </message>
+        <message>
+            <source>Saving {0}</source>
+            <translation>正在保存 {0}</translation>
+        </message>
+        <message>
             <source>Table {0}.</source>
-            <translation>表 {0}.</translation>
+            <translation>表 {0}</translation>
+        </message>
+        <message>
+            <source>The campaign could not run: {0}</source>
+            <translation>批处理无法运行:{0}</translation>
         </message>
         <message>
             <source>The data-sources appendix could not be produced: {0}.</source>
@@ -3075,8 +3443,20 @@
             <translation>水上({0})</translation>
         </message>
         <message>
+            <source>congruent with {0}</source>
+            <translation>与 {0} 全等</translation>
+        </message>
+        <message>
+            <source>coplanar with {0}</source>
+            <translation>与 {0} 共面</translation>
+        </message>
+        <message>
             <source>crossing, but {0} laser points (&lt; {1})</source>
             <translation>跨水线,但只有 {0} 个激光点(&lt; {1})</translation>
+        </message>
+        <message>
+            <source>declared with {0}</source>
+            <translation>与 {0} 声明配对</translation>
         </message>
         <message>
             <source>final Δt = {0}</source>
@@ -3105,6 +3485,10 @@
         <message>
             <source>page {0} of {1}</source>
             <translation>第 {0} 页,共 {1} 页</translation>
+        </message>
+        <message>
+            <source>parallel offset with {0}</source>
+            <translation>与 {0} 平行偏移</translation>
         </message>
         <message>
             <source>point-to-plane fit incl. laser-plane errors; build tolerance of the twins ±{0} mm / ±{1}° (rectangular, σ = tol/√3); coarse error of undetermined parameters{2}</source>
@@ -3201,10 +3585,6 @@ Default: {1}  (--param {2})</source>
         <message>
             <source>{0} simulated swings like this record (same pole, GNSS rate and σ; random shape, IMU grade and biases, hand wobble, GNSS gap): heading error and horizontal tip error (Li et al.'s table 2 form).</source>
             <translation>{0} 次与本记录类似的模拟摆动(相同的对中杆、GNSS 频率和 σ;随机的摆动形状、IMU 等级和零偏、手部抖动、GNSS 中断):航向误差和杆尖水平误差(Li 等表 2 的形式)。</translation>
-        </message>
-        <message>
-            <source>{0} with {1}</source>
-            <translation>{0},对应 {1}</translation>
         </message>
         <message>
             <source>{0} with {1}, which has {2} laser points (&lt; {3}): no reference</source>

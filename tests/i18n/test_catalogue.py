@@ -171,3 +171,12 @@ def test_a_plugin_ships_its_own_catalogue(tmp_path, monkeypatch):
         monkeypatch.undo()
         sys.modules.pop("heave_stats_plugin", None)
         i18n.reload()
+
+
+def test_no_pattern_matches_almost_anything(catalogue):
+    """A pattern with placeholders at both ends needs a long literal in between: '{0} with
+    {1}' would have turned any sentence containing 'with' into the pairing rule."""
+    loose = [source for source in _pattern_sources()
+             if source.startswith("{") and source.endswith("}")
+             and len(PLACEHOLDER.sub("", source).strip()) < 12]
+    assert not loose, loose

@@ -96,6 +96,9 @@ def test_every_panel_text_is_chinese(qtbot, window, settings, demo_project_of, s
     panel = _open(window, spec, demo_project_of(spec))
     qtbot.wait(100)
     panel.grab()  # paint: texts set since are translated before they are seen
+    # A label scrolled out of view is translated when it is painted on scrolling in; the
+    # walk does now what that paint would do.
+    i18n.relabel_all()
     left = [t for t in _texts(panel) if _english(t)]
     assert not left, f"{spec.id}: still English: {left[:8]}"
 
@@ -112,26 +115,6 @@ def test_report_action_follows_the_workbench_language(window):
     window.export_report("/dev/null", fake_build_report)
     assert window.wait_idle(30)
     assert seen == {"lang": "zh_CN"}
-
-
-def test_every_panel_fits_a_1366x768_screen_in_chinese(qtbot, window, settings, hydrosync_demo):
-    """The layout check of tests/gui in zh_CN, on the demo project with every result: the
-    Chinese texts (shorter, but in a wider font) leave the window's minimum size on a
-    laptop screen, and each panel shows its results in Chinese."""
-    from hydrosync_core.demo import DEMO_PROJECT
-    from hydrosync_core.project import Project
-
-    i18n.set_language("zh_CN", settings)
-    window.set_project(Project.open(hydrosync_demo / DEMO_PROJECT, readonly=True))
-    for index in range(window.tabs.count()):
-        window.tabs.setCurrentIndex(index)
-        window.tabs.ensure_current()
-        qtbot.waitUntil(lambda: not window.busy, timeout=60000)
-        qtbot.wait(10)
-        window.grab()
-        hint = window.minimumSizeHint()
-        assert hint.width() <= 1366 and hint.height() <= 700, (index, hint)
-        assert CJK.search(" ".join(_texts(window.tabs.currentWidget())))
 
 
 def test_catalogue_compiles_or_falls_back(qapp, tmp_path, monkeypatch):
@@ -163,3 +146,75 @@ def test_catalogue_compiles_or_falls_back(qapp, tmp_path, monkeypatch):
         assert i18n.tr("page 2 of 9") == "第 2 页,共 9 页"
     finally:
         i18n.set_language("en")
+
+
+def test_a_dialog_opened_in_chinese_is_chinese(qtbot, window, settings, demo_project_of):
+    """Dialogs are relabelled when they are shown (the vessel sheet editor)."""
+    from PySide6.QtCore import QTimer
+
+    from hydrosync_gui.vessel_dialog import VesselDialog
+
+    spec = next(s for s in plugin_specs() if s.id == "latency")
+    i18n.set_language("zh_CN", settings)
+    dialog = VesselDialog(demo_project_of(spec), "", window)
+    seen = {}
+
+    def look():
+        seen["texts"] = _texts(dialog)
+        dialog.reject()
+
+    QTimer.singleShot(200, look)
+    dialog.exec()
+    assert any(t.startswith("添加传感器") for t in seen["texts"])
+    left = [t for t in seen["texts"] if _english(t)]
+    assert not left, f"still English: {left}"
+
+
+@pytest.mark.parametrize("plugin", ["latency", "pool_calibration", "gnss_attitude",
+                                    "gins_smoother", "tilt_alignment"])
+def test_layout_harness_in_chinese(qtbot, window, settings, hydrosync_demo, plugin):
+    """tests/gui/test_layout_harness.py's check at 1366×768 in zh_CN on the demo's results,
+    every inner tab: the window still fits the screen, the panel shows its results in
+    Chinese, and the Chinese texts clip nothing and push nothing out of reach or over
+    another widget (squashed controls, small plots and legends are the panels' own layout,
+    checked — with their known faults — in English by that harness)."""
+    from PySide6.QtWidgets import QTabWidget
+
+    from hydrosync_core.demo import DEMO_PROJECT
+    from hydrosync_core.project import Project
+    from hydrosync_gui.layout_check import check_layout
+
+    i18n.set_language("zh_CN", settings)
+    window.resize(1366, 768 - 32)
+    window.set_project(Project.open(hydrosync_demo / DEMO_PROJECT, readonly=True))
+    window.tabs.setCurrentIndex([e.spec.id for e in window.host.entries].index(plugin))
+    window.tabs.ensure_current()
+    panel = window.current_panel()
+
+    def settle():
+        qtbot.wait(30)
+        assert window.wait_idle(60.0)
+        qtbot.waitUntil(lambda: not getattr(panel, "_loading", False), timeout=60_000)
+        window.grab()  # paint: every text in Chinese before it is measured
+        qtbot.wait(30)
+
+    settle()
+    assert window.minimumSizeHint().height() <= 700  # leaves the log and status bar room
+    assert CJK.search(" ".join(_texts(panel))), "the results are not shown in Chinese"
+    problems = []
+    tabs = [t for t in panel.findChildren(QTabWidget) if t.count() > 1]
+    for widget in tabs or [None]:
+        for i in range(widget.count() if widget else 1):
+            if widget:
+                widget.setCurrentIndex(i)
+            settle()
+            problems += [str(p) for p in check_layout(window)
+                         if p.kind in ("clipped text", "outside", "overlap")
+                         and (plugin, p.widget.split("/")[-2]) not in SQUASHED_ROWS]
+    assert not problems, "\n".join(problems)
+
+
+#: Rows the English harness already finds squashed (its KNOWN list: the Latency
+#: parameter group is squashed at 1366×768, lever-arm row ~8 px high, latency owner);
+#: their "not set" note is then clipped in any language.
+SQUASHED_ROWS = {("latency", "param_lever_arm_m")}

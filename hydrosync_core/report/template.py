@@ -156,7 +156,10 @@ class ReportDocTemplate(BaseDocTemplate):
         """Note how full the page is; let a long layout be followed and cancelled page by
         page."""
         frame = self.frame
-        self.layout.fill.append((frame._y2 - frame._y) / frame._height)
+        # reportlab takes the last flowable's spaceAfter from the cursor after checking that
+        # the flowable fits, so the cursor may sit up to that space below the frame: the
+        # page is full then, not over-full.
+        self.layout.fill.append(min((frame._y2 - frame._y) / frame._height, 1.0))
         check_cancel(self._cancel)
         report(self._progress, 0.8, f"laying out page {self.page}")
 

@@ -125,12 +125,14 @@ def test_cli_ins_accuracy_widens_sigma_and_is_checked(files, tmp_path, capsys):
     assert "--ins-sigma" in capsys.readouterr().err and not bad.exists()
 
 
-def test_cli_exit_3_names_undetermined_parameters(tmp_path, capsys):
+def test_cli_exit_3_names_undetermined_parameters(tmp_path, capsys, monkeypatch):
     """A patent target whose design lacks the block tops, passed without roll or pitch:
     nothing determines the vertical lever arm (only tops, or the vessel's roll and pitch
     against the wall and obliques, do). The CLI finishes, writes the JSON (coarse value
     kept, σ null, the reason) and exits 3 with one line naming the parameter; --help
-    documents the code."""
+    documents the code. (Progress lines are off: on a loaded machine a run past 5 s prints
+    one, issue #23.)"""
+    monkeypatch.setenv("HYDROSYNC_PROGRESS", "off")
     sim = simulate_pool_pass(PoolPassConfig(beams=128, ping_rate_hz=8.0,
                                             laser_density_per_m2=800.0, roll_amp_deg=0.0,
                                             pitch_amp_deg=0.0), seed=3)

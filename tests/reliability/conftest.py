@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import importlib.util
 import os
+import re
 import subprocess
 import sys
 import time
@@ -101,8 +102,14 @@ def start_cli(*args, **kwargs) -> subprocess.Popen:
                             stderr=subprocess.PIPE, text=True, env=cli_env(), **kwargs)
 
 
+_PROGRESS_LINE = re.compile(r"^\[\s*\d+(\.\d+)?%\] ")
+
+
 def stderr_lines(text: str) -> list[str]:
-    return [line for line in text.splitlines() if line.strip()]
+    """The message lines of *text*: progress lines (``[ 42.0%] …``, printed every 5 s
+    when a command runs long, as on a loaded machine) are not messages."""
+    return [line for line in text.splitlines()
+            if line.strip() and not _PROGRESS_LINE.match(line)]
 
 
 def temporaries(folder: Path, name: str) -> list[Path]:

@@ -353,6 +353,8 @@ def keep_motion(state: FileState, cands: dict[str, Candidate]) -> None:
     _BOTH.discard(str(state.path.resolve()))
     if len(_SIDE) >= 1000:
         _SIDE.clear()
+    for cand in cands.values():
+        cand.sink.close()  # a day of hourly files would hold a chunk cache per column
     _SIDE[side_key(state)] = (state, cands)
 
 
@@ -362,6 +364,8 @@ def take_motion(state: FileState) -> tuple | None:
     kept = _SIDE.pop(side_key(state), None)
     if kept is None or not all(c.sink.group.id.valid for c in kept[1].values()):
         return None
+    for cand in kept[1].values():
+        cand.sink.reopen()
     return kept
 
 

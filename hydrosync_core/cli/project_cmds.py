@@ -35,6 +35,11 @@ def cmd_import(args: argparse.Namespace) -> int:
     chosen = [(kind, files) for kind in table if (files := getattr(args, kind, None))]
     if not chosen:
         raise InputError(None, "nothing to import: give at least one --KIND FILE")
+    files_of = dict(chosen)
+    if files_of.get("gnss_log") and files_of.get("gnss_log") == files_of.get("attitude_log"):
+        from hydrosync_core.importers.log_import import expect_gnss_then_attitude
+
+        expect_gnss_then_attitude(files_of["gnss_log"])  # one pass over each logger file
     # Read everything first so one bad file leaves the project untouched.
     messages = [_import_one(project, table[kind], files, args) for kind, files in chosen]
     project.save(path)

@@ -38,6 +38,7 @@ __all__ = ["ImportReport", "import_attitude_log", "import_gnss_log", "read_attit
            "read_gnss_log"]
 
 MAX_LOG_BYTES = ls.MAX_LOG_BYTES
+MOTION_SOURCES = ("PASHR", "PSXN,23", "TSS1")
 
 
 def _line_skips(state: ls.FileState, wanted: tuple[str, ...]) -> dict[str, int]:
@@ -119,8 +120,16 @@ def read_gnss_log(
     state = _start(path, time_source, progress, cancel)
     cands = ls.new_candidates(group, ("PTNL,GGK", "GGA"), ls.GNSS_COLUMNS)
     options = {"empty_geoid": empty_geoid, "min_quality": min_quality}
-    ls.stream_blocks(state.path, state, ls.gnss_block(state, cands, options), progress,
-                     cancel)
+    on_block = ls.gnss_block(state, cands, options)
+    motion = None
+    if ls.wants_motion(state):  # the same file's attitude is imported next: one pass
+        side = group.create_group("motion")
+        side.attrs["intermediate"] = group.attrs.get("intermediate", False)
+        motion = ls.new_candidates(side, MOTION_SOURCES, ls.MOTION_COLUMNS)
+        on_block = ls.both(on_block, ls.motion_block(state, motion))
+    ls.stream_blocks(state.path, state, on_block, progress, cancel)
+    if motion is not None:
+        ls.keep_motion(state, motion)
     skipped = _line_skips(state, ls.GNSS_KINDS)
     warnings = _base_warnings(state)
     chosen = None
@@ -237,8 +246,12 @@ def read_attitude_log(
     if heave_positive not in (None, "up", "down"):
         raise ValueError(f"heave_positive must be 'up', 'down' or None, not {heave_positive!r}")
     state = _start(path, time_source, progress, cancel)
-    cands = ls.new_candidates(group, ("PASHR", "PSXN,23", "TSS1"), ls.MOTION_COLUMNS)
-    ls.stream_blocks(state.path, state, ls.motion_block(state, cands), progress, cancel)
+    kept = ls.take_motion(state)
+    if kept is not None:  # read in the GNSS import's pass over the same file
+        state, cands = kept
+    else:
+        cands = ls.new_candidates(group, MOTION_SOURCES, ls.MOTION_COLUMNS)
+        ls.stream_blocks(state.path, state, ls.motion_block(state, cands), progress, cancel)
     skipped = _line_skips(state, ls.MOTION_KINDS)
     warnings = _base_warnings(state)
     usable = _motion_choice(state, cands, source, skipped)
@@ -320,6 +333,14 @@ def import_attitude_log(path: str | os.PathLike, heave_positive: str | None = No
                       time_source=time_source, **options)
 
 
+def expect_gnss_then_attitude(paths) -> None:
+    """*paths* (names or globs) are about to be imported as GNSS and then as attitude:
+    read each file once for both (``hydrosync import --gnss-log F --attitude-log F``)."""
+    from hydrosync_core.importers import log_files
+
+    ls.expect_both(log_files.expand(paths))
+
+
 def _store(project, target: str, paths, reader, options, progress=None, cancel=None) -> str:
     """Read every file of *paths* into a scratch file next to the project, put them in
     time order and make them table *target*; the project changes only at the end."""
@@ -341,8 +362,8 @@ def _store(project, target: str, paths, reader, options, progress=None, cancel=N
             columns, rep = reader(path, group, progress=sub, cancel=cancel, **options)
             # the datasets are closed here, reopened by name when merged (one chunk cache
             # at a time, not one per file)
-            parts.append(log_files.Part(path, handle[columns["time"].parent.name],
-                                        list(columns), rep))
+            # (an attitude table read in the GNSS pass lives in that import's file)
+            parts.append(log_files.Part(path, columns["time"].parent, list(columns), rep))
             del columns
             done += size
         columns, notes = log_files.merge(handle.create_group("all"), parts)

@@ -327,6 +327,60 @@ def stream_blocks(path: Path, state: FileState, on_block, progress, cancel,
     on_block(None, {}, None)
 
 
+# ------------------------------------------------- one pass for GNSS and attitude
+_BOTH: set[str] = set()
+"""Files about to be imported both as GNSS and as attitude (one logger file for both)."""
+_SIDE: dict[tuple, tuple] = {}
+"""Motion records read beside the GNSS ones, waiting for the attitude import."""
+
+
+def expect_both(paths) -> None:
+    """Say that *paths* will be imported as GNSS and then as attitude: the GNSS import
+    reads the attitude records in the same pass and the attitude import takes them."""
+    _BOTH.update(str(Path(p).resolve()) for p in paths)
+
+
+def side_key(state: FileState) -> tuple:
+    stat = state.path.stat()
+    return (str(state.path.resolve()), stat.st_size, stat.st_mtime_ns, BLOCK_BYTES,
+            state.time_source)
+
+
+def wants_motion(state: FileState) -> bool:
+    return str(state.path.resolve()) in _BOTH
+
+
+def keep_motion(state: FileState, cands: dict[str, Candidate]) -> None:
+    """The attitude records read beside the GNSS ones, for :func:`take_motion`."""
+    _BOTH.discard(str(state.path.resolve()))
+    if len(_SIDE) >= 1000:
+        _SIDE.clear()
+    for cand in cands.values():
+        cand.sink.close()  # a day of hourly files would hold a chunk cache per column
+    _SIDE[side_key(state)] = (state, cands)
+
+
+def take_motion(state: FileState) -> tuple | None:
+    """(state, candidates) read with the GNSS of the same file and time source, or None
+    (also when that import failed and closed its scratch file)."""
+    kept = _SIDE.pop(side_key(state), None)
+    if kept is None or not all(c.sink.group.id.valid for c in kept[1].values()):
+        return None
+    for cand in kept[1].values():
+        cand.sink.reopen()
+    return kept
+
+
+def both(*handlers):
+    """One per-block handler calling *handlers* in turn."""
+
+    def on_block(block, kinds, events) -> None:
+        for handler in handlers:
+            handler(block, kinds, events)
+
+    return on_block
+
+
 # ----------------------------------------------------------------------------- GNSS
 def gnss_block(state: FileState, cands: dict[str, Candidate], options: dict):
     """The per-block GNSS reader handed to :func:`stream_blocks` (None = end of file)."""

@@ -108,6 +108,16 @@ class TableSink:
             ds[self.rows:] = np.asarray(columns[name], dtype=np.float64)
         self.rows += n
 
+    def close(self) -> None:
+        """Close the column datasets (HDF5 keeps a chunk cache per open dataset) until
+        :meth:`reopen`: a sink waiting for later use holds no memory."""
+        for ds in self._ds.values():
+            ds.flush()
+        self._ds = {}
+
+    def reopen(self) -> None:
+        self._ds = {name: self.group[name] for name in self.names}
+
     def column(self, name: str) -> h5py.Dataset:
         return self._ds[name]
 

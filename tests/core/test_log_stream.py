@@ -339,3 +339,36 @@ def test_bad_file_names_are_one_line_errors_naming_them(tmp_path):
         text = str(err.value)
         assert why in text and Path(name).name in text and "\n" not in text
     assert not project.exists("raw/gnss")
+
+
+@pytest.mark.parametrize("hourly", [False, True])
+def test_one_pass_for_gnss_and_attitude_of_the_same_files(tmp_path, monkeypatch, hourly):
+    """``hydrosync import --gnss-log F --attitude-log F`` reads F once for both tables:
+    the same tables and reports as two separate imports."""
+    from hydrosync_core.importers.log_import import expect_gnss_then_attitude
+
+    if hourly:
+        _, files = _split_hours(tmp_path, 3)
+        files = [str(f) for f in files]
+    else:
+        one = tmp_path / "day.log"
+        one.write_bytes(awkward_log(60.0))
+        files = [str(one)]
+    separate, together = Project.new(), Project.new()
+    m1 = import_file(separate, "gnss_log", files)
+    m2 = import_file(separate, "attitude_log", files, heave_positive="down")
+    passes = []
+    real = log_stream.stream_blocks
+    monkeypatch.setattr(log_stream, "stream_blocks",
+                        lambda *a, **k: passes.append(a[0]) or real(*a, **k))
+    expect_gnss_then_attitude(files)
+    assert import_file(together, "gnss_log", files) == m1
+    assert import_file(together, "attitude_log", files, heave_positive="down") == m2
+    assert len(passes) == len(files)  # the GNSS import's passes only
+    for target in ("raw/gnss", "raw/attitude"):
+        a, b = separate.get_table(target), together.get_table(target)
+        assert list(a) == list(b)
+        for name in a:
+            np.testing.assert_array_equal(a[name], b[name])
+        ra, rb = (json.loads(p.attrs(target)["import_report"]) for p in (separate, together))
+        assert ra == rb

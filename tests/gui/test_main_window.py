@@ -317,8 +317,7 @@ def test_import_menu_passes_heave_sign_to_the_motion_log_reader(
         return "2 records"
 
     monkeypatch.setattr(log_import, "store_attitude_log", store)
-    # a real file: the import gate checks it before any reader runs
-    (tmp_path / "m.log").write_text("$PASHR,000000.00,0.0,T,0.0,0.0,0.0*00\n")
+    (tmp_path / "m.log").write_text("$PSXN,23,0.1,0.2,90.0,0.1*00\n")  # checked to exist
     monkeypatch.setattr(ImportDialog, "ask", classmethod(
         lambda cls, parent, kinds, start: ("attitude_log", str(tmp_path / "m.log"),
                                            {"heave_positive": "up"})))

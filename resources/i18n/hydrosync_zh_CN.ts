@@ -3012,6 +3012,10 @@
             <translation>对应面</translation>
         </message>
         <message>
+            <source>unknown</source>
+            <translation>未知</translation>
+        </message>
+        <message>
             <source>unpaired: no visible above-water face parallel to it</source>
             <translation>未配对:没有与其平行的可见水上面</translation>
         </message>

@@ -69,6 +69,29 @@ def _translated_cell(cell):
     return cell if isinstance(cell, Flowable) else tr(str(cell))
 
 
+class ReportTable(LongTable):
+    """A long table that never leaves a single row alone at the top of the next page.
+
+    reportlab splits at the last row that fits: a correlation table's last row ("lever_z")
+    went over to the next page alone, under a repeated header. Here one more row goes
+    with it when the first part keeps at least :attr:`MIN_ROWS` of its own.
+    """
+
+    MIN_ROWS = 2
+
+    def split(self, availWidth, availHeight):  # noqa: N803 (reportlab API)
+        parts = super().split(availWidth, availHeight)
+        if len(parts) != 2:
+            return parts
+        first, rest = parts
+        header = self.repeatRows if isinstance(self.repeatRows, int) else len(self.repeatRows)
+        kept = len(first._cellvalues) - header
+        if len(rest._cellvalues) - header >= self.MIN_ROWS or kept <= self.MIN_ROWS:
+            return parts
+        last = self._rowHeights[len(first._cellvalues) - 1]
+        return super().split(availWidth, availHeight - last - 0.5)
+
+
 def markup(text: str) -> str:
     """Give ``<sub>`` a small drop: reportlab's default (half the font size) makes the
     subscript touch the next line."""
@@ -210,7 +233,7 @@ class ReportContext:
         for i in highlight_rows:
             style.append(("FONT", (0, i + 1), (-1, i + 1), FONT_BOLD, font_size))
         style.extend(extra_style)
-        table = LongTable(data, colWidths=widths, repeatRows=1, hAlign="LEFT")
+        table = ReportTable(data, colWidths=widths, repeatRows=1, hAlign="LEFT")
         table.setStyle(TableStyle(style))
         out: list[Flowable] = []
         if caption:

@@ -219,3 +219,24 @@ def test_running_header_and_footer_cut_long_names_at_a_word():
     assert fit_text("short", 300, FONT, 8) == "short"
     long_word = fit_text("x" * 200, 100, FONT, 8)
     assert stringWidth(long_word, FONT, 8) <= 100 and long_word.endswith("\u2026")
+
+
+def test_a_split_table_never_leaves_one_row_alone_on_the_next_page():
+    """The correlation table's last row went over to the next page alone (#26)."""
+    ctx = ReportContext(width=WIDTH)
+    rows = [[f"row {i}", f"{i:.2f}"] for i in range(10)]
+    table = _table(ctx.table(["Name", "Value"], rows))
+    table.wrap(WIDTH, 10_000)
+    total = sum(table._rowHeights)
+    seen = set()
+    for room in range(60, int(total) + 1, 3):  # every page break position
+        parts = table.split(WIDTH, float(room))
+        if len(parts) != 2:
+            continue
+        first, rest = (len(p._cellvalues) - 1 for p in parts)
+        assert first + rest == 10 and rest != 1, (room, first, rest)
+        head = parts[1]._cellvalues[0][0]
+        head = head[0] if isinstance(head, tuple | list) else head
+        assert head.getPlainText() == "Name"  # the header is repeated
+        seen.add(rest)
+    assert 2 in seen and max(seen) >= 5  # splits happen, and the last row is never alone

@@ -83,7 +83,7 @@ def test_demo_end_to_end(hydrosync_demo):
         faces = project.get_table("results/pool_calibration/faces")
         refs = {str(n): str(r) for n, r in zip(faces["face"], faces["reference"], strict=True)}
         assert refs["wall"] == "own" and refs["N1_dn_oblique"] == "N1_up_oblique"
-        assert "Reference planes" in text and "N1_up_oblique" in text
+        assert "Face pairing and reference planes" in text and "N1_up_oblique" in text
         assert json.loads(attrs["undetermined"]) == {}
         for key in ("roll", "pitch", "yaw"):
             # The published pool calibration reaches < 0.015°; so does the demo pass, and

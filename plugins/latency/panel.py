@@ -17,6 +17,7 @@ from PySide6.QtWidgets import (
     QGroupBox,
     QLabel,
     QPushButton,
+    QScrollArea,
     QSplitter,
     QVBoxLayout,
     QWidget,
@@ -26,7 +27,7 @@ from hydrosync_core.errors import InputError
 from hydrosync_core.methods.latency.params import LatencyParams, estimator_label
 from hydrosync_core.methods.latency.project_run import RESULT, recombine, run, stored_params
 from hydrosync_core.methods.latency.series import line_series
-from hydrosync_core.methods.latency.texts import interval_text, latency_text
+from hydrosync_core.methods.latency.texts import interval_text, latency_text, lines_used_text
 from hydrosync_core.project.vessel import lever_arm as vessel_lever_arm
 from hydrosync_gui.plugin_panel import PluginPanel
 from hydrosync_gui.widgets.param_form import ParamForm
@@ -52,11 +53,17 @@ class LatencyPanel(PluginPanel):
         left = QWidget()
         box = QGroupBox("Parameters")
         QVBoxLayout(box).addWidget(self.form)
+        # On a 768-px screen the form is taller than the column: it scrolls instead of
+        # squashing its rows (the lever-arm boxes were 8 px high).
+        scroll = QScrollArea()
+        scroll.setWidget(box)
+        scroll.setWidgetResizable(True)
+        scroll.setFrameShape(QScrollArea.Shape.NoFrame)
         lay = QVBoxLayout(left)
-        lay.addWidget(box)
+        lay.setContentsMargins(0, 0, 0, 0)
+        lay.addWidget(scroll, 1)
         lay.addWidget(self.run_button)
         lay.addWidget(self.summary)
-        lay.addStretch(1)
 
         self.r_plot = CorrelationPlot()
         self.table = LineTable()
@@ -156,6 +163,7 @@ class LatencyPanel(PluginPanel):
                     "95 % interval "
                     f"{escape(interval_text(a['ci95_low'], a['ci95_high'], sigma))}<br>"
                     f"Estimator: {escape(estimator_label(a.get('estimator', 'qi2010')))}<br>"
+                    f"Lines used: {escape(self._lines_used(a))}<br>"
                     f"{escape(str(a['message']))}")
         else:
             text = f"<b>No latency</b>: {escape(str(a['message']))}"
@@ -163,6 +171,12 @@ class LatencyPanel(PluginPanel):
             text += "<br><span style='color:#a05000'>" + "<br>".join(
                 f"⚠ {escape(w)}" for w in warnings[:6]) + "</span>"
         self.summary.setText(text)
+
+    def _lines_used(self, attrs) -> str:
+        params = stored_params(self.project)
+        n_lines = len(self._table["name"]) if self._table is not None else 0
+        return lines_used_text(attrs.get("n_used", 0), n_lines,
+                               params.min_r if params is not None else None)
 
     def _draw_curves(self) -> None:
         grid = self.project.get(f"{RESULT}/dt_grid")

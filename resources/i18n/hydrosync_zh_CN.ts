@@ -3327,6 +3327,10 @@
             <translation>估计方法:{0}</translation>
         </message>
         <message>
+            <source>Lines used: {0}</source>
+            <translation>采用的测线:{0}</translation>
+        </message>
+        <message>
             <source>Every method on this record (* reported). Vectors used {0}, rejected {1}; tilt up to {2}, {3} at the shot.</source>
             <translation>本记录上的各种方法(* 为报告方法)。采用矢量 {0} 个,剔除 {1} 个;最大倾斜 {2},观测时 {3}。</translation>
         </message>

@@ -31,17 +31,11 @@ PLUGINS = ["latency", "pool_calibration", "gnss_attitude", "gins_smoother", "til
 #: Faults in panel code another helper owns (told to the lead); the test passes again
 #: by itself once they are fixed.
 KNOWN = {
-    ("latency", "1366x768"): "plugins/latency: the parameter group is squashed "
-    "(lever-arm row ~8 px high, spin boxes 17 px) when the panel is shorter than its "
-    "column; the column needs its own scroll area (latency owner)",
     ("pool_calibration", "1366x768"): "plugins/pool_calibration: plan view and section "
     "get a data area under 90 px high below the 40-entry face legend (pool owner; #26 "
     "asks for a compact legend by face kind)",
     ("gins_smoother", "1366x768"): "plugins/gins_smoother: the 'Errors vs reference' tab's "
     "nine plots have a data area ~117 px wide and legends cut by it (GNSS/INS owner)",
-    **{("tilt_alignment", size): "plugins/tilt_alignment: the methods table shows raw keys "
-       "(psi_deg, sd_e_mm [mm], method names mbgd, closed_form) and 4-6 digits where the "
-       "PDF prints σ 1.7 mm (tilt owner)" for size in SIZES},
 }
 
 

@@ -26,8 +26,6 @@ PLUGINS = ["latency", "pool_calibration", "gnss_attitude", "gins_smoother", "til
 NUMBER = re.compile(r"(?<![\w.])[-+\u2212]?\d+(?:\.\d+)?(?:e[-+]?\d+)?(?![\w.])")
 #: Panels of other helpers that print a summary number with other digits (told to the lead).
 KNOWN: dict[str, str] = {
-    "latency": "plugins/latency: the summary row 'Lines used 13 of 13 (R_max > 0.85)' — "
-    "the panel does not print the R threshold 0.85 with the lines used (latency owner)",
     "pool_calibration": "plugins/pool_calibration: the panel prints the final boresight "
     "angles with 4 decimals and no σ (-0.6052, 0.6951) where the CLI and PDF print "
     "-0.605 ± 0.016° and 0.695 ± 0.005° (digits from σ, numfmt) (pool owner)",

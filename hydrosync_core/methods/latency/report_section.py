@@ -16,7 +16,12 @@ import numpy as np
 from reportlab.platypus import Flowable, Paragraph
 
 from hydrosync_core.methods.latency.params import LatencyParams, estimator_label
-from hydrosync_core.methods.latency.texts import interval_text, latency_text, line_cells
+from hydrosync_core.methods.latency.texts import (
+    interval_text,
+    latency_text,
+    line_cells,
+    lines_used_text,
+)
 from hydrosync_core.params import stored
 from hydrosync_core.report.context import ReportContext, esc, fmt, utc_text
 from hydrosync_core.report.styles import INK, MUTED, SERIES
@@ -81,8 +86,7 @@ def summary(project) -> list[tuple[str, str]]:
     rows = [("Latency \u0394t (GNSS tags late), 1\u03c3", final_value_text(attrs)),
             ("95 % interval of \u0394t", ci_text(attrs)),
             ("Latency estimator", estimator_text(attrs)),
-            ("Lines used", f"{int(attrs.get('n_used', 0))} of {n} "
-                           f"(R_max > {params.min_r:g})")]
+            ("Lines used", lines_used_text(attrs.get("n_used", 0), n, params.min_r))]
     used = np.asarray(table["used"], bool)
     if used.any():
         before = np.nanmedian(np.asarray(table["sigma0_before_m"], float)[used])

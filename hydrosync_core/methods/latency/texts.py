@@ -53,3 +53,10 @@ def line_cells(latency_s, sigma_s) -> tuple[str, str]:
     """(Δt, σ) of one line in s, both to :func:`line_decimals` (``"—"`` when missing)."""
     d = line_decimals(sigma_s)
     return numfmt.fixed(latency_s, d), numfmt.fixed(sigma_s, d)
+
+
+def lines_used_text(n_used: int, n_lines: int, min_r: float | None) -> str:
+    """``"13 of 13 (R_max > 0.85)"``: the lines the estimate used and the screening
+    threshold, as the panel and the PDF summary print them."""
+    threshold = f" (R_max > {min_r:g})" if min_r is not None else ""
+    return f"{int(n_used)} of {int(n_lines)}{threshold}"

@@ -129,8 +129,9 @@ def section(project, ctx) -> list:
     if smo is not None:
         e, n = en(smo)
         ch.line(e[idx], n[idx], label="smoothed")
-    out.append(ctx.figure(ch, "Trajectory: GNSS antenna fixes, forward and smoothed IMU "
-                          "positions (local east/north from the start)."))
+    sols = "forward and smoothed" if smo is not None else "forward (no smoothing)"
+    out.append(ctx.figure(ch, f"Trajectory: GNSS antenna fixes, {sols} IMU positions (local "
+                          "east/north from the start)."))
     t0 = float(fwd["time"][0])
     charts = []
     for key, label, scale in (("sd_n", "σ north [cm]", 100), ("sd_d", "σ down [cm]", 100),
@@ -141,7 +142,9 @@ def section(project, ctx) -> list:
             c.line(smo["time"][idx] - t0, scale * smo[key][idx], label="smoothed")
         charts.append(c)
     out.append(ctx.figure(charts, "Standard deviations, forward and smoothed (the smoother "
-                          "reduces them everywhere, most across GNSS outages)."))
+                          "reduces them everywhere, most across GNSS outages)."
+                          if smo is not None else "Standard deviations of the forward "
+                          "filter (no smoothing in this run)."))
     out += error_figures(project, ctx, t0)
     if ev:
         rows = []

@@ -154,7 +154,9 @@ def open_client(scheduler: str | None = None, workers: int | None = None,
     n = int(workers or os.cpu_count() or 1)
     cluster = LocalCluster(
         n_workers=n, threads_per_worker=1, processes=True,
-        dashboard_address=":0" if dashboard and dashboard_available() else None,
+        # Any free port, also without a dashboard: Dask's HTTP server starts either way, and
+        # its default 8787 taken by another campaign (or test worker) is a warning.
+        dashboard_address=":0",
         silence_logs=logging.ERROR)
     client = Client(cluster)
     return client, cluster, f"LocalCluster of {n} worker process(es), 1 thread each"
@@ -282,7 +284,7 @@ def run_campaign(campaign: Campaign, *, scheduler: str | None = None,
     steps = []
     try:
         try:
-            result.dashboard = client.dashboard_link if (
+            result.dashboard = client.dashboard_link if dashboard and (
                 own_cluster is None or own_cluster.scheduler.services.get("dashboard")) \
                 else None
         except Exception:

@@ -54,7 +54,7 @@ def client():
 
     cloudpickle.register_pickle_by_value(sys.modules[__name__])
     cluster = LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
-                           dashboard_address=None, silence_logs=logging.CRITICAL)
+                           dashboard_address=":0", silence_logs=logging.CRITICAL)
     client = Client(cluster)
     yield client
     client.close()

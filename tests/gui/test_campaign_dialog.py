@@ -16,7 +16,7 @@ def scheduler():
     from dask.distributed import LocalCluster
 
     cluster = LocalCluster(n_workers=1, threads_per_worker=1, processes=True,
-                           dashboard_address=None, silence_logs=logging.CRITICAL)
+                           dashboard_address=":0", silence_logs=logging.CRITICAL)
     yield cluster.scheduler_address
     cluster.close()
 

@@ -14,6 +14,7 @@ from __future__ import annotations
 import hashlib
 import os
 import subprocess
+import sys
 from pathlib import Path
 
 import pytest
@@ -38,17 +39,22 @@ def project(tmp_path) -> Path:
     return path
 
 
+MEASURE = ("import resource, subprocess, sys\n"
+           "p = subprocess.run(sys.argv[1:], stdout=subprocess.DEVNULL, "
+           "stderr=subprocess.PIPE, text=True)\n"
+           "sys.stderr.write(p.stderr)\n"
+           "print(resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss)\n"
+           "sys.exit(p.returncode)\n")
+"""Runs the CLI from a small fresh interpreter: a child forked straight from the test
+process (1.2 GB under pytest-xdist) would count the parent's pages in its peak before it
+replaces itself with the CLI."""
+
+
 def _run_measured(*args, timeout: float = 120.0) -> tuple[int, str, int]:
-    """Run the CLI; return (exit code, stderr, peak resident KB of that child)."""
-    proc = subprocess.Popen([*cli_command(), *map(str, args)], stdout=subprocess.DEVNULL,
-                            stderr=subprocess.PIPE, text=True, env=cli_env())
-    try:
-        err = proc.stderr.read()  # ends when the child ends (or the timeout below)
-    finally:
-        proc.stderr.close()
-    _, status, usage = os.wait4(proc.pid, 0)
-    proc.returncode = os.waitstatus_to_exitcode(status)
-    return proc.returncode, err, usage.ru_maxrss
+    """Run the CLI; return (exit code, stderr, peak resident KB of the CLI process)."""
+    proc = subprocess.run([sys.executable, "-c", MEASURE, *cli_command(), *map(str, args)],
+                          capture_output=True, text=True, env=cli_env(), timeout=timeout)
+    return proc.returncode, proc.stderr, int(proc.stdout.split()[-1])
 
 
 def _one_line_exit_2(code: int, err: str, faults, kind: str, *words: str) -> None:

@@ -46,14 +46,14 @@ def _latency_args(paths, arm, *extra):
 def test_bad_second_output_fails_first_and_leaves_nothing(latency_files, tmp_path, capsys,
                                                          monkeypatch, faults):
     """Checked first: the refusal comes before any input is read (no reader was called)."""
-    from hydrosync_core.methods.latency import fastcsv
+    from hydrosync_core.methods.latency import readers
 
     paths, arm = latency_files
     ok_json = tmp_path / "ok.json"
     reads: list[str] = []
     for name in ("prescan_gnss", "prescan_attitude", "read_gnss_csv", "read_attitude_csv"):
-        real = getattr(fastcsv, name)
-        monkeypatch.setattr(fastcsv, name, lambda *a, _f=real, _n=name, **k: (
+        real = getattr(readers, name)
+        monkeypatch.setattr(readers, name, lambda *a, _f=real, _n=name, **k: (
             reads.append(_n), _f(*a, **k))[1])
     code = main(_latency_args(paths, arm, "--json", ok_json, "--sync-csv",
                               tmp_path / "nodir" / "s.csv"))

@@ -15,9 +15,7 @@ from PySide6.QtCore import Qt
 from PySide6.QtWidgets import (
     QDoubleSpinBox,
     QFormLayout,
-    QGridLayout,
     QPushButton,
-    QWidget,
 )
 
 from hydrosync_core.methods.gins_smoother.params import RAN, GinsParams
@@ -67,14 +65,14 @@ class GinsPanel(AnalysisPanel):
         self.errors = {c: _plot(f"{c} error [{u}]") for cs, u in
                        ((("north", "east", "down"), "m"), (("vn", "ve", "vd"), "m/s"),
                         (("roll", "pitch", "yaw"), "°")) for c in cs}
-        err_page = QWidget()
-        grid = QGridLayout(err_page)
-        for k, w in enumerate(self.errors.values()):
-            grid.addWidget(w, k // 3, k % 3)
         self.add_tab("Map", self.map)
         self.add_tab("Position / velocity / attitude", *self.series.values())
         self.add_tab("Standard deviations", *self.sigma.values())
-        self.add_tab("Errors vs reference (±σ)", err_page)
+        # One tab per kind, three plots stacked at full width: nine side by side in one tab
+        # left each a ~117-px data area on a 1366-px screen, legends cut.
+        errors = list(self.errors.values())
+        for k, kind in enumerate(("Position", "Velocity", "Attitude")):
+            self.add_tab(f"{kind} errors vs reference (±σ)", *errors[3 * k:3 * k + 3])
         self.build(before_run=[outage_box])
 
     def _all_plots(self):

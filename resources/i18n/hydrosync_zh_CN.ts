@@ -496,8 +496,16 @@
             <translation>可用天线少于 3 个的历元数</translation>
         </message>
         <message>
-            <source>Errors vs reference (±σ)</source>
-            <translation>相对参考的误差(±σ)</translation>
+            <source>Position errors vs reference (±σ)</source>
+            <translation>位置相对参考的误差(±σ)</translation>
+        </message>
+        <message>
+            <source>Velocity errors vs reference (±σ)</source>
+            <translation>速度相对参考的误差(±σ)</translation>
+        </message>
+        <message>
+            <source>Attitude errors vs reference (±σ)</source>
+            <translation>姿态相对参考的误差(±σ)</translation>
         </message>
         <message>
             <source>Estimator</source>
@@ -2498,6 +2506,26 @@
         <message>
             <source>line used</source>
             <translation>采用的测线</translation>
+        </message>
+        <message>
+            <source>line used: range of {0}</source>
+            <translation>采用的测线:{0} 条的范围</translation>
+        </message>
+        <message>
+            <source>line used: median</source>
+            <translation>采用的测线:中位数</translation>
+        </message>
+        <message>
+            <source>line not used: range of {0}</source>
+            <translation>未采用的测线:{0} 条的范围</translation>
+        </message>
+        <message>
+            <source>line not used: median</source>
+            <translation>未采用的测线:中位数</translation>
+        </message>
+        <message>
+            <source>Correlation R between detrended GNSS height and total heave as a function of the trial latency Δt, the range over the lines (band) and their median (line) (eq. 4) over the whole scan range.</source>
+            <translation>去趋势 GNSS 高程与总升沉之间的相关系数 R 随试算时间延迟 Δt 的变化,各测线的范围(色带)及其中位数(曲线)(式 4),覆盖整个搜索范围。</translation>
         </message>
         <message>
             <source>lines whose best correlation R_max is above this are used (Qi et al. 2010: 0.85)</source>

@@ -34,8 +34,6 @@ KNOWN = {
     ("pool_calibration", "1366x768"): "plugins/pool_calibration: plan view and section "
     "get a data area under 90 px high below the 40-entry face legend (pool owner; #26 "
     "asks for a compact legend by face kind)",
-    ("gins_smoother", "1366x768"): "plugins/gins_smoother: the 'Errors vs reference' tab's "
-    "nine plots have a data area ~117 px wide and legends cut by it (GNSS/INS owner)",
 }
 
 

@@ -192,6 +192,31 @@ def _drawn(count: int) -> np.ndarray:
     return index if index.size == 0 or index[-1] == count - 1 else np.append(index, count - 1)
 
 
+MANY_CURVES = 40
+"""Above this many lines of one kind (used / not used) a figure draws their range and
+median instead of one curve each: 500 curves printed as a solid block (#26)."""
+
+
+def _draw_lines(chart, x, curves, rows, *, color, label: str, dash=None,
+                width: float = 0.6) -> bool:
+    """The R curves of *rows* on *chart*: one line each, or, above :data:`MANY_CURVES`,
+    their min–max band and median. True when drawn as a band."""
+    if rows.size == 0:
+        return False
+    if rows.size <= MANY_CURVES:
+        for n, i in enumerate(rows):
+            chart.line(x, curves[i], color=color, width=width, dash=dash,
+                       label=label if n == 0 else None)
+        return False
+    block = curves[rows]
+    with np.errstate(all="ignore"):
+        chart.band(x, np.nanmin(block, axis=0), np.nanmax(block, axis=0), color=color,
+                   label=f"{label}: range of {rows.size}")
+        chart.line(x, np.nanmedian(block, axis=0), color=color, width=1.0, dash=dash,
+                   label=f"{label}: median")
+    return True
+
+
 def _curves_figure(project, ctx: ReportContext, table: dict, attrs: dict) -> list[Flowable]:
     if not (project.exists(f"{RESULT}/dt_grid") and project.exists(f"{RESULT}/r_curves")):
         return []
@@ -205,18 +230,18 @@ def _curves_figure(project, ctx: ReportContext, table: dict, attrs: dict) -> lis
     if lo is not None and hi is not None and np.isfinite(lo) and np.isfinite(hi):
         chart.vspan(lo, hi, color="#cfe0f0", label="95 % interval")
     k = _drawn(dts.size)
-    for i in np.flatnonzero(~used):
-        chart.line(dts[k], curves[i, k], color="#b0b0b0", width=0.6, dash=(2, 2),
-                   label="line not used" if i == np.flatnonzero(~used)[0] else None)
-    for i in np.flatnonzero(used):
-        chart.line(dts[k], curves[i, k], color=SERIES[0], width=0.6,
-                   label="line used" if i == np.flatnonzero(used)[0] else None)
+    banded = _draw_lines(chart, dts[k], curves[:, k], np.flatnonzero(~used), color="#b0b0b0",
+                         label="line not used", dash=(2, 2))
+    banded |= _draw_lines(chart, dts[k], curves[:, k], np.flatnonzero(used), color=SERIES[0],
+                          label="line used")
     if lat is not None and np.isfinite(lat):
         chart.vline(lat, color=INK, dash=None, width=1.0,
                     label=f"final \u0394t = {fmt(lat, DT_DECIMALS)} s")
     chart.vline(0.0, color=MUTED, dash=(1, 2), width=0.6)
+    per_line = ("the range over the lines (band) and their median (line)" if banded
+                else "one curve per line")
     out = [ctx.figure(chart, "Correlation R between detrended GNSS height and total heave "
-                      "as a function of the trial latency \u0394t, one curve per line (eq. 4) "
+                      f"as a function of the trial latency \u0394t, {per_line} (eq. 4) "
                       "over the whole scan range.")]
     if lat is not None and np.isfinite(lat):
         out.append(_peak_zoom(ctx, dts, curves, table, attrs))
@@ -240,9 +265,10 @@ def _peak_zoom(ctx: ReportContext, dts, curves, table, attrs) -> Flowable:
         chart.vspan(lo, hi, color="#cfe0f0", label="95 % interval")
     inside = np.flatnonzero(window)
     k = inside[_drawn(inside.size)]
-    for i in range(curves.shape[0]):
-        chart.line(dts[k], curves[i, k], color=SERIES[0] if used[i] else "#b0b0b0",
-                   width=0.5, dash=None if used[i] else (2, 2))
+    _draw_lines(chart, dts[k], curves[:, k], np.flatnonzero(~used), color="#b0b0b0",
+                label="line not used", dash=(2, 2), width=0.5)
+    _draw_lines(chart, dts[k], curves[:, k], np.flatnonzero(used), color=SERIES[0],
+                label="line used", width=0.5)
     chart.points(peaks[used & finite], r_max[used & finite], color=SERIES[0], size=2.2,
                  label="peak of a used line")
     if np.any(~used & finite):

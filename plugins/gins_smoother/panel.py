@@ -72,7 +72,7 @@ class GinsPanel(AnalysisPanel):
         # left each a ~117-px data area on a 1366-px screen, legends cut.
         errors = list(self.errors.values())
         for k, kind in enumerate(("Position", "Velocity", "Attitude")):
-            self.add_tab(f"{kind} errors vs reference (±σ)", *errors[3 * k:3 * k + 3])
+            self.add_tab(f"{kind} errors (±σ)", *errors[3 * k:3 * k + 3])
         self.build(before_run=[outage_box])
 
     def _all_plots(self):

@@ -496,16 +496,16 @@
             <translation>可用天线少于 3 个的历元数</translation>
         </message>
         <message>
-            <source>Position errors vs reference (±σ)</source>
-            <translation>位置相对参考的误差(±σ)</translation>
+            <source>Position errors (±σ)</source>
+            <translation>位置误差(±σ)</translation>
         </message>
         <message>
-            <source>Velocity errors vs reference (±σ)</source>
-            <translation>速度相对参考的误差(±σ)</translation>
+            <source>Velocity errors (±σ)</source>
+            <translation>速度误差(±σ)</translation>
         </message>
         <message>
-            <source>Attitude errors vs reference (±σ)</source>
-            <translation>姿态相对参考的误差(±σ)</translation>
+            <source>Attitude errors (±σ)</source>
+            <translation>姿态误差(±σ)</translation>
         </message>
         <message>
             <source>Estimator</source>

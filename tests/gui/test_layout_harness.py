@@ -28,13 +28,8 @@ SIZES = {"1366x768": QSize(1366, 768), "1920x1080": QSize(1920, 1080)}
 DOCS_VIEW = ("gnss_attitude", "1366x768")  # the docs/ picture of the main window
 TASK_BAR = 32  # pixels of a desktop's panel: what the window may not use
 PLUGINS = ["latency", "pool_calibration", "gnss_attitude", "gins_smoother", "tilt_alignment"]
-#: Faults in panel code another helper owns (told to the lead); the test passes again
-#: by itself once they are fixed.
-KNOWN = {
-    ("pool_calibration", "1366x768"): "plugins/pool_calibration: plan view and section "
-    "get a data area under 90 px high below the 40-entry face legend (pool owner; #26 "
-    "asks for a compact legend by face kind)",
-}
+#: Known faults of a panel, with the reason (the test then expects them): none now.
+KNOWN: dict[tuple[str, str], str] = {}
 
 
 # ------------------------------------------------------------------- the checker

@@ -24,12 +24,8 @@ from PySide6.QtWidgets import QAbstractItemView, QApplication, QLabel
 
 PLUGINS = ["latency", "pool_calibration", "gnss_attitude", "gins_smoother", "tilt_alignment"]
 NUMBER = re.compile(r"(?<![\w.])[-+\u2212]?\d+(?:\.\d+)?(?:e[-+]?\d+)?(?![\w.])")
-#: Panels of other helpers that print a summary number with other digits (told to the lead).
-KNOWN: dict[str, str] = {
-    "pool_calibration": "plugins/pool_calibration: the panel prints the final boresight "
-    "angles with 4 decimals and no σ (-0.6052, 0.6951) where the CLI and PDF print "
-    "-0.605 ± 0.016° and 0.695 ± 0.005° (digits from σ, numfmt) (pool owner)",
-}
+#: Panels known to print a summary number with other digits, with the reason: none now.
+KNOWN: dict[str, str] = {}
 
 
 def numbers(text: str) -> set[str]:

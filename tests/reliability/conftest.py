@@ -105,6 +105,23 @@ def start_cli(*args, **kwargs) -> subprocess.Popen:
 _PROGRESS_LINE = re.compile(r"^\[\s*\d+(\.\d+)?%\] ")
 
 
+def digest(path: Path) -> str:
+    """SHA-256 of a file: "the project is byte-identical" after a refused command."""
+    import hashlib
+
+    return hashlib.sha256(Path(path).read_bytes()).hexdigest()
+
+
+@pytest.fixture
+def project(tmp_path) -> Path:
+    """A new empty project file."""
+    from hydrosync_core.project import Project
+
+    path = tmp_path / "P.h5"
+    Project.new("P").save(path)
+    return path
+
+
 def stderr_lines(text: str) -> list[str]:
     """The message lines of *text*: progress lines (``[ 42.0%] …``, printed every 5 s
     when a command runs long, as on a loaded machine) are not messages."""

@@ -8,7 +8,6 @@ overwritten silently.
 
 from __future__ import annotations
 
-import hashlib
 import random
 import signal
 import subprocess
@@ -24,16 +23,13 @@ from hydrosync_core.project.lock import holder_pid, lock_path
 from tests.reliability.conftest import (
     SCALE,
     cli_env,
+    digest,
     run_cli,
     sensors,
     start_cli,
     stderr_lines,
     temporaries,
 )
-
-
-def _digest(path) -> str:
-    return hashlib.sha256(path.read_bytes()).hexdigest()
 
 
 def _holder(path, seconds: float = 60.0) -> subprocess.Popen:
@@ -57,7 +53,7 @@ def project_file(tmp_path, big_project_template):
 
 
 def test_second_writer_gets_one_line_and_exit_2(project_file, faults):
-    before = _digest(project_file)
+    before = digest(project_file)
     holder = _holder(project_file)
     try:
         assert holder_pid(project_file) == holder.pid
@@ -67,11 +63,11 @@ def test_second_writer_gets_one_line_and_exit_2(project_file, faults):
         expected = (f"hydrosync vessel: {project_file} is being written by another HydroSync "
                     f"process (pid {holder.pid})")
         ok = (done.returncode == 2 and stderr_lines(done.stderr) == [expected]
-              and _digest(project_file) == before and still_held)
+              and digest(project_file) == before and still_held)
         faults.record("second writer refused (lock held)", ok, done.stderr)
         assert done.returncode == 2, done.stderr
         assert stderr_lines(done.stderr) == [expected]
-        assert _digest(project_file) == before
+        assert digest(project_file) == before
         # Read-only commands need no lock.
         info = run_cli("info", project_file)
         assert info.returncode == 0 and "lidar" in info.stdout, info.stderr

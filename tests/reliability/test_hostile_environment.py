@@ -9,7 +9,6 @@ nothing and not hang (the subprocess timeouts only guard against a hang).
 
 from __future__ import annotations
 
-import hashlib
 import os
 import shutil
 import stat
@@ -26,6 +25,7 @@ from hydrosync_core.project import Project
 from hydrosync_core.project.lock import holder, lock_path
 from tests.reliability.conftest import (
     cli_env,
+    digest,
     run_cli,
     sensors,
     start_cli,
@@ -37,15 +37,6 @@ ROOT = os.name == "posix" and os.geteuid() == 0
 HAS_UNSHARE = shutil.which("unshare") is not None
 
 
-def _digest(path: Path) -> str:
-    return hashlib.sha256(path.read_bytes()).hexdigest()
-
-
-@pytest.fixture
-def project(tmp_path) -> Path:
-    path = tmp_path / "P.h5"
-    Project.new("P").save(path)
-    return path
 
 
 def _refused(done, faults, kind: str, *words: str) -> None:
@@ -60,10 +51,10 @@ def test_symlinked_lock_is_refused_and_its_target_kept(project, tmp_path, faults
     victim = tmp_path / "victim.txt"
     victim.write_text("keep\n")
     lock_path(project).symlink_to(victim)
-    before = _digest(project)
+    before = digest(project)
     done = run_cli("vessel", project, "--set", "gnss", 1, 2, 3)
     _refused(done, faults, "lock: symbolic link", "symbolic link", "P.h5.lock")
-    assert victim.read_text() == "keep\n" and _digest(project) == before
+    assert victim.read_text() == "keep\n" and digest(project) == before
     assert lock_path(project).is_symlink()  # reported, not removed
 
 
@@ -329,7 +320,7 @@ def test_disk_full_inside_the_hdf5_copy_is_an_input_error(project, monkeypatch):
     from hydrosync_core.errors import DiskFullError
     from hydrosync_core.project import store
 
-    before = _digest(project)
+    before = digest(project)
 
     def full(*args, **kwargs):
         raise OSError("Can't write data (file write failed: errno = 28, error message = "
@@ -341,7 +332,7 @@ def test_disk_full_inside_the_hdf5_copy_is_an_input_error(project, monkeypatch):
         with pytest.raises(DiskFullError, match="no space left on the disk"):
             p.save()
         assert lock_path(project).exists()  # still ours until closed
-    assert _digest(project) == before
+    assert digest(project) == before
     assert temporaries(project.parent, project.name) == []
     assert not lock_path(project).exists()
 

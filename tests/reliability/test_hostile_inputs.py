@@ -11,11 +11,9 @@ a bound with a 4x margin to the issue's peak, not tuned to this machine).
 
 from __future__ import annotations
 
-import hashlib
 import os
 import subprocess
 import sys
-from pathlib import Path
 
 import pytest
 
@@ -23,20 +21,11 @@ from hydrosync_core.errors import InputError
 from hydrosync_core.inputs import input_ok
 from hydrosync_core.project import Project
 from hydrosync_core.project.lock import lock_path
-from tests.reliability.conftest import cli_command, cli_env, run_cli, stderr_lines
+from tests.reliability.conftest import cli_command, cli_env, digest, run_cli, stderr_lines
 
 PEAK_LIMIT_KB = 1_000_000
 
 
-def _digest(path: Path) -> str:
-    return hashlib.sha256(path.read_bytes()).hexdigest()
-
-
-@pytest.fixture
-def project(tmp_path) -> Path:
-    path = tmp_path / "P.h5"
-    Project.new("P").save(path)
-    return path
 
 
 MEASURE = ("import resource, subprocess, sys\n"
@@ -69,11 +58,11 @@ def _one_line_exit_2(code: int, err: str, faults, kind: str, *words: str) -> Non
 def test_fifo_input_is_refused_at_once_and_frees_the_lock(option, project, tmp_path, faults):
     fifo = tmp_path / "pipe.csv"
     os.mkfifo(fifo)
-    before = _digest(project)
+    before = digest(project)
     done = run_cli("import", project, option, fifo, timeout=120)
     _one_line_exit_2(done.returncode, done.stderr, faults, f"FIFO as import {option}",
                      "named pipe")
-    assert _digest(project) == before and not lock_path(project).exists()
+    assert digest(project) == before and not lock_path(project).exists()
 
 
 def test_fifo_as_latency_gnss_is_refused(tmp_path, faults):
@@ -185,11 +174,11 @@ def test_batch_output_dir_that_is_a_file_is_refused_before_work(tmp_path, faults
 def test_nul_in_a_line_name_is_exit_2_naming_the_row(project, tmp_path, faults):
     lines = tmp_path / "lines.csv"
     lines.write_bytes(b"name,start,end\nL1,0,100\nL\x002,200,300\n")
-    before = _digest(project)
+    before = digest(project)
     done = run_cli("import", project, "--lines", lines)
     _one_line_exit_2(done.returncode, done.stderr, faults, "NUL in a line name",
                      "lines.csv", "control character")
-    assert _digest(project) == before
+    assert digest(project) == before
 
 
 def test_symlink_loop_as_project_is_exit_2(tmp_path, faults):

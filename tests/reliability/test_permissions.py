@@ -9,7 +9,6 @@ effective user switched (the interpreter may live where ``nobody`` cannot run it
 
 from __future__ import annotations
 
-import hashlib
 import os
 import shutil
 import stat
@@ -22,13 +21,10 @@ import pytest
 from hydrosync_core.cli import main
 from hydrosync_core.errors import ProjectReadOnlyError
 from hydrosync_core.project import Project
-from tests.reliability.conftest import run_cli, sensors, stderr_lines, temporaries
+from tests.reliability.conftest import digest, run_cli, sensors, stderr_lines, temporaries
 
 ROOT = os.name == "posix" and os.geteuid() == 0
 
-
-def _digest(path) -> str:
-    return hashlib.sha256(path.read_bytes()).hexdigest()
 
 
 def _nobody() -> tuple[int, int]:
@@ -77,11 +73,11 @@ def _project(path: Path, mode: int) -> Path:
 
 def test_read_only_file_is_not_replaced(tmp_path, faults):
     path = _project(tmp_path / "ro.h5", 0o444)
-    before = _digest(path)
+    before = digest(path)
     done = run_cli("vessel", path, "--set", "gnss", 1, 2, 3)
     lines = stderr_lines(done.stderr)
     ok = (done.returncode == 2 and len(lines) == 1 and "read-only (mode 444" in lines[0]
-          and _digest(path) == before and stat.S_IMODE(path.stat().st_mode) == 0o444)
+          and digest(path) == before and stat.S_IMODE(path.stat().st_mode) == 0o444)
     faults.record("read-only project written", ok, done.stderr)
     assert ok, done.stderr
     with pytest.raises(ProjectReadOnlyError):
@@ -107,18 +103,18 @@ def test_as_another_user(shared_folder, faults, capsys):
     uid, gid = _nobody()
     # 1. Root's 644 file: nobody may not write it.
     mine = _project(shared_folder / "root.h5", 0o644)
-    before = _digest(mine)
+    before = digest(mine)
     code, lines = _main_as_nobody(capsys, "vessel", mine, "--set", "gnss", 1, 2, 3)
     ok = code == 2 and len(lines) == 1 and "read-only" in lines[0]
-    ok = ok and _digest(mine) == before and mine.stat().st_uid == 0
+    ok = ok and digest(mine) == before and mine.stat().st_uid == 0
     faults.record("another user's read-only project", ok, str(lines))
     assert ok, lines
     # 2. Root's 666 file: writable, but replacing it would make it nobody's: refused.
     shared = _project(shared_folder / "shared.h5", 0o666)
-    before = _digest(shared)
+    before = digest(shared)
     code, lines = _main_as_nobody(capsys, "vessel", shared, "--set", "gnss", 1, 2, 3)
     ok = (code == 2 and len(lines) == 1 and "keeping its owner" in lines[0]
-          and _digest(shared) == before and shared.stat().st_uid == 0)
+          and digest(shared) == before and shared.stat().st_uid == 0)
     faults.record("owner could not be kept", ok, str(lines))
     assert ok, lines
     # 3. nobody's 640 file saved by root: owner and mode kept.

@@ -3,7 +3,6 @@ the truth about what was saved — also while the modules load and inside an imp
 
 from __future__ import annotations
 
-import hashlib
 import os
 import random
 import shutil
@@ -20,15 +19,12 @@ from hydrosync_core.project import Project
 from tests.reliability.conftest import (
     SCALE,
     cli_env,
+    digest,
     sensors,
     start_cli,
     stderr_lines,
     temporaries,
 )
-
-
-def _digest(path) -> str:
-    return hashlib.sha256(path.read_bytes()).hexdigest()
 
 
 def _check_interrupted(proc, path, sensor: str, before: str) -> list[str]:
@@ -46,7 +42,7 @@ def _check_interrupted(proc, path, sensor: str, before: str) -> list[str]:
             if sensor not in sensors(path):
                 problems.append("says saved, but the change is missing")
         elif "nothing was saved" in message:
-            if _digest(path) != before:
+            if digest(path) != before:
                 problems.append("says nothing was saved, but the file changed")
         else:
             problems.append(f"unexpected message {message!r}")
@@ -67,7 +63,7 @@ def test_sigint_at_random_moments(tmp_path, big_project_template, faults):
     duration = time.monotonic() - t0
     rng = random.Random(8)
     for i in range(8 * SCALE):
-        before = _digest(path)
+        before = digest(path)
         proc = start_cli("vessel", path, "--set", f"s{i}", 1, 2, 3)
         time.sleep(rng.uniform(0.05, duration * 1.1))
         proc.send_signal(signal.SIGINT)
@@ -92,7 +88,7 @@ def test_sigint_while_modules_load(tmp_path, faults):
     Project.new("x").save(path)
     rng = random.Random(5)
     for delay in [0.06, 0.1, 0.15, 0.2] + [rng.uniform(0.04, 0.3) for _ in range(4 * SCALE - 4)]:
-        before = _digest(path)
+        before = digest(path)
         # Delays count from the end of the interpreter's start (slow on a loaded machine).
         boot = _interpreter_start_s()
         proc = start_cli("vessel", path, "--set", "x", 1, 2, 3)

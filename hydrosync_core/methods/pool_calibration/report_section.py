@@ -75,6 +75,24 @@ def summary(project) -> list[tuple[str, str]]:
     return rows
 
 
+def flags(project) -> dict[str, str]:
+    """Summary rows the panel flags, with why: a σ beyond its threshold (``flagged``) or a
+    parameter the data do not determine (``undetermined``); the PDF marks them the same."""
+    res = _result(project)
+    flagged = res.get("flagged") or {}
+    undetermined = res.get("undetermined") or {}
+    out = {}
+    names = [(key, label) for key, label, _ in ANGLES] + \
+        [(f"lever_{key}", label) for key, label, _ in LEVERS]
+    for name, label in names:
+        reason = flagged.get(name) or (
+            f"not determined by the data ({undetermined[name]}); the coarse value is kept"
+            if name in undetermined else "")
+        if reason:
+            out[f"{label} (final, 1\u03c3)"] = str(reason)
+    return out
+
+
 def section(project, ctx: ReportContext) -> list[Flowable]:
     """The pool calibration section's flowables."""
     attrs = project.attrs(RESULT)

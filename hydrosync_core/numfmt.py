@@ -23,7 +23,8 @@ SCALES = {"s": (("s", 1.0), ("ms", 1e3)), "m": (("m", 1.0), ("mm", 1e3)),
           "deg": (("°", 1.0),)}
 
 
-def _finite(value) -> float | None:
+def finite(value) -> float | None:
+    """*value* as a float, or None when it is missing, not a number or not finite."""
     try:
         number = float(value)
     except (TypeError, ValueError):
@@ -56,7 +57,7 @@ def fixed(value, decimals: int = 3, unit: str = "", sign: bool = False) -> str:
     sign : bool
         Show ``+`` on positive values (corrections, differences).
     """
-    number = _finite(value)
+    number = finite(value)
     if number is None:
         return MISSING
     text = _clean(f"{number:{'+' if sign else ''}.{max(int(decimals), 0)}f}")
@@ -71,7 +72,7 @@ def sigma_decimals(sigma, min_decimals: int = 0, max_decimals: int = 12) -> int 
 
     None when σ is missing, zero or not finite.
     """
-    s = _finite(sigma)
+    s = finite(sigma)
     if s is None or s <= 0:
         return None
     exponent = math.floor(math.log10(s))
@@ -89,10 +90,10 @@ def value_sigma(value, sigma, unit: str = "", decimals: int | None = None,
     A missing σ gives the value alone with *decimals* (3 by default); a zero σ is written
     as ``"± 0"`` with the value's *decimals* (an exact, fixed quantity), never ``"± 0.000"``.
     """
-    number = _finite(value)
+    number = finite(value)
     if number is None:
         return MISSING
-    s = _finite(sigma)
+    s = finite(sigma)
     d = decimals if decimals is not None else sigma_decimals(sigma)
     if s is None:
         return fixed(number, 3 if d is None else d, unit, sign)
@@ -103,7 +104,7 @@ def value_sigma(value, sigma, unit: str = "", decimals: int | None = None,
 
 def sigma_text(sigma, unit: str = "", decimals: int | None = None) -> str:
     """σ alone, to two significant digits (``"0.00051 s"``), or ``"—"``."""
-    s = _finite(sigma)
+    s = finite(sigma)
     if s is None:
         return MISSING
     d = decimals if decimals is not None else (sigma_decimals(s) or 0)
@@ -118,7 +119,7 @@ def scaled(sigma, unit: str) -> tuple[str, float]:
     ``122.0 ± 0.5 ms``. Other units are kept.
     """
     options = SCALES.get(unit, ((unit, 1.0),))
-    s = _finite(sigma)
+    s = finite(sigma)
     if len(options) == 1 or s is None or s <= 0 or s >= 0.01:
         return options[0]
     return options[1]
@@ -127,7 +128,7 @@ def scaled(sigma, unit: str) -> tuple[str, float]:
 def quantity(value, sigma, unit: str, sign: bool = False) -> str:
     """:func:`value_sigma` in the display unit :func:`scaled` picks for σ."""
     shown, factor = scaled(sigma, unit)
-    v = _finite(value)
-    s = _finite(sigma)
+    v = finite(value)
+    s = finite(sigma)
     return value_sigma(None if v is None else v * factor, None if s is None else s * factor,
                        shown, sign=sign)

@@ -7,8 +7,6 @@ A survey day of 500 lines has σ ≈ 0.5 ms: ``"0.122 ± 0.000 s"`` becomes
 
 from __future__ import annotations
 
-import math
-
 from hydrosync_core import numfmt
 
 LINE_MIN_DECIMALS = 3
@@ -20,18 +18,10 @@ def latency_text(latency_s, sigma_s) -> str:
     return numfmt.quantity(latency_s, sigma_s, "s", sign=True)
 
 
-def _number(value) -> float | None:
-    try:
-        number = float(value)
-    except (TypeError, ValueError):
-        return None
-    return number if math.isfinite(number) else None
-
-
 def interval_text(low_s, high_s, sigma_s) -> str:
     """The 95 % interval in the unit and to the decimals of :func:`latency_text`."""
     unit, factor = numfmt.scaled(sigma_s, "s")
-    s, low, high = _number(sigma_s), _number(low_s), _number(high_s)
+    s, low, high = numfmt.finite(sigma_s), numfmt.finite(low_s), numfmt.finite(high_s)
     decimals = numfmt.sigma_decimals(s * factor) if s is not None else None
     decimals = 3 if decimals is None else decimals
     if low is None or high is None:

@@ -5,7 +5,10 @@ stderr and exit code 2; the GUI shows the same line. Everything else is a bug (e
 
 Messages quote input sparingly: :func:`quote` clips a piece of a file to
 :data:`QUOTE_LIMIT` characters, and :meth:`InputError.one_line` never returns more than
-:data:`LINE_LIMIT` characters, whatever a library put into the message.
+:data:`LINE_LIMIT` characters after the file location, whatever a library put into the
+message. The location itself is never clipped: a user needs the whole path, and a
+message must read the same wherever the data lives (a longer folder name must not cut
+the reason short).
 """
 
 from __future__ import annotations
@@ -14,7 +17,7 @@ QUOTE_LIMIT = 60
 """Characters of input quoted in a message (beyond that: an ellipsis and the length)."""
 
 LINE_LIMIT = 400
-"""Longest one-line message (file path included)."""
+"""Longest one-line message, not counting the file location that starts it."""
 
 
 def quote(text, limit: int = QUOTE_LIMIT) -> str:
@@ -70,10 +73,9 @@ class InputError(HydroSyncError):
         where = self.file or ""
         if self.line is not None:
             where += f":{self.line}"
-        text = f"{where}: " if where else ""
-        if self.field:
-            text += f"field '{self.field}': "
-        return clip(text + self.message, LINE_LIMIT)
+        text = f"field '{self.field}': " if self.field else ""
+        text = clip(text + self.message, LINE_LIMIT)
+        return f"{where}: {text}" if where else text
 
 
 class ProjectFormatError(InputError):

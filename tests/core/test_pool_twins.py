@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import json
 from dataclasses import replace
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -194,6 +195,29 @@ def test_bad_pass_folders_exit_2_naming_the_file(two_passes, tmp_path, capsys):
     (other / "target.json").write_text(json.dumps(prism_target(np.random.default_rng(99))))
     cases = [(tmp_path / "nowhere", "nowhere"), (empty, "mbes.csv"), (broken, "ins.csv"),
              (other, "target.json")]
+
+    def variant(name: str, changes: dict[str, str | None]) -> Path:
+        """A copy of the good folder with files replaced (text) or removed (None)."""
+        d = tmp_path / name
+        d.mkdir()
+        for f in ("mbes.csv", "ins.csv", "lidar.csv", "setup.json", "target.json"):
+            if f in changes:
+                if changes[f] is not None:
+                    (d / f).write_text(changes[f])
+            else:
+                (d / f).write_bytes(paths[0][f.split(".")[0]].read_bytes())
+        return d
+
+    setup = json.loads(paths[0]["setup"].read_text())
+    setup["lever_arm_m"]["x"] += 0.5
+    lines = paths[0]["mbes"].read_text().splitlines()
+    lines[5] = ",".join(["abc"] + lines[5].split(",")[1:])
+    cases += [(variant("no_lidar", {"lidar.csv": None}), "lidar.csv"),
+              (variant("bad_lidar", {"lidar.csv": "x,y,z\n1,2,three\n"}), "lidar.csv"),
+              (variant("bad_setup", {"setup.json": "{not json"}), "setup.json"),
+              (variant("other_setup", {"setup.json": json.dumps(setup)}), "setup.json"),
+              (variant("bad_mbes", {"mbes.csv": "\n".join(lines) + "\n"}), "mbes.csv"),
+              (variant("no_ins", {"ins.csv": None}), "ins.csv")]
     for folder, name in cases:
         out = tmp_path / "r.json"
         code = main(["pool-calibrate", "--pass", good, "--pass", str(folder), "--json",

@@ -230,16 +230,31 @@ def _single(variant: str, draw: int, rng) -> dict:
 
 
 #: Session designs: headings of the four passes (deg from the wall line). "spread": drawn
-#: within ±8° (what #24 first measured); "crossed": two lines at about -15° and two at
-#: +15° (±3°), so that the wall, 4 m tall, sees the along-track shift of pitch (the
-#: sides facing along the track are only 1-1.3 m tall).
+#: within ±8° (what #24 first measured); "crossed": lines crossing the wall line at about
+#: -15°, +15°, +15°, -15° (±2°), so that the wall, 4 m tall, sees the along-track shift of
+#: pitch (the faces facing along the track are 1-1.3 m tall, and a swath across the track
+#: meets the perpendicular ones only at grazing incidence); each crossed line keeps
+#: CLEARANCE_M from the block tips where it passes them (its range at the target centre is
+#: raised if needed).
 DESIGNS = ("spread", "crossed")
+CLEARANCE_M = 1.5
 
 
-def _headings(design: str, rng, n_passes: int) -> np.ndarray:
+def _design(design: str, rng, ranges: np.ndarray, target: dict) -> tuple[np.ndarray,
+                                                                         np.ndarray, float]:
+    """Headings (deg), ranges at the target centre (m) and the smallest clearance (m)
+    between the track and the block tips (target ENU: wall x = 0, blocks towards -x)."""
+    n = len(ranges)
+    corners = np.concatenate([np.asarray(f["corners"], float) for f in target["faces"]])
+    y_max, depth = float(np.abs(corners[:, 1]).max()), float(-corners[:, 0].min())
     if design == "crossed":
-        return np.resize([-15.0, 15.0, 15.0, -15.0], n_passes) + rng.uniform(-3, 3, n_passes)
-    return rng.uniform(-8, 8, n_passes)
+        heads = np.resize([-15.0, 15.0, 15.0, -15.0], n) + rng.uniform(-2, 2, n)
+        ranges = np.maximum(ranges, y_max * np.tan(np.deg2rad(np.abs(heads))) + depth
+                            + CLEARANCE_M)
+    else:
+        heads = rng.uniform(-8, 8, n)
+    clear = float(np.min(ranges - y_max * np.tan(np.deg2rad(np.abs(heads))) - depth))
+    return heads, ranges, clear
 
 
 def _session(draw: int, rng, n_passes: int = 4, design: str = "spread") -> dict:
@@ -249,7 +264,7 @@ def _session(draw: int, rng, n_passes: int = 4, design: str = "spread") -> dict:
     base = replace(base, **{k: getattr(default, k) for k in NOISE_FIELDS},
                    build_seed=9000 + draw)
     ranges = np.linspace(rng.uniform(3.5, 4.5), rng.uniform(6.0, 7.5), n_passes)
-    heads = _headings(design, rng, n_passes)
+    heads, ranges, clear = _design(design, rng, ranges, base.target)
     sims = [simulate_pool_pass(replace(base, ranges_m=(float(r),), headings_deg=(float(h),)),
                                seed=7000 + 10 * draw + k)
             for k, (r, h) in enumerate(zip(ranges, heads, strict=True))]
@@ -262,6 +277,8 @@ def _session(draw: int, rng, n_passes: int = 4, design: str = "spread") -> dict:
     r = _score(res, ref, sims[0]["truth"], sims[0]["setup"])
     r["sigma_pitch"] = res.joint.sigma_boresight_deg["pitch"] if res.joint else np.nan
     _print(f"session {design} {variant} #{draw}", r, time.perf_counter() - t0)
+    print(f"    ranges {np.round(ranges, 2).tolist()} m, headings {np.round(heads, 1).tolist()}°, "
+          f"clearance {clear:.2f} m, σ pitch {r['sigma_pitch']:.4f}°", flush=True)
     return r
 
 

@@ -178,6 +178,29 @@ def test_two_passes_in_one_adjustment(two_passes, tmp_path, capsys):
     assert "2 passes" in capsys.readouterr().out
 
 
+def test_correction_beyond_the_coarse_accuracy_exits_3(two_passes, tmp_path, capsys,
+                                                      monkeypatch):
+    """The simulated coarse boresight is off by 0.8°, -0.6°, 0.7°; stated as good to ±0.2°
+    (σ of the estimates ≈ 0.01-0.05°, far below the 0.4-0.6° excess), the data contradict
+    it: exit 3, one line naming the parameters, and the JSON lists them under
+    'contradicted' with the faces that carry them — not a calibration."""
+    monkeypatch.setenv("HYDROSYNC_PROGRESS", "off")
+    paths, _ = two_passes
+    out = tmp_path / "r.json"
+    capsys.readouterr()
+    code = main(["pool-calibrate", "--pass", str(paths[0]["mbes"].parent), "--pass",
+                 str(paths[1]["mbes"].parent), "--coarse-tol-deg", "0.2", "--json", str(out)])
+    err = [line for line in capsys.readouterr().err.strip().splitlines()
+           if not line.startswith("[")]
+    assert code == 3 and len(err) == 1 and "contradict" in err[0]
+    doc = json.loads(out.read_text())
+    assert {"roll", "pitch", "yaw"} <= set(doc["contradicted"])
+    for name in ("roll", "yaw"):
+        assert "faces carrying it: " in doc["contradicted"][name]
+        assert "faces carrying it: none" not in doc["contradicted"][name]
+    assert name in err[0]
+
+
 def test_bad_pass_folders_exit_2_naming_the_file(two_passes, tmp_path, capsys):
     paths, _ = two_passes
     good = str(paths[0]["mbes"].parent)

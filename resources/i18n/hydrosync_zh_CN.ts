@@ -3275,6 +3275,42 @@
             <source>ψ RMS</source>
             <translation>ψ RMS</translation>
         </message>
+        <message>
+            <source>Folder…</source>
+            <translation>文件夹…</translation>
+        </message>
+        <message>
+            <source>Add to list</source>
+            <translation>加入列表</translation>
+        </message>
+        <message>
+            <source>What the files hold</source>
+            <translation>文件内容预览</translation>
+        </message>
+        <message>
+            <source>Choose files to see what they hold.</source>
+            <translation>选择文件以查看其内容。</translation>
+        </message>
+        <message>
+            <source>Looks like</source>
+            <translation>内容类型</translation>
+        </message>
+        <message>
+            <source>Import a folder</source>
+            <translation>导入文件夹</translation>
+        </message>
+        <message>
+            <source>Keep this import and choose another kind or file: OK imports everything listed (and the one above).</source>
+            <translation>保留此项导入并选择其他类型或文件:确定将导入列表中的全部项目(以及上方这一项)。</translation>
+        </message>
+        <message>
+            <source>Every file of a folder with an extension the readers accept (hourly logs of one device).</source>
+            <translation>文件夹中所有扩展名可被读取的文件(同一设备的逐小时记录)。</translation>
+        </message>
+        <message>
+            <source>file(s) or a folder; several logs of one kind (a day in hourly files) become one table</source>
+            <translation>文件或文件夹;同一类型的多个记录文件(按小时分割的一天)合并为一张表</translation>
+        </message>
     </context>
     <context>
         <name>hydrosync-patterns</name>
@@ -3669,6 +3705,14 @@ Default: {1}  (--param {2})</source>
         <message>
             <source>⚠ {0}&lt;/span&gt;</source>
             <translation>⚠ {0}&lt;/span&gt;</translation>
+        </message>
+        <message>
+            <source>Reading {0} file(s)…</source>
+            <translation>正在读取 {0} 个文件…</translation>
+        </message>
+        <message>
+            <source>Reading {0} of {1}…</source>
+            <translation>正在读取第 {0} 个文件,共 {1} 个…</translation>
         </message>
     </context>
     <context>

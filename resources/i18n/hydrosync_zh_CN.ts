@@ -3687,8 +3687,8 @@ Default: {1}  (--param {2})</source>
             <translation>{0}:{1} 个 ping,{2} 个测深点,其中 {3} 个在有参考平面的面上;{4}</translation>
         </message>
         <message>
-            <source>{0}&lt;br&gt;&lt;span style='color:#555'&gt;faint discs: laser (reference) · triangles: multibeam · grey dots: soundings on no face&lt;/span&gt;</source>
-            <translation>{0}&lt;br&gt;&lt;span style='color:#555'&gt;浅色圆点:激光(参考)· 三角形:多波束 · 灰点:不在任何面上的测深点&lt;/span&gt;</translation>
+            <source>{0}&amp;nbsp;&amp;nbsp; &lt;span style='color:#555'&gt;faint discs: laser · triangles: multibeam · grey: on no face&lt;/span&gt;</source>
+            <translation>{0}&amp;nbsp;&amp;nbsp; &lt;span style='color:#555'&gt;浅色圆点:激光 · 三角形:多波束 · 灰色:不在任何面上&lt;/span&gt;</translation>
         </message>
         <message>
             <source>σ from: {0}</source>

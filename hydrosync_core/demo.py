@@ -175,7 +175,7 @@ def build_demo(out_dir: str | Path, *, seed: int = DEMO_SEED,
     return outcome
 
 
-def truth_text(value, digits: int = 10) -> str:
+def truth_text(value, digits: int = 8) -> str:
     """Compact one-line text of a simulator's truth (nested dicts/lists of numbers).
 
     Up to *digits* significant digits, trailing zeros dropped: a round truth reads round

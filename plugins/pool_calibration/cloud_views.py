@@ -286,7 +286,8 @@ class GLCloudView(QWidget):
             lo, hi = laser.min(axis=0), laser.max(axis=0)
             centre = (lo + hi) / 2
             self.view.opts["center"] = pg.Vector(*centre)
-            self.view.setCameraPosition(distance=float(2.0 * (hi - lo).max() + 1.0),
+            # Close enough that the target fills the view (at 2x its size half was empty).
+            self.view.setCameraPosition(distance=float(1.6 * (hi - lo).max() + 1.0),
                                         elevation=25, azimuth=200)
 
     def _mbes_xyz(self) -> np.ndarray:

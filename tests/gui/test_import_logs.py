@@ -3,6 +3,7 @@ and Cancel on the worker, and the streamed table moved into the project unread."
 
 from __future__ import annotations
 
+import os
 from pathlib import Path
 
 import numpy as np
@@ -136,7 +137,12 @@ def test_dialog_previews_and_imports_the_seapath_log_and_a_folder_of_hourly_logs
     assert [p.kinds for p in dialog.preview.previews] == [("gnss_log",)] * 4
     assert sum(p.sentences["GGA"] for p in dialog.preview.previews) == 1000
     assert dialog.buttons.button(dialog.buttons.StandardButton.Ok).isEnabled()
-    dialog.grab().save(str(tmp_path / "import_preview_hourly.png"))
+    shot = dialog.grab()
+    shot.save(str(tmp_path / "import_preview_hourly.png"))
+    artifact = os.environ.get("HYDROSYNC_SCREENSHOTS")
+    if artifact and Path(artifact).name != "docs":  # scripts/docs_screenshots.py
+        Path(artifact).mkdir(parents=True, exist_ok=True)
+        shot.save(str(Path(artifact) / "import-dialog-hourly.png"))
     choices = dialog.choices()
     assert [c[0] for c in choices] == ["attitude_log", "gnss_log"]
 

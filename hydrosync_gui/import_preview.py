@@ -141,10 +141,12 @@ class ImportPreview(QWidget):
 
     def _fill(self) -> None:
         self.tree.clear()
-        odd = 0
+        odd = bad = 0
         for p in self.previews:
-            fits = not p.error and (not p.kinds or self._kind in p.kinds)
-            odd += not fits
+            # A table or point cloud (no sentences, no kind guessed) is not judged here.
+            fits = not p.error and (self._kind in p.kinds or not (p.kinds or p.sentences))
+            odd += not fits and not p.error
+            bad += bool(p.error)
             row = QTreeWidgetItem(self.tree, [
                 p.path.rsplit("/", 1)[-1], ", ".join(p.kinds) or "—", p.span_text() or "—",
                 size_text(p.size)])
@@ -163,9 +165,9 @@ class ImportPreview(QWidget):
                 row.setToolTip(1, p.error or f"holds {', '.join(p.kinds)}, not {self._kind}")
         for column in range(len(COLUMNS) - 1):
             self.tree.resizeColumnToContents(column)
-        self.status.setText(self._summary(odd))
+        self.status.setText(self._summary(odd, bad))
 
-    def _summary(self, odd: int) -> str:
+    def _summary(self, odd: int, bad: int) -> str:
         n = len(self.previews)
         text = f"{n} file(s), {size_text(sum(p.size for p in self.previews))}"
         spans = [p for p in self.previews if p.first is not None and p.dated]
@@ -176,4 +178,6 @@ class ImportPreview(QWidget):
             text += f"; {whole.span_text()}"
         if odd:
             text += f". {odd} do not look like {self._kind} (marked)"
+        if bad:
+            text += f". {bad} cannot be read (in red)"
         return text + "."

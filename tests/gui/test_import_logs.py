@@ -176,3 +176,34 @@ def test_preview_of_a_large_log_reads_its_two_ends(tmp_path):
     assert part.kinds == whole.kinds and "attitude_log" in whole.kinds
     bad = preview_file(tmp_path)
     assert bad.error and "is a folder" in bad.error
+
+
+def test_preview_marks_a_file_that_does_not_fit_the_kind(qtbot, tmp_path):
+    """A heading-only log (HDT) chosen as a motion log is marked before OK; a missing
+    file says why in its row, in one line."""
+    from hydrosync_gui.import_preview import MISMATCH, ImportPreview
+
+    log = tmp_path / "gyro.log"
+    body = "HEHDT,218.83,T"
+    checksum = 0
+    for char in body:
+        checksum ^= ord(char)
+    log.write_text(f"${body}*{checksum:02X}\n" * 6)
+    preview = ImportPreview()
+    qtbot.addWidget(preview)
+    preview.show_files([str(log), str(tmp_path / "gone.log")], "attitude_log")
+    qtbot.waitUntil(lambda: not preview.busy(), timeout=10000)
+    gyro, gone = preview.previews
+    assert gyro.sentences.get("HDT", 0) >= 1 and gyro.kinds == ()
+    assert "no such file" in gone.error
+    row = preview.tree.topLevelItem(0)
+    assert row.text(1) == "—"  # fits no import kind
+    assert row.foreground(0).color() == MISMATCH
+    assert "1 do not look like attitude_log" in preview.status.text()
+    assert "1 cannot be read" in preview.status.text()
+    missing = preview.tree.topLevelItem(1)
+    assert "no such file" in missing.child(0).text(0)
+    assert missing.foreground(0).color() != MISMATCH  # an error is red, not orange
+    preview.show_files([str(log)], "csv_table_kind")  # a kind no sentence feeds
+    qtbot.waitUntil(lambda: not preview.busy(), timeout=10000)
+    assert "do not look like" in preview.status.text()

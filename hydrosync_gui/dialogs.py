@@ -83,6 +83,10 @@ class ImportDialog(QDialog):
         self._build_choices()
         self.preview = ImportPreview()
         self.preview.sig_ready.connect(self._on_kind)
+        self.guess_button = QPushButton()
+        self.guess_button.setObjectName("use_guessed_kind")
+        self.guess_button.setVisible(False)
+        self.guess_button.clicked.connect(self._use_guess)
         self.queue_list = QListWidget()
         self.queue_list.setObjectName("import_queue")
         self.queue_list.setMaximumHeight(90)
@@ -154,7 +158,9 @@ class ImportDialog(QDialog):
         form.addRow(self.geoid_label, self.geoid_box)
         form.addRow("", self.heave_note)
         box = QGroupBox("What the files hold")
-        QVBoxLayout(box).addWidget(self.preview)
+        inside = QVBoxLayout(box)
+        inside.addWidget(self.preview)
+        inside.addWidget(self.guess_button, 0, Qt.AlignmentFlag.AlignLeft)
         queue_row = QHBoxLayout()
         queue_row.addWidget(self.add_button, 0,
                             Qt.AlignmentFlag.AlignTop | Qt.AlignmentFlag.AlignLeft)
@@ -234,6 +240,7 @@ class ImportDialog(QDialog):
         ok = self.buttons.button(QDialogButtonBox.StandardButton.Ok)
         ok.setEnabled(self._current_ok() or (bool(self.queue) and not paths))
         self.queue_list.setVisible(bool(self.queue))
+        self._offer_guess()
         self._fit_note()
 
     def _fit_note(self) -> None:
@@ -245,6 +252,32 @@ class ImportDialog(QDialog):
     def resizeEvent(self, event) -> None:  # noqa: N802 (Qt API)
         super().resizeEvent(event)
         self._fit_note()
+
+    def guessed_kind(self) -> str | None:
+        """The one import kind every previewed log fits when the chosen kind is not among
+        them (a GNSS log picked under "attitude CSV"); None otherwise."""
+        logs = [p for p in self.preview.previews if p.kinds and not p.error]
+        if not logs or len(logs) < len(self.preview.previews):
+            return None
+        common = set.intersection(*(set(p.kinds) for p in logs))
+        if str(self.kind_box.currentData()) in common:
+            return None
+        fits = [k for k in logs[0].kinds if k in common and k in self._kinds]
+        return fits[0] if len(fits) == 1 else None
+
+    @Slot()
+    def _offer_guess(self) -> None:
+        kind = self.guessed_kind()
+        self.guess_button.setVisible(kind is not None)
+        if kind is not None:
+            self.guess_button.setText(f"Import as {kind} (what the files hold)")
+
+    @Slot()
+    def _use_guess(self) -> None:
+        kind = self.guessed_kind()
+        if kind is not None:
+            self.kind_box.setCurrentIndex(self.kind_box.findData(kind))
+        self.guess_button.setVisible(False)
 
     @Slot()
     def _on_add(self) -> None:

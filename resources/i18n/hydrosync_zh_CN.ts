@@ -3714,6 +3714,10 @@ Default: {1}  (--param {2})</source>
             <source>Reading {0} of {1}…</source>
             <translation>正在读取第 {0} 个文件,共 {1} 个…</translation>
         </message>
+        <message>
+            <source>Import as {0} (what the files hold)</source>
+            <translation>按 {0} 导入(与文件内容相符)</translation>
+        </message>
     </context>
     <context>
         <name>signoff</name>

@@ -207,3 +207,26 @@ def test_preview_marks_a_file_that_does_not_fit_the_kind(qtbot, tmp_path):
     preview.show_files([str(log)], "csv_table_kind")  # a kind no sentence feeds
     qtbot.waitUntil(lambda: not preview.busy(), timeout=10000)
     assert "do not look like" in preview.status.text()
+
+
+@pytest.mark.skipif(not GNSS_DAY.exists(), reason="the real tagged logs are absent")
+def test_dialog_offers_the_kind_the_files_hold(qtbot, tmp_path):
+    """A GNSS log chosen under the motion-log kind: the preview offers 'Import as
+    gnss_log'; one click switches the kind, and the offer goes."""
+    from hydrosync_core.importers.kinds import KINDS
+    from hydrosync_gui.dialogs import ImportDialog
+
+    dialog = ImportDialog(KINDS, str(tmp_path))
+    qtbot.addWidget(dialog)
+    dialog.show()
+    dialog.kind_box.setCurrentIndex(dialog.kind_box.findData("attitude_log"))
+    dialog.path_edit.setText(str(GNSS_DAY))
+    qtbot.waitUntil(lambda: not dialog.preview.busy(), timeout=10000)
+    assert dialog.guessed_kind() == "gnss_log"
+    assert dialog.guess_button.isVisible() and "gnss_log" in dialog.guess_button.text()
+    dialog.guess_button.click()
+    assert dialog.kind_box.currentData() == "gnss_log"
+    assert not dialog.guess_button.isVisible() and dialog.guessed_kind() is None
+    dialog.path_edit.setText(str(SEAPATH))  # fits both log kinds: nothing to offer
+    qtbot.waitUntil(lambda: not dialog.preview.busy(), timeout=10000)
+    assert not dialog.guess_button.isVisible()

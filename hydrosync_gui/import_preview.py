@@ -125,19 +125,23 @@ class ImportPreview(QWidget):
             return out
 
         worker = Worker(work)
-        worker.signals.sig_progress.connect(lambda _f, text: self.status.setText(text))
-        worker.signals.sig_finished.connect(self._on_result)
-        worker.signals.sig_done.connect(self._on_done)
+        # Each slot names its worker: a late signal of a replaced survey is dropped.
+        worker.signals.sig_progress.connect(
+            lambda _f, text, w=worker: w is self._worker and self.status.setText(text))
+        worker.signals.sig_finished.connect(lambda out, w=worker: self._on_result(w, out))
+        worker.signals.sig_done.connect(lambda w=worker: self._on_done(w))
         self._worker = worker
         start(worker)
 
-    def _on_result(self, previews: list[FilePreview]) -> None:
-        self.previews = previews
-        self._fill()
+    def _on_result(self, worker: Worker, previews: list[FilePreview]) -> None:
+        if worker is self._worker:
+            self.previews = previews
+            self._fill()
 
-    def _on_done(self) -> None:
-        self._worker = None
-        self.sig_ready.emit()
+    def _on_done(self, worker: Worker) -> None:
+        if worker is self._worker:
+            self._worker = None
+            self.sig_ready.emit()
 
     def _fill(self) -> None:
         self.tree.clear()

@@ -230,3 +230,21 @@ def test_dialog_offers_the_kind_the_files_hold(qtbot, tmp_path):
     dialog.path_edit.setText(str(SEAPATH))  # fits both log kinds: nothing to offer
     qtbot.waitUntil(lambda: not dialog.preview.busy(), timeout=10000)
     assert not dialog.guess_button.isVisible()
+
+
+def test_a_replaced_survey_never_shows(qtbot, tmp_path):
+    """Files changed while their survey runs: only the new files' rows are shown."""
+    from hydrosync_gui.import_preview import ImportPreview
+
+    first, second = tmp_path / "a.log", tmp_path / "b.log"
+    first.write_bytes(awkward_log(60.0, seed=1))
+    second.write_bytes(awkward_log(30.0, seed=2))
+    preview = ImportPreview()
+    qtbot.addWidget(preview)
+    preview.show_files([str(first)] * 3, "attitude_log")
+    qtbot.waitUntil(lambda: preview._worker is not None, timeout=5000)
+    preview.show_files([str(second)], "attitude_log")
+    qtbot.waitUntil(lambda: not preview.busy(), timeout=10000)
+    qtbot.wait(100)  # any late signal of the first survey is delivered by now
+    assert [p.path for p in preview.previews] == [str(second)]
+    assert preview.tree.topLevelItemCount() == 1

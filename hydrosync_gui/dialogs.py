@@ -247,7 +247,7 @@ class ImportDialog(QDialog):
         """A wrapped label in a form gets its one-line height: give it the lines it needs
         at its width, so the heave-sign note is never clipped."""
         width = max(self.heave_note.width(), 200)
-        self.heave_note.setMinimumHeight(self.heave_note.heightForWidth(width))
+        self.heave_note.setMinimumHeight(max(self.heave_note.heightForWidth(width), 0))
 
     def resizeEvent(self, event) -> None:  # noqa: N802 (Qt API)
         super().resizeEvent(event)

@@ -3311,6 +3311,14 @@
             <source>file(s) or a folder; several logs of one kind (a day in hourly files) become one table</source>
             <translation>文件或文件夹;同一类型的多个记录文件(按小时分割的一天)合并为一张表</translation>
         </message>
+        <message>
+            <source>No motion sentence recognised yet: choose the heave sign of your sensor.</source>
+            <translation>尚未识别到运动语句:请选择传感器的升沉正方向。</translation>
+        </message>
+        <message>
+            <source>The attitude CSV format is heave positive up; change it only if your file differs.</source>
+            <translation>姿态 CSV 格式规定升沉向上为正;仅当文件不同时才更改。</translation>
+        </message>
     </context>
     <context>
         <name>hydrosync-patterns</name>
@@ -3717,6 +3725,18 @@ Default: {1}  (--param {2})</source>
         <message>
             <source>Import as {0} (what the files hold)</source>
             <translation>按 {0} 导入(与文件内容相符)</translation>
+        </message>
+        <message>
+            <source>{0} found: documented heave positive {1}. Press OK to confirm, or change it if your sensor is set up otherwise.</source>
+            <translation>找到 {0}:文档规定的升沉正方向为 {1}。按“确定”确认;若传感器设置不同,请更改。</translation>
+        </message>
+        <message>
+            <source>{0} file(s), {1}; {2}.</source>
+            <translation>{0} 个文件,{1};{2}。</translation>
+        </message>
+        <message>
+            <source>{0} file(s), {1}.</source>
+            <translation>{0} 个文件,{1}。</translation>
         </message>
     </context>
     <context>

@@ -16,6 +16,7 @@ from PySide6.QtWidgets import (
     QWidget,
 )
 
+from hydrosync_gui.i18n import tr
 from plugins.pool_calibration.cloud_views import (
     KIND_SHADES,
     GLCloudView,
@@ -102,7 +103,9 @@ class CloudBox(QWidget):
         for k in shown:
             by_kind.setdefault(kinds[k], []).append(str(names[k]))
         order = [kind for kind in KIND_SHADES if kind in by_kind]
-        swatches = [f"<span style='color:{KIND_SHADES[kind][0]}'>■</span>&nbsp;{kind}"
+        # Kind names in the workbench's language here: inside the rich text the shell's
+        # relabelling cannot reach them (it translates the note after them).
+        swatches = [f"<span style='color:{KIND_SHADES[kind][0]}'>■</span>&nbsp;{tr(kind)}"
                     + (f"&nbsp;({len(by_kind[kind])})" if len(by_kind[kind]) > 1 else "")
                     for kind in order]
         self.legend.setText(

@@ -3319,6 +3319,30 @@
             <source>The attitude CSV format is heave positive up; change it only if your file differs.</source>
             <translation>姿态 CSV 格式规定升沉向上为正;仅当文件不同时才更改。</translation>
         </message>
+        <message>
+            <source>perpendicular side</source>
+            <translation>垂直侧面</translation>
+        </message>
+        <message>
+            <source>oblique side</source>
+            <translation>斜侧面</translation>
+        </message>
+        <message>
+            <source>top</source>
+            <translation>顶面</translation>
+        </message>
+        <message>
+            <source>underside</source>
+            <translation>底面</translation>
+        </message>
+        <message>
+            <source>floor</source>
+            <translation>池底</translation>
+        </message>
+        <message>
+            <source>other</source>
+            <translation>其他</translation>
+        </message>
     </context>
     <context>
         <name>hydrosync-patterns</name>

@@ -60,3 +60,25 @@ def test_legend_is_one_line_per_kind_with_every_name_on_hover(qtbot):
     assert box.stack.minimumHeight() == VIEW_MIN_HEIGHT
     qtbot.wait(50)  # the layout takes the new text on the next pass
     assert box.legend.heightForWidth(box.legend.width()) <= box.legend.height()
+
+
+def test_legend_kinds_follow_the_language(qtbot, settings):
+    from hydrosync_gui import i18n
+
+    names, roles = _demo_faces()
+    face = np.arange(len(names))
+    clouds = {"laser_xyz": np.zeros((face.size, 3)), "laser_face": face,
+              "mbes_before_xyz": np.zeros((0, 3)), "mbes_after_xyz": None,
+              "mbes_face": np.zeros(0, int)}
+    box = CloudBox()
+    qtbot.addWidget(box)
+    i18n.set_language("zh_CN", settings)
+    try:
+        box.draw(names, clouds, roles)
+        box.show()
+        qtbot.wait(20)
+        text = box.legend.text()
+        assert "斜侧面" in text and "顶面" in text and "底面" in text
+        assert "三角形" in text  # the note after the kinds, by the shell's relabelling
+    finally:
+        i18n.set_language("en", settings)

@@ -26,7 +26,7 @@ from plugins.pool_calibration.cloud_views import (
     set_face_kinds,
 )
 
-VIEW_MIN_HEIGHT = 240
+VIEW_MIN_HEIGHT = 200
 """Pixels the cloud view keeps when the face table below it grows (at 1366×768 the
 splitter would otherwise give the view a strip)."""
 
@@ -60,6 +60,10 @@ class CloudBox(QWidget):
         self.legend.setObjectName("face_kind_legend")
         self.legend.setWordWrap(True)
         self.legend.setTextFormat(Qt.TextFormat.RichText)
+        # A wrapped label's height-for-width is not a minimum its layout honours: reserve
+        # the two lines the legend takes at 1366 px, or a squeezed splitter lets the view
+        # cover it.
+        self.legend.setMinimumHeight(2 * self.legend.fontMetrics().lineSpacing() + 2)
         toggle = QHBoxLayout()
         toggle.addWidget(QLabel("Multibeam georeferenced:"))
         toggle.addWidget(self.before_radio)

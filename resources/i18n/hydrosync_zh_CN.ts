@@ -556,6 +556,14 @@
             <translation>面的配对与参考平面</translation>
         </message>
         <message>
+            <source>Results</source>
+            <translation>结果</translation>
+        </message>
+        <message>
+            <source>Convergence</source>
+            <translation>收敛</translation>
+        </message>
+        <message>
             <source>Faces</source>
             <translation>面</translation>
         </message>

@@ -237,14 +237,16 @@ def register(sub: argparse._SubParsersAction) -> None:
     )
     p.add_argument("project", help="project file (.h5)")
     for name, kind in kinds().items():
-        flags = [f"--{name}"] + ([f"--{name.replace('_', '-')}"] if "_" in name else [])
+        # The hyphenated spelling first, so that usage and help show it; the underscore
+        # spelling of older scripts keeps working.
+        flags = list(dict.fromkeys([f"--{name.replace('_', '-')}", f"--{name}"]))
         more = f" (repeatable: {kind.repeatable})" if kind.repeatable else ""
         p.add_argument(*flags, dest=name, metavar="FILE", action="append",
                        help=kind.description + more)
     p.add_argument(
         "--heave-positive", choices=("up", "down"), default=None,
         help="direction of positive heave in the --attitude CSV (formats.md: up) or the "
-        "--attitude_log file (required for PSXN,23; TSS1 and PASHR are up; Seapath PSXN,23 is "
+        "--attitude-log file (required for PSXN,23; TSS1 and PASHR are up; Seapath PSXN,23 is "
         "documented positive down); stored heave is always positive up",
     )
     p.add_argument(

@@ -2592,8 +2592,8 @@
             <translation>将 GNSS 误差建模为白噪声加上此相关时间的高斯-马尔可夫误差(白噪声部分按残差缩放,文件 σ 的其余部分为相关误差);0 = 由 auto 检验选定</translation>
         </message>
         <message>
-            <source>more passes, slower, at other ranges</source>
-            <translation>更多测次、更慢航速、不同距离</translation>
+            <source>more passes, slower, at other ranges and on lines crossing the wall at about ±15°</source>
+            <translation>更多测次、更慢航速、不同距离,并沿与中心墙约成 ±15° 的测线</translation>
         </message>
         <message>
             <source>motion</source>
@@ -3228,8 +3228,8 @@
             <translation>σ 超过阈值</translation>
         </message>
         <message>
-            <source>σ budget of the joint adjustment: the 1σ each source alone gives each parameter (their squares add up to the total; the largest in bold). Soundings: more passes, slower, at other ranges; build tolerance: survey the as-built below-water blocks; laser planes: a denser scan of the above-water faces; INS: a more accurate INS; held parameters: the coarse error of undetermined ones.</source>
-            <translation>联合平差的 σ 预算:各误差源单独对各参数产生的 1σ(其平方和为总量;最大者加粗)。测深点:更多测次、更慢航速、不同距离;建造容差:实测水下块体的竣工尺寸;激光平面:对水上面进行更密的扫描;惯导:更高精度的惯导;固定参数:无法确定参数的粗值误差。</translation>
+            <source>σ budget of the joint adjustment: the 1σ each source alone gives each parameter (their squares add up to the total; the largest in bold). Soundings: more passes, slower, at other ranges and on lines crossing the wall at about ±15°; build tolerance: survey the as-built below-water blocks; laser planes: a denser scan of the above-water faces; INS: a more accurate INS; held parameters: the coarse error of undetermined ones.</source>
+            <translation>联合平差的 σ 预算:各误差源单独对各参数产生的 1σ(其平方和为总量;最大者加粗)。测深点:更多测次、更慢航速、不同距离,并沿与中心墙约成 ±15° 的测线;建造容差:实测水下块体的竣工尺寸;激光平面:对水上面进行更密的扫描;惯导:更高精度的惯导;固定参数:无法确定参数的粗值误差。</translation>
         </message>
         <message>
             <source>σ down</source>

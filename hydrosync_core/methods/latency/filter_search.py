@@ -42,6 +42,8 @@ class FilterSearch:
     """Per candidate (order, cut-off): (implied Δt, its σ) in s."""
     none_delay_s: float = float("nan")
     """The Δt the bands imply without a filter (s): the limit of long cut-offs."""
+    none_p: float = float("nan")
+    """The band check's p-value without a filter."""
 
     def joint(self) -> tuple[float, float] | None:
         """(Δt, σ) in s of the joint estimate when the data determine the filter: the best
@@ -86,10 +88,12 @@ class FilterSearch:
                 "the sensor's settings confirm it (heave_filter = highpass)")
 
     def far_fits(self, latency_s: float, tolerance_s: float) -> list:
-        """Fitting candidates (order, cut-off) whose implied Δt lies further than
-        *tolerance_s* from *latency_s* (s)."""
+        """Candidates (order, cut-off) that fit the bands as well as one pure delay does
+        (p ≥ P_FIT, or ≥ the pure delay's own p when that is lower) and whose implied Δt
+        lies further than *tolerance_s* from *latency_s* (s)."""
+        level = min(P_FIT, self.none_p) if np.isfinite(self.none_p) else P_FIT
         return [k for k, v in self.p_values.items()
-                if np.isfinite(v) and v >= P_FIT and k in self.delays
+                if np.isfinite(v) and v >= level and k in self.delays
                 and abs(self.delays[k][0] - latency_s) > tolerance_s]
 
     def not_excluded_text(self, far: list) -> str:
@@ -117,6 +121,7 @@ def search_filter(spectra: PooledSpectra, latency_s: float) -> FilterSearch:
     p_values, delays = {}, {}
     plain = band_check(coherent_phase(spectra), latency_s)
     none_delay = _implied(plain)[0] if plain.determined else float("nan")
+    none_p = plain.p_value if plain.determined else float("nan")
     for order in ORDERS:
         for period in PERIODS_S:
             def lead(f, order=order, period=period):
@@ -128,11 +133,11 @@ def search_filter(spectra: PooledSpectra, latency_s: float) -> FilterSearch:
                 delays[(order, period)] = _implied(check)
     finite = {k: v for k, v in p_values.items() if np.isfinite(v)}
     if not finite or max(finite.values()) < P_FIT:
-        return FilterSearch(p_values, None, False, delays, none_delay)
+        return FilterSearch(p_values, None, False, delays, none_delay, none_p)
     best = max(finite, key=finite.get)
     implied = [delays[k][0] for k, v in finite.items() if v >= P_FIT]
     determined = max(implied) - min(implied) <= 2.0 * delays[best][1]
-    return FilterSearch(p_values, best, determined, delays, none_delay)
+    return FilterSearch(p_values, best, determined, delays, none_delay, none_p)
 
 
 def _implied(check) -> tuple[float, float]:

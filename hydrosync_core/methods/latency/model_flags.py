@@ -88,9 +88,14 @@ def _flags(result: LatencyResult, check: ModelCheck, p: LatencyParams
             f"({check.bands_text()}; χ² p = {check.p_value:.1g}): {_cause(p)}; σ widened "
             f"by the band spread {check.spread_s * 1e3:.0f} ms")
         notes.append("not a pure delay")
+    elif not check.determined and p.heave_filter == "unknown":
+        warnings.append("delay model: not checked (too few coherent frequencies or lines to "
+                        "compare bands), so the lead of an undeclared heave filter cannot be "
+                        "excluded: declare the heave filter (none, compensated or highpass)")
+        notes.append("not checked, heave filter unknown")
     elif not check.determined:
-        warnings.append("delay model not checked: too few coherent frequencies to compare "
-                        "bands")
+        warnings.append("delay model not checked: too few coherent frequencies or lines to "
+                        "compare bands")
     other = result.diagnostics.get("other_estimate")
     if other and np.isfinite(other["latency_s"]) and sigma > 0:
         gap = abs(float(other["latency_s"]) - float(result.latency_s))

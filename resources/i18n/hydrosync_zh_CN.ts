@@ -2976,8 +2976,8 @@
             <translation>所有角度改正数都小于此值时最小二乘迭代停止</translation>
         </message>
         <message>
-            <source>the motion sensor's heave filter: highpass = a causal high-pass (order and cut-off period below), applied to the GNSS heights too so that both carry its phase; compensated/none = no phase at wave periods; unknown = not declared (the delay-model check flags a filter's phase)</source>
-            <translation>姿态传感器的升沉滤波器:highpass = 因果高通滤波(阶数和截止周期见下),同样作用于 GNSS 高程,使两者具有相同相位;compensated/none = 在波浪周期上无相位;unknown = 未声明(时延模型检验会标记滤波器的相位)</translation>
+            <source>the motion sensor's heave filter: highpass = a causal high-pass (order and cut-off period below), whose phase is removed from the heave and whose gain is applied to the GNSS heights; compensated/none = no phase at wave periods; unknown = not declared (the delay-model check flags a filter's phase or says when it cannot exclude one)</source>
+            <translation>姿态传感器的升沉滤波器:highpass = 因果高通滤波(阶数和截止周期见下),从升沉中去除其相位,并将其增益作用于 GNSS 高程;compensated/none = 在波浪周期上无相位;unknown = 未声明(时延模型检验会标记滤波器的相位,或说明无法排除滤波器)</translation>
         </message>
         <message>
             <source>the patent's iteration stops when every angle correction is below this</source>

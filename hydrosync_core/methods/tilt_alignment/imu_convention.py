@@ -39,6 +39,21 @@ def _interval_means(x: np.ndarray) -> np.ndarray:
     return out
 
 
+def _interval_rotations(time: np.ndarray, x: np.ndarray) -> np.ndarray:
+    """Rotation vector over ``[t_k, t_(k+1))`` divided by its length (rad/s) from
+    instantaneous body rates *x* (N, 3): the interval mean (:func:`_interval_means`) plus
+    the coning term ``Δt/12·ω_k × ω_(k+1)`` (Bortz's equation for a rate linear across the
+    interval). Without it a coning motion (an elliptic swing with a twist) turned the
+    integrated attitude by 1.4 mrad over a fast three-sweep swing at 50 Hz, which the
+    adjustment read as 1.9× the gyro noise (issue #30)."""
+    x = np.asarray(x, float)
+    out = _interval_means(x)
+    if x.shape[0] >= 2:
+        dt = np.diff(np.asarray(time, float))[:, None]
+        out[:-1] += dt / 12.0 * np.cross(x[:-1], x[1:])
+    return out
+
+
 def to_model_grid(time: np.ndarray, gyro: np.ndarray, accel: np.ndarray, convention: str
                   ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """The record on the solver's grid.
@@ -50,7 +65,8 @@ def to_model_grid(time: np.ndarray, gyro: np.ndarray, accel: np.ndarray, convent
 
     Returns
     -------
-    tau : (N,) model times (s). gyro : (N, 3) mean rate over ``[τ_k, τ_(k+1))`` (rad/s).
+    tau : (N,) model times (s). gyro : (N, 3) rotation over ``[τ_k, τ_(k+1))`` divided by
+    its length (rad/s; interval rows are taken as such increments, coning included).
     accel : (N, 3) specific force (m/s²) as recorded: at ``τ_k`` (instant) or the mean
     over ``[τ_k, τ_(k+1))`` (interval); :func:`.joint.numerov_weights` and
     :func:`.joint.interval_weights` turn either into what the model's second differences
@@ -58,7 +74,7 @@ def to_model_grid(time: np.ndarray, gyro: np.ndarray, accel: np.ndarray, convent
     """
     time = np.asarray(time, float)
     if convention == "instant":
-        return time, _interval_means(gyro), np.asarray(accel, float)
+        return time, _interval_rotations(time, gyro), np.asarray(accel, float)
     if convention not in TAG_FRACTION:
         raise ValueError(f"unknown IMU convention {convention!r}")
     dt = float(np.median(np.diff(time)))

@@ -165,7 +165,7 @@ NOISE_FLOOR_SHARE = 0.05
 def _noise_levels(time: np.ndarray, gyro: np.ndarray, accel: np.ndarray, p: TiltParams
                   ) -> tuple[float, float]:
     """Per-row white noise of the gyros (rad/s) and accelerometers (m/s²) as recorded
-    (third differences, :func:`.joint.white_sigma`), floored at
+    (fifth differences, :func:`.joint.white_sigma`), floored at
     :data:`NOISE_FLOOR_SHARE` of the grade's; the grade's when the record is too short."""
     rate = 1.0 / float(np.median(np.diff(time)))
     grade = p.grade

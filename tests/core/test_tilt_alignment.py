@@ -180,7 +180,7 @@ def test_a_swing_in_one_plane_is_warned_across_the_plane_and_an_ellipse_is_not()
     # is the tilt out of the plane. The swing plane is body y–z (roll only), at heading
     # 123° the pole leans towards 213°/33°: the weak direction is across it, 123°/303°.
     # A consumer IMU (bias prior 0.04 m/s²: l·b/g = 7.6 mm at 1σ) leaves the tip beyond
-    # the tolerance at 99 %.
+    # the tolerance at 95 % (the warning's level).
     planar = SwingConfig(tilt_deg=20.0, shape_ratio=0.0, twist_deg=0.0, wobble_deg=0.1,
                          azimuth_deg=0.0, heading_deg=123.0, accel_bias_m_s2=(0.04, 0.0, 0.0))
     sim = simulate_swing(planar, seed=1)
@@ -192,7 +192,7 @@ def test_a_swing_in_one_plane_is_warned_across_the_plane_and_an_ellipse_is_not()
     assert abs(abs(math.degrees(math.atan2(weak[1], weak[0])) % 180.0 - 123.0)) < 5.0
     assert sol.joint.bias_share > 0.9                 # the bias prior is the weak σ
 
-    assert sol.joint.horizontal_radius_m(0.99) > 0.01          # σ says it, not only the text
+    assert sol.joint.horizontal_radius_m(0.95) > 0.01          # σ says it, not only the text
     err = j.tip - sim["truth"]["tip_ned"]
     assert abs(err[:2] @ weak) < 1.96 * sol.joint.weak_sigma_m
     # the same pole swung in an ellipse with a twist: no warning, tip well within 1 cm
@@ -203,6 +203,26 @@ def test_a_swing_in_one_plane_is_warned_across_the_plane_and_an_ellipse_is_not()
     assert j.ok and j.warning is None and not sol.warnings
     assert 1.96 * sol.joint.weak_sigma_m < 0.01
     assert np.hypot(*(j.tip - sim["truth"]["tip_ned"])[:2]) < 0.01
+
+
+def test_the_warning_separates_good_from_bad_consumer_swings():
+    """Issue #30, item 3, on the hardest grade: 30 random consumer-grade swings (15-60°,
+    every convention, 50-200 Hz; 28 tips within 1 cm, the largest error 18 mm): no tip
+    without the warning is beyond 1 cm, and the warning fires on at most a fifth of the
+    tips within 1 cm (the issue's bound).
+
+    Power: this fixed draw is a regression check of the rule, not its statistics (those
+    are the benchmark's: 20 % of the good consumer tips over 80 swings). Here the 95 %
+    rule flags 7 % of the good tips; the former 99 % rule flags 25 % and fails; a σ too
+    small (no warning on the two tips beyond 1 cm) fails the first assertion.
+    """
+    from hydrosync_core.methods.tilt_alignment.montecarlo import run_monte_carlo, statistics
+
+    mc = run_monte_carlo(30, TiltParams(imu_grade="consumer"), seed=31, grade="consumer")
+    s = statistics(mc, "joint")
+    assert s["undetermined"] == 0 and s["h_within_1cm"] < 1.0   # a draw with bad tips
+    assert s["h_within_1cm_quiet"] == 1.0, s
+    assert s["warned_within_1cm"] <= 0.2, s
 
 
 def test_monte_carlo_statistics_give_sigma_coverage_and_the_warned_share():

@@ -174,11 +174,13 @@ def _matrices(angles: np.ndarray) -> np.ndarray:
 
 def _noise(rng: np.random.Generator, sigma: float, shape: tuple, taps: int) -> np.ndarray:
     """White noise of per-sample σ *sigma*, or (taps > 1) its moving average over *taps*
-    samples scaled by √taps: the same low-frequency density (angle / velocity random walk)
-    with the high frequencies a sensor's digital low-pass removes."""
+    samples: a sensor's digital low-pass, which keeps the low-frequency density (angle /
+    velocity random walk, the grade's number) and lowers the per-sample σ to σ/√taps.
+    (Scaled back up by √taps, as before, the random walk was √taps times the grade's:
+    the solver rightly reported 1.4× and 2.0× the grade's noise on those records.)"""
     if taps <= 1:
         return rng.normal(0, sigma, shape)
-    raw = rng.normal(0, sigma * math.sqrt(taps), (shape[0] + taps - 1, *shape[1:]))
+    raw = rng.normal(0, sigma, (shape[0] + taps - 1, *shape[1:]))
     c = np.cumsum(np.vstack([np.zeros((1, *shape[1:])), raw]), axis=0)
     return (c[taps:] - c[:-taps]) / taps
 

@@ -40,10 +40,11 @@ TIME_OFFSET_MIN_S = 0.002
 #: this probability is wider, i.e. when the honest σ gives the tip more than a 5 % chance of
 #: lying beyond the tolerance (95 %: the confidence level survey standards such as IHO S-44
 #: state). Issue #30's rule — a swing without the warning is within 1 cm, and at most a
-#: fifth of the tips within 1 cm are warned — then holds for every grade: at 99 % it
-#: flagged 47 % of the good consumer tips, whose σ really is about 3 mm (the 99 % circle
-#: of 3 mm is 9-10 mm); on 240 swings of the three grades (σ coverage 97 % at 95 %) no
-#: tip without the warning was beyond 1 cm at either level (see docs/benchmarks.md).
+#: fifth of the tips within 1 cm are warned — then holds for MEMS and industrial IMUs (0 %
+#: warned) and sits at its bound for consumer ones (20-22 %, as their own σ predict: 18 %;
+#: at 99 % it flagged 47 %: their σ really is about 3 mm, and the 99 % circle of 3 mm is
+#: 9-10 mm); on 460 swings of the three grades no tip without the warning was beyond 1 cm
+#: (docs/benchmarks.md).
 WARN_PROBABILITY = 0.95
 
 

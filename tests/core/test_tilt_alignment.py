@@ -35,11 +35,23 @@ def _solve(sim, params=None):
                         imu_convention=sim["truth"]["config"].imu_convention)
 
 
-def test_gyro_propagation_reproduces_the_simulated_attitude():
-    # interval samples tagged at the start are the increments the propagation chains
-    sim = simulate_swing(noise_free(SwingConfig(imu_convention="interval-start")), seed=1)
-    C = propagate(sim["truth"]["C"][0], sim["time"], sim["gyro"])
-    assert np.max(np.abs(C - sim["truth"]["C"])) < 1e-9
+@pytest.mark.parametrize("convention", ["instant", "interval-start"])
+def test_gyro_propagation_reproduces_the_simulated_attitude(convention):
+    """A fast coning motion (three sweeps of a 50° ellipse with a 15° twist, 50 Hz): the
+    model grid's increments (:func:`.imu_convention.to_model_grid`, coning term included)
+    chain to the true attitude within 0.1 mrad over the record (measured 0.05 / 0.02
+    mrad; without the coning term 1.4 mrad either way, which the adjustment read as
+    1.6-1.9× the gyro noise)."""
+    from hydrosync_core.methods.tilt_alignment.imu_convention import to_model_grid
+    from hydrosync_core.rotations import log_so3
+
+    cfg = SwingConfig(tilt_deg=50, sweeps=3, shape_ratio=0.5, twist_deg=15.0,
+                      imu_rate_hz=50.0, imu_convention=convention)
+    sim = simulate_swing(noise_free(cfg), seed=4)
+    t, w, _ = to_model_grid(sim["time"], sim["gyro"], sim["accel"], convention)
+    C = propagate(sim["truth"]["C"][0], t, w)         # interval-start: model times = tags
+    err = log_so3(np.einsum("kji,kjl->kil", sim["truth"]["C"], C))
+    assert np.max(np.linalg.norm(err, axis=1)) < 1e-4
 
 
 def test_mahony_levels_a_still_pole_and_keeps_heading_zero():

@@ -192,8 +192,9 @@ def _imu_samples(cfg: SwingConfig, t: np.ndarray, wob: tuple, scale: float
 
     The motion is sampled every ``Δt/OVERSAMPLE`` from one interval before the first tag to
     one after the last; the antenna acceleration is the second difference there. An
-    interval sample's rate is the rotation over its interval divided by ``Δt`` (an
-    increment, exact), its specific force the trapezoid mean over the interval.
+    interval sample's rate is the raw increment ``∫ω dt`` over its interval divided by
+    ``Δt`` (the fine steps' rotation vectors summed), its specific force the trapezoid
+    mean over the interval.
     """
     dt = 1.0 / cfg.imu_rate_hz
     m = OVERSAMPLE
@@ -212,8 +213,11 @@ def _imu_samples(cfg: SwingConfig, t: np.ndarray, wob: tuple, scale: float
         f = ff[tags]
     else:
         start = tags - int(round(TAG_FRACTION[cfg.imu_convention] * m))
-        rel = np.einsum("kji,kjl->kil", Cf[start], Cf[start + m])
-        gyro = log_so3(rel) / dt
+        # raw increment ∫ω dt / Δt (formats.md: the mean rate), summed over the fine
+        # steps — not the interval's rotation, which differs by the coning term
+        fine = log_so3(np.einsum("kji,kjl->kil", Cf[:-1], Cf[1:]))
+        cum = np.vstack([np.zeros(3), np.cumsum(fine, axis=0)])
+        gyro = (cum[start + m] - cum[start]) / dt
         idx = start[:, None] + np.arange(m + 1)[None, :]
         wts = np.full(m + 1, 1.0 / m)
         wts[[0, -1]] *= 0.5

@@ -239,7 +239,7 @@ class PoolCalibrationPanel(PluginPanel):
         self.face_table.fill(faces)
         self.iteration_table.clear()
         self.convergence.show_table(None, None, self.log_check.isChecked())
-        self.cloud_box.draw([str(n) for n in faces["face"]], clouds)
+        self.cloud_box.draw([str(n) for n in faces["face"]], clouds, faces.get("role"))
         self.tabs.setCurrentWidget(self.face_table)
 
     def _pass_starts(self):
@@ -269,7 +269,7 @@ class PoolCalibrationPanel(PluginPanel):
         self._draw_convergence()
         if all(project.exists(f"{RESULT}/plan/{k}") for k in PLAN):
             clouds = {k: project.get(f"{RESULT}/plan/{k}") for k in PLAN}
-            self.cloud_box.draw([str(n) for n in faces["face"]], clouds)
+            self.cloud_box.draw([str(n) for n in faces["face"]], clouds, faces.get("role"))
         else:
             self.cloud_box.clear()
 

@@ -3275,6 +3275,74 @@
             <source>ψ RMS</source>
             <translation>ψ RMS</translation>
         </message>
+        <message>
+            <source>Folder…</source>
+            <translation>文件夹…</translation>
+        </message>
+        <message>
+            <source>Add to list</source>
+            <translation>加入列表</translation>
+        </message>
+        <message>
+            <source>What the files hold</source>
+            <translation>文件内容预览</translation>
+        </message>
+        <message>
+            <source>Choose files to see what they hold.</source>
+            <translation>选择文件以查看其内容。</translation>
+        </message>
+        <message>
+            <source>Looks like</source>
+            <translation>内容类型</translation>
+        </message>
+        <message>
+            <source>Import a folder</source>
+            <translation>导入文件夹</translation>
+        </message>
+        <message>
+            <source>Keep this import and choose another kind or file: OK imports everything listed (and the one above).</source>
+            <translation>保留此项导入并选择其他类型或文件:确定将导入列表中的全部项目(以及上方这一项)。</translation>
+        </message>
+        <message>
+            <source>Every file of a folder with an extension the readers accept (hourly logs of one device).</source>
+            <translation>文件夹中所有扩展名可被读取的文件(同一设备的逐小时记录)。</translation>
+        </message>
+        <message>
+            <source>file(s) or a folder; several logs of one kind (a day in hourly files) become one table</source>
+            <translation>文件或文件夹;同一类型的多个记录文件(按小时分割的一天)合并为一张表</translation>
+        </message>
+        <message>
+            <source>No motion sentence recognised yet: choose the heave sign of your sensor.</source>
+            <translation>尚未识别到运动语句:请选择传感器的升沉正方向。</translation>
+        </message>
+        <message>
+            <source>The attitude CSV format is heave positive up; change it only if your file differs.</source>
+            <translation>姿态 CSV 格式规定升沉向上为正;仅当文件不同时才更改。</translation>
+        </message>
+        <message>
+            <source>perpendicular side</source>
+            <translation>垂直侧面</translation>
+        </message>
+        <message>
+            <source>oblique side</source>
+            <translation>斜侧面</translation>
+        </message>
+        <message>
+            <source>top</source>
+            <translation>顶面</translation>
+        </message>
+        <message>
+            <source>underside</source>
+            <translation>底面</translation>
+        </message>
+        <message>
+            <source>floor</source>
+            <translation>池底</translation>
+        </message>
+        <message>
+            <source>other</source>
+            <translation>其他</translation>
+        </message>
     </context>
     <context>
         <name>hydrosync-patterns</name>
@@ -3651,8 +3719,8 @@ Default: {1}  (--param {2})</source>
             <translation>{0}:{1} 个 ping,{2} 个测深点,其中 {3} 个在有参考平面的面上;{4}</translation>
         </message>
         <message>
-            <source>{0}&lt;br&gt;&lt;span style='color:#555'&gt;faint discs: laser (reference) · triangles: multibeam · grey dots: soundings on no face&lt;/span&gt;</source>
-            <translation>{0}&lt;br&gt;&lt;span style='color:#555'&gt;浅色圆点:激光(参考)· 三角形:多波束 · 灰点:不在任何面上的测深点&lt;/span&gt;</translation>
+            <source>{0}&amp;nbsp;&amp;nbsp; &lt;span style='color:#555'&gt;faint discs: laser · triangles: multibeam · grey: on no face&lt;/span&gt;</source>
+            <translation>{0}&amp;nbsp;&amp;nbsp; &lt;span style='color:#555'&gt;浅色圆点:激光 · 三角形:多波束 · 灰色:不在任何面上&lt;/span&gt;</translation>
         </message>
         <message>
             <source>σ from: {0}</source>
@@ -3669,6 +3737,30 @@ Default: {1}  (--param {2})</source>
         <message>
             <source>⚠ {0}&lt;/span&gt;</source>
             <translation>⚠ {0}&lt;/span&gt;</translation>
+        </message>
+        <message>
+            <source>Reading {0} file(s)…</source>
+            <translation>正在读取 {0} 个文件…</translation>
+        </message>
+        <message>
+            <source>Reading {0} of {1}…</source>
+            <translation>正在读取第 {0} 个文件,共 {1} 个…</translation>
+        </message>
+        <message>
+            <source>Import as {0} (what the files hold)</source>
+            <translation>按 {0} 导入(与文件内容相符)</translation>
+        </message>
+        <message>
+            <source>{0} found: documented heave positive {1}. Press OK to confirm, or change it if your sensor is set up otherwise.</source>
+            <translation>找到 {0}:文档规定的升沉正方向为 {1}。按“确定”确认;若传感器设置不同,请更改。</translation>
+        </message>
+        <message>
+            <source>{0} file(s), {1}; {2}.</source>
+            <translation>{0} 个文件,{1};{2}。</translation>
+        </message>
+        <message>
+            <source>{0} file(s), {1}.</source>
+            <translation>{0} 个文件,{1}。</translation>
         </message>
     </context>
     <context>

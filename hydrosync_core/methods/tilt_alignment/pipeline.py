@@ -150,14 +150,15 @@ def weak_tip_warning(joint: JointResult, tolerance_m: float) -> str | None:
         return None
     d = joint.weak_direction
     az = math.degrees(math.atan2(d[1], d[0])) % 180.0
-    head = (f"joint: the tip is uncertain to {1000 * r:.0f} mm horizontally "
-            f"({100 * WARN_PROBABILITY:.0f} %), mostly along azimuth {az:.0f}°/{az + 180:.0f}° "
-            f"(±{1000 * 1.96 * joint.weak_sigma_m:.0f} mm at 95 %), beyond the "
+    head = (f"joint: the tip is uncertain to {1000 * r:.0f} mm horizontally at "
+            f"{100 * WARN_PROBABILITY:.0f} % (±{1000 * 1.96 * joint.weak_sigma_m:.0f} mm "
+            f"along azimuth {az:.0f}°/{az + 180:.0f}°), beyond the "
             f"{1000 * tolerance_m:.0f} mm tolerance")
     if joint.bias_share >= 0.5:
-        return (f"{head}; {100 * joint.bias_share:.0f} % of it is the accelerometer bias, "
-                "which this swing cannot tell from the tilt out of its plane (a swing "
-                "nearly in one plane): swing in an ellipse or twist the pole while swinging")
+        return (f"{head}; the accelerometer bias, which this swing cannot tell from the "
+                "tilt out of its plane (a swing nearly in one plane), makes "
+                f"{100 * joint.bias_share:.0f} % of that variance: swing in an ellipse or "
+                "twist the pole while swinging")
     return f"{head} (GNSS noise): swing wider or longer"
 
 

@@ -3100,8 +3100,8 @@
             <translation>中心墙(多波束)</translation>
         </message>
         <message>
-            <source>warn when the horizontal circle holding the tip with 99 % probability is wider than this (a swing nearly in one plane leaves the accelerometer bias along the swing axis mixed with the tilt out of the plane)</source>
-            <translation>以 99 % 概率包含杆尖的水平圆宽于此值时警告(近乎单平面的摆动会使沿摆动轴的加速度计零偏与平面外倾斜混叠)</translation>
+            <source>warn when the horizontal circle holding the tip with 95 % probability is wider than this (a swing nearly in one plane leaves the accelerometer bias along the swing axis mixed with the tilt out of the plane)</source>
+            <translation>以 95 % 概率包含杆尖的水平圆宽于此值时警告(近乎单平面的摆动会使沿摆动轴的加速度计零偏与平面外倾斜混叠)</translation>
         </message>
         <message>
             <source>water level</source>

@@ -180,8 +180,20 @@
             <translation>审批</translation>
         </message>
         <message>
+            <source>Attitude error against the reference (solution − reference, °), forward and smoothed; dashed: ±1σ of each solution.</source>
+            <translation>相对参考的姿态误差(解 − 参考,°),前向滤波和平滑后;虚线:各解的 ±1σ。</translation>
+        </message>
+        <message>
             <source>Attitude error against the reference (solution − reference, °), forward and smoothed; dashed: ±1σ of each solution; shaded: simulated GNSS outages.</source>
             <translation>相对参考的姿态误差(解 − 参考,°),前向滤波和平滑后;虚线:各解的 ±1σ;阴影:模拟的 GNSS 中断。</translation>
+        </message>
+        <message>
+            <source>Attitude error against the reference (solution − reference, °), forward only (no smoothing); dashed: ±1σ of each solution.</source>
+            <translation>相对参考的姿态误差(解 − 参考,°),仅前向滤波(无平滑);虚线:各解的 ±1σ。</translation>
+        </message>
+        <message>
+            <source>Attitude error against the reference (solution − reference, °), forward only (no smoothing); dashed: ±1σ of each solution; shaded: simulated GNSS outages.</source>
+            <translation>相对参考的姿态误差(解 − 参考,°),仅前向滤波(无平滑);虚线:各解的 ±1σ;阴影:模拟的 GNSS 中断。</translation>
         </message>
         <message>
             <source>Attitude from a GNSS antenna array</source>
@@ -496,8 +508,44 @@
             <translation>可用天线少于 3 个的历元数</translation>
         </message>
         <message>
+            <source>GNSS/INS trajectory, forward filter only (no smoothing)</source>
+            <translation>GNSS/INS 轨迹,仅前向滤波(无平滑)</translation>
+        </message>
+        <message>
+            <source>Position error against the reference (solution − reference, m), forward and smoothed; dashed: ±1σ of each solution.</source>
+            <translation>相对参考的位置误差(解 − 参考,m),前向滤波和平滑后;虚线:各解的 ±1σ。</translation>
+        </message>
+        <message>
+            <source>Position error against the reference (solution − reference, m), forward only (no smoothing); dashed: ±1σ of each solution.</source>
+            <translation>相对参考的位置误差(解 − 参考,m),仅前向滤波(无平滑);虚线:各解的 ±1σ。</translation>
+        </message>
+        <message>
+            <source>Position error against the reference (solution − reference, m), forward only (no smoothing); dashed: ±1σ of each solution; shaded: simulated GNSS outages.</source>
+            <translation>相对参考的位置误差(解 − 参考,m),仅前向滤波(无平滑);虚线:各解的 ±1σ;阴影:模拟的 GNSS 中断。</translation>
+        </message>
+        <message>
             <source>Position errors (±σ)</source>
             <translation>位置误差(±σ)</translation>
+        </message>
+        <message>
+            <source>Standard deviations of the forward filter (no smoothing in this run).</source>
+            <translation>前向滤波的标准差(本次运行未平滑)。</translation>
+        </message>
+        <message>
+            <source>Trajectory: GNSS antenna fixes, forward (no smoothing) IMU positions (local east/north from the start).</source>
+            <translation>轨迹:GNSS 天线定位、前向滤波(无平滑)的 IMU 位置(以起点为原点的当地东/北坐标)。</translation>
+        </message>
+        <message>
+            <source>Velocity error against the reference (solution − reference, m/s), forward and smoothed; dashed: ±1σ of each solution.</source>
+            <translation>相对参考的速度误差(解 − 参考,m/s),前向滤波和平滑后;虚线:各解的 ±1σ。</translation>
+        </message>
+        <message>
+            <source>Velocity error against the reference (solution − reference, m/s), forward only (no smoothing); dashed: ±1σ of each solution.</source>
+            <translation>相对参考的速度误差(解 − 参考,m/s),仅前向滤波(无平滑);虚线:各解的 ±1σ。</translation>
+        </message>
+        <message>
+            <source>Velocity error against the reference (solution − reference, m/s), forward only (no smoothing); dashed: ±1σ of each solution; shaded: simulated GNSS outages.</source>
+            <translation>相对参考的速度误差(解 − 参考,m/s),仅前向滤波(无平滑);虚线:各解的 ±1σ;阴影:模拟的 GNSS 中断。</translation>
         </message>
         <message>
             <source>Velocity errors (±σ)</source>

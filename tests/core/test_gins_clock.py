@@ -123,3 +123,28 @@ def test_parent_folder_lists_its_recordings():
     assert r.returncode == 2
     assert "drive_0708 (rtklibexplorer)" in r.stderr and "walk_0827" in r.stderr
     assert "Traceback" not in r.stderr
+
+
+@pytest.mark.parametrize("smooth", [False, True])
+def test_report_heading_and_captions_say_what_ran(tmp_path, smooth):
+    """The PDF section of a run without smoothing (--no-smooth, --forward-only) names the
+    forward filter in its heading and captions, never "with RTS smoothing"."""
+    from hydrosync_core.methods.gins_smoother.demo import fill_demo
+    from hydrosync_core.methods.gins_smoother.project_run import run
+    from hydrosync_core.methods.gins_smoother.report_section import section
+    from hydrosync_core.project import Project
+    from hydrosync_core.report.context import ReportContext
+
+    project = Project.create(tmp_path / "d.h5")
+    fill_demo(project)
+    run(project, {"smooth": smooth, "gnss_noise": "file"})
+    flow = section(project, ReportContext(width=480.0))
+    # paragraphs, and the captions figures carry
+    text = " ".join(getattr(getattr(f, "caption", f), "text", "") for f in flow)
+    heading = flow[0].text
+    project.close()
+    if smooth:
+        assert heading == "GNSS/INS trajectory with RTS smoothing"
+    else:
+        assert "RTS" not in heading and "forward filter only" in heading, heading
+        assert "forward and smoothed" not in text and "forward only (no smoothing)" in text

@@ -16,7 +16,10 @@ from hydrosync_core.methods.gins_smoother.project_run import GNSS, RESULT
 from hydrosync_core.params import stored
 from hydrosync_core.report.context import fmt
 
-HEADING = "GNSS/INS trajectory with RTS smoothing"
+#: The section heading by whether the run smoothed (``counts["ran"]``): it says what ran.
+HEADINGS = {True: "GNSS/INS trajectory with RTS smoothing",
+            False: "GNSS/INS trajectory, forward filter only (no smoothing)"}
+HEADING = HEADINGS[True]
 MAX_POINTS = 1500
 
 
@@ -61,6 +64,7 @@ def error_figures(project, ctx, t0: float) -> list:
         return []
     windows = json.loads(project.attrs(RESULT).get("outages", "[]"))
     out = []
+    sols = "forward and smoothed" if "smoothed" in errs else "forward only (no smoothing)"
     for comps, what, unit, scale in ERROR_GROUPS:
         charts = []
         for comp in comps:
@@ -78,7 +82,7 @@ def error_figures(project, ctx, t0: float) -> list:
                     c.line(x, -scale * sd[i], color=COLOR[name], width=0.5, dash=(2, 2))
             charts.append(c)
         out.append(ctx.figure(charts, f"{what.capitalize()} error against the reference "
-                              f"(solution − reference, {unit}), forward and smoothed; "
+                              f"(solution − reference, {unit}), {sols}; "
                               "dashed: ±1σ of each solution"
                               + ("; shaded: simulated GNSS outages." if windows else ".")))
     return out
@@ -91,7 +95,7 @@ def section(project, ctx) -> list:
     ev = json.loads(attrs["evaluation"])
     align = json.loads(attrs["alignment"])
     params = stored(GinsParams, project, RESULT)
-    out = [ctx.heading(HEADING)]
+    out = [ctx.heading(HEADINGS[smoothed])]
     out.append(ctx.para(
         "Loosely coupled GNSS/INS integration after Wang et al.: strapdown mechanisation in "
         "the local-level frame (earth rate, transport rate, normal gravity, coning and "

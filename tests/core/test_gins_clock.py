@@ -148,3 +148,33 @@ def test_report_heading_and_captions_say_what_ran(tmp_path, smooth):
     else:
         assert "RTS" not in heading and "forward filter only" in heading, heading
         assert "forward and smoothed" not in text and "forward only (no smoothing)" in text
+
+
+@need_rtk
+def test_clock_offset_given_once_at_import(tmp_path):
+    """``hydrosync import --gins-recording DIR --clock-offset S`` applies S (the IMU epochs
+    of an rtklibexplorer recording move by −S against the import without it) and stores
+    it, so a later ``hydrosync gins PROJECT`` needs no option; the option alone, or on a
+    project run, is refused with exit 2 naming where it belongs."""
+    from hydrosync_core.project import Project
+
+    cli = [sys.executable, "-m", "hydrosync_core.cli"]
+    given, own = tmp_path / "given.h5", tmp_path / "own.h5"
+    r = subprocess.run(cli + ["import", str(given), "--gins-recording", str(WALK),
+                              "--clock-offset", "0.25"], capture_output=True, text=True,
+                       timeout=120)
+    assert r.returncode == 0, r.stderr
+    assert "clock offset +0.250 s given" in r.stdout
+    assert subprocess.run(cli + ["import", str(own), "--gins-recording", str(WALK)],
+                          capture_output=True, timeout=120).returncode == 0
+    with Project.open(given) as a, Project.open(own) as b:
+        assert a.attrs("raw/gins")["time_shift_s"] == 0.25
+        assert "+0.250 s given" in a.attrs("raw/gins")["time_shift"]
+        shift = b.get_table("raw/gins/imu")["time"] - a.get_table("raw/gins/imu")["time"]
+        np.testing.assert_allclose(shift, 0.25, atol=1e-9)
+    r = subprocess.run(cli + ["import", str(own), "--gins-imu", "x.txt", "--clock-offset",
+                              "0.1"], capture_output=True, text=True, timeout=120)
+    assert r.returncode == 2 and "--gins-recording only" in r.stderr
+    r = subprocess.run(cli + ["gins", str(given), "--clock-offset", "0.1"],
+                       capture_output=True, text=True, timeout=120)
+    assert r.returncode == 2 and "at import" in r.stderr and "Traceback" not in r.stderr

@@ -178,3 +178,23 @@ def test_clock_offset_given_once_at_import(tmp_path):
     r = subprocess.run(cli + ["gins", str(given), "--clock-offset", "0.1"],
                        capture_output=True, text=True, timeout=120)
     assert r.returncode == 2 and "at import" in r.stderr and "Traceback" not in r.stderr
+
+
+@need_rtk
+def test_clock_offset_costs_no_filter_pass(monkeypatch):
+    """The clock offset of the drive (what ``gins --recording`` and ``import
+    --gins-recording`` do before the run) runs no forward pass: every pass goes through
+    ``filter._pass``, counted here (the run itself: 1 forward pass with the file's model;
+    the 13-run residual grid, the former search, is the benchmark's second opinion)."""
+    from hydrosync_core.methods.gins_smoother import filter as F  # noqa: N812
+
+    passes = []
+    real = F._pass
+    monkeypatch.setattr(F, "_pass", lambda *a, **k: passes.append(1) or real(*a, **k))
+    rec = R.read_rtkexplorer(DRIVE)
+    shift, est = R.estimate_time_shift(rec)
+    assert est is not None and passes == []
+    rec = R.shifted(rec, shift).sliced(rec.gnss.time[0], rec.gnss.time[0] + 40.0)
+    run_gins(rec.imu, rec.gnss, rec.config,
+             GinsParams.from_dict({**rec.params, "gnss_noise": "file"}))
+    assert len(passes) == 1

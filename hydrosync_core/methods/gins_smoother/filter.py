@@ -402,6 +402,9 @@ def run_gins(imu: ImuData, gnss: GnssData, cfg: SensorConfig, params: GinsParams
                 ctx, model, thin, check = white
         res = _pass(ctx, model, p.smooth, progress, cancel)
         check = innovation_check(res.gnss)
+        if thin > 1:  # "used of in span" counts the fixes of the file, not those kept
+            res.counts["gnss_epochs"] = int(((gnss.time > t[i0]) & (gnss.time <= t[i1])).sum())
+            res.counts["gnss_thinned_every"] = thin
     info = {"mode": p.gnss_noise, "file_std_median_m": np.median(base_std, axis=0).tolist(),
             "gnss_std_scale": p.gnss_std_scale, "estimated": estimated,
             "model": "gauss-markov" if model.correlated else "white",

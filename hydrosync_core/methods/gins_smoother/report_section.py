@@ -88,6 +88,53 @@ def error_figures(project, ctx, t0: float) -> list:
     return out
 
 
+#: (component, scale, decimals) of the constant-offset table: m, m/s, degrees.
+OFFSET_COLUMNS = (("north", 1, 2), ("east", 1, 2), ("down", 1, 2), ("vn", 1, 3), ("ve", 1, 3),
+                  ("vd", 1, 3), ("roll", 1, 2), ("pitch", 1, 2), ("yaw", 1, 2))
+
+
+def reference_note(project) -> str | None:
+    """What the imported recording says its reference is (``raw/gins`` notes), if any."""
+    try:
+        notes = json.loads(project.attrs("raw/gins").get("notes", "[]"))
+    except (TypeError, ValueError, KeyError):
+        return None
+    return next((n.split(":", 1)[1].strip() for n in notes
+                 if isinstance(n, str) and n.startswith("reference:")), None)
+
+
+def reference_limits(project, ctx, ev: dict) -> list:
+    """The reference's own limits and each solution's constant offset from it, with the
+    share within 1.96σ as is and with that offset removed."""
+    out = [ctx.para("The reference is compared as it is: its own accuracy is not known to "
+                    "this analysis, and a reference computed from the same sensors is not "
+                    "an independent truth. A constant offset (below) is the reference's own "
+                    "axes or point — e.g. a camera whose mounting on the IMU is not given — "
+                    "which no σ of this solution can know about.")]
+    note = reference_note(project)
+    if note:
+        out.append(ctx.para(f"Reference: {note}."))
+    rows = []
+    for name in ("forward", "smoothed"):
+        off = ev.get(name, {}).get("constant_offset")
+        cov = ev.get(name, {}).get("coverage", {})
+        c, c0 = cov.get("all", {}), cov.get("offset_removed", {})
+        if not off or not c0:
+            continue
+        rows.append([f"{name} offset"] + [fmt(off[k] * f, d) for k, f, d in OFFSET_COLUMNS])
+        rows.append([f"{name} within 1.96σ %"] + [
+            f"{100 * c[k]['within_95']:.0f}/{100 * c0[k]['within_95']:.0f}"
+            if c.get(k) and c0.get(k) else "—" for k, _f, _d in OFFSET_COLUMNS])
+    if rows:
+        out += ctx.table(["Solution", "N m", "E m", "D m", "vN m/s", "vE", "vD", "roll °",
+                          "pitch °", "yaw °"], rows,
+                         col_widths=[0.19] + [0.09] * 9,
+                         caption="Constant offset from the reference (mean of solution − "
+                         "reference) and the share of epochs within 1.96σ, as is / with "
+                         "that offset removed.")
+    return out
+
+
 def section(project, ctx) -> list:
     attrs = project.attrs(RESULT)
     counts = json.loads(attrs["counts"])
@@ -163,6 +210,7 @@ def section(project, ctx) -> list:
                           "pitch °", "yaw °"], rows,
                          col_widths=[0.14] + [0.086] * 3 + [0.09] * 3 + [0.1] * 3,
                          caption="RMS error against the reference (epochs with GNSS).")
+        out += reference_limits(project, ctx, ev)
         orow = []
         for name in ("forward", "smoothed"):
             o = ev.get(name, {}).get("outage")

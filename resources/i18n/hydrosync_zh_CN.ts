@@ -180,8 +180,20 @@
             <translation>审批</translation>
         </message>
         <message>
+            <source>Attitude error against the reference (solution − reference, °), forward and smoothed; dashed: ±1σ of each solution.</source>
+            <translation>相对参考的姿态误差(解 − 参考,°),前向滤波和平滑后;虚线:各解的 ±1σ。</translation>
+        </message>
+        <message>
             <source>Attitude error against the reference (solution − reference, °), forward and smoothed; dashed: ±1σ of each solution; shaded: simulated GNSS outages.</source>
             <translation>相对参考的姿态误差(解 − 参考,°),前向滤波和平滑后;虚线:各解的 ±1σ;阴影:模拟的 GNSS 中断。</translation>
+        </message>
+        <message>
+            <source>Attitude error against the reference (solution − reference, °), forward only (no smoothing); dashed: ±1σ of each solution.</source>
+            <translation>相对参考的姿态误差(解 − 参考,°),仅前向滤波(无平滑);虚线:各解的 ±1σ。</translation>
+        </message>
+        <message>
+            <source>Attitude error against the reference (solution − reference, °), forward only (no smoothing); dashed: ±1σ of each solution; shaded: simulated GNSS outages.</source>
+            <translation>相对参考的姿态误差(解 − 参考,°),仅前向滤波(无平滑);虚线:各解的 ±1σ;阴影:模拟的 GNSS 中断。</translation>
         </message>
         <message>
             <source>Attitude from a GNSS antenna array</source>
@@ -364,6 +376,10 @@
             <translation>计算时间(UTC,版本)</translation>
         </message>
         <message>
+            <source>Constant offset from the reference (mean of solution − reference) and the share of epochs within 1.96σ, as is / with that offset removed.</source>
+            <translation>相对参考的恒定偏差(解 − 参考的均值),以及误差在 1.96σ 以内的历元比例:原样 / 去除该偏差后。</translation>
+        </message>
+        <message>
             <source>Constraint interval</source>
             <translation>约束间隔</translation>
         </message>
@@ -496,8 +512,48 @@
             <translation>可用天线少于 3 个的历元数</translation>
         </message>
         <message>
+            <source>GNSS/INS trajectory, forward filter only (no smoothing)</source>
+            <translation>GNSS/INS 轨迹,仅前向滤波(无平滑)</translation>
+        </message>
+        <message>
+            <source>Position error against the reference (solution − reference, m), forward and smoothed; dashed: ±1σ of each solution.</source>
+            <translation>相对参考的位置误差(解 − 参考,m),前向滤波和平滑后;虚线:各解的 ±1σ。</translation>
+        </message>
+        <message>
+            <source>Position error against the reference (solution − reference, m), forward only (no smoothing); dashed: ±1σ of each solution.</source>
+            <translation>相对参考的位置误差(解 − 参考,m),仅前向滤波(无平滑);虚线:各解的 ±1σ。</translation>
+        </message>
+        <message>
+            <source>Position error against the reference (solution − reference, m), forward only (no smoothing); dashed: ±1σ of each solution; shaded: simulated GNSS outages.</source>
+            <translation>相对参考的位置误差(解 − 参考,m),仅前向滤波(无平滑);虚线:各解的 ±1σ;阴影:模拟的 GNSS 中断。</translation>
+        </message>
+        <message>
             <source>Position errors (±σ)</source>
             <translation>位置误差(±σ)</translation>
+        </message>
+        <message>
+            <source>Standard deviations of the forward filter (no smoothing in this run).</source>
+            <translation>前向滤波的标准差(本次运行未平滑)。</translation>
+        </message>
+        <message>
+            <source>The reference is compared as it is: its own accuracy is not known to this analysis, and a reference computed from the same sensors is not an independent truth. A constant offset (below) is the reference's own axes or point — e.g. a camera whose mounting on the IMU is not given — which no σ of this solution can know about.</source>
+            <translation>参考轨迹按原样比较:本分析不知道其自身精度;由同一批传感器计算的参考轨迹不是独立的真值。恒定偏差(见下表)来自参考轨迹自身的坐标轴或参考点(例如安装关系未给出的相机),本解的任何 σ 都无法反映。</translation>
+        </message>
+        <message>
+            <source>Trajectory: GNSS antenna fixes, forward (no smoothing) IMU positions (local east/north from the start).</source>
+            <translation>轨迹:GNSS 天线定位、前向滤波(无平滑)的 IMU 位置(以起点为原点的当地东/北坐标)。</translation>
+        </message>
+        <message>
+            <source>Velocity error against the reference (solution − reference, m/s), forward and smoothed; dashed: ±1σ of each solution.</source>
+            <translation>相对参考的速度误差(解 − 参考,m/s),前向滤波和平滑后;虚线:各解的 ±1σ。</translation>
+        </message>
+        <message>
+            <source>Velocity error against the reference (solution − reference, m/s), forward only (no smoothing); dashed: ±1σ of each solution.</source>
+            <translation>相对参考的速度误差(解 − 参考,m/s),仅前向滤波(无平滑);虚线:各解的 ±1σ。</translation>
+        </message>
+        <message>
+            <source>Velocity error against the reference (solution − reference, m/s), forward only (no smoothing); dashed: ±1σ of each solution; shaded: simulated GNSS outages.</source>
+            <translation>相对参考的速度误差(解 − 参考,m/s),仅前向滤波(无平滑);虚线:各解的 ±1σ;阴影:模拟的 GNSS 中断。</translation>
         </message>
         <message>
             <source>Velocity errors (±σ)</source>
@@ -2312,6 +2368,14 @@
             <translation>仅前向 EKF(无平滑)</translation>
         </message>
         <message>
+            <source>forward offset</source>
+            <translation>前向滤波偏差</translation>
+        </message>
+        <message>
+            <source>forward within 1.96σ %</source>
+            <translation>前向滤波在 1.96σ 以内 %</translation>
+        </message>
+        <message>
             <source>from the IMU grade</source>
             <translation>由 IMU 等级确定</translation>
         </message>
@@ -2912,6 +2976,14 @@
             <translation>平滑后</translation>
         </message>
         <message>
+            <source>smoothed offset</source>
+            <translation>平滑后偏差</translation>
+        </message>
+        <message>
+            <source>smoothed within 1.96σ %</source>
+            <translation>平滑后在 1.96σ 以内 %</translation>
+        </message>
+        <message>
             <source>solution written to attitude.csv and summarised: lsq = iterative weighted least squares (Liu et al.), direct = three-antenna direct method (Liu et al.), wahba = closed-form optimal rotation; all three are always computed</source>
             <translation>写入 attitude.csv 并汇总的解:lsq = 迭代加权最小二乘(Liu 等),direct = 三天线直接法(Liu 等),wahba = 闭合形式最优旋转;三种方法总会计算</translation>
         </message>
@@ -3354,6 +3426,10 @@
     </context>
     <context>
         <name>hydrosync-patterns</name>
+        <message>
+            <source>Reference: {0}.</source>
+            <translation>参考轨迹:{0}。</translation>
+        </message>
         <message>
             <source>95 % interval {0} … {1}</source>
             <translation>95 % 区间 {0} … {1}</translation>

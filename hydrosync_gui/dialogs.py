@@ -108,8 +108,12 @@ class ImportDialog(QDialog):
     def _build_choices(self) -> None:
         self.kind_box = QComboBox()
         for name, kind in self._kinds.items():
-            self.kind_box.addItem(f"{name} — {_gui_words(kind.description)}", name)
-            self.kind_box.setItemData(self.kind_box.count() - 1, f"stored in /{kind.target}",
+            # The description alone: it is what the catalogue translates, and the kind's
+            # key is a command-line word (shown in "Add to list" and the tooltip).
+            self.kind_box.addItem(_gui_words(kind.description), name)
+            flag = name.replace("_", "-")
+            self.kind_box.setItemData(self.kind_box.count() - 1,
+                                      f"hydrosync import --{flag} … → /{kind.target}",
                                       Qt.ItemDataRole.ToolTipRole)
         self.target = QLabel()
         # Heave sign of a motion log: stated, never guessed (docs/formats.md, NMEA 0183).

@@ -242,7 +242,8 @@ def register(sub: argparse._SubParsersAction) -> None:
         # The hyphenated spelling first, so that usage and help show it; the underscore
         # spelling of older scripts keeps working.
         flags = list(dict.fromkeys([f"--{name.replace('_', '-')}", f"--{name}"]))
-        more = f" (repeatable: {kind.repeatable})" if kind.repeatable else ""
+        more = "".join(f"; see --{option.replace('_', '-')}" for option in kind.options)
+        more += f" (repeatable: {kind.repeatable})" if kind.repeatable else ""
         p.add_argument(*flags, dest=name, metavar="FILE", action="append",
                        help=kind.description + more)
     p.add_argument(

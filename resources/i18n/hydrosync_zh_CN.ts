@@ -3423,6 +3423,98 @@
             <source>other</source>
             <translation>其他</translation>
         </message>
+        <message>
+            <source>vessel offset sheet vessel.json (sensor offsets, body FRD)</source>
+            <translation>船舶偏移量表 vessel.json(传感器偏移量,载体 FRD 坐标系)</translation>
+        </message>
+        <message>
+            <source>GNSS heights CSV (time, height[, lat, lon, quality])</source>
+            <translation>GNSS 高程 CSV(时间、高程[、纬度、经度、解算质量])</translation>
+        </message>
+        <message>
+            <source>attitude CSV (time, roll, pitch, heading, heave)</source>
+            <translation>姿态 CSV(时间、横摇、纵摇、航向、升沉)</translation>
+        </message>
+        <message>
+            <source>survey lines CSV (name, start, end)</source>
+            <translation>测线 CSV(名称、开始、结束)</translation>
+        </message>
+        <message>
+            <source>NMEA GNSS log (GGA / PTNL,GGK [+GST, ZDA]; logger time tags allowed)</source>
+            <translation>NMEA GNSS 日志(GGA / PTNL,GGK [+GST、ZDA];可带记录器时间标签)</translation>
+        </message>
+        <message>
+            <source>NMEA motion log (PASHR / PSXN,23 / TSS1)</source>
+            <translation>NMEA 姿态传感器日志(PASHR / PSXN,23 / TSS1)</translation>
+        </message>
+        <message>
+            <source>multibeam soundings CSV (time, x, y, z; sensor frame)</source>
+            <translation>多波束测深点 CSV(时间、x、y、z;传感器坐标系)</translation>
+        </message>
+        <message>
+            <source>INS trajectory CSV (time, e, n, u, roll, pitch, heading)</source>
+            <translation>惯导轨迹 CSV(时间、e、n、u、横摇、纵摇、航向)</translation>
+        </message>
+        <message>
+            <source>laser points (CSV x,y,z / PLY / LAS / LAZ; target ENU)</source>
+            <translation>激光点云(CSV x,y,z / PLY / LAS / LAZ;目标物 ENU 坐标系)</translation>
+        </message>
+        <message>
+            <source>pool setup.json (coarse boresight and lever arm)</source>
+            <translation>水池检校 setup.json(粗标定的安装偏角和杆臂)</translation>
+        </message>
+        <message>
+            <source>pool target.json (target design)</source>
+            <translation>水池检校 target.json(目标物设计)</translation>
+        </message>
+        <message>
+            <source>RTKLIB solution file .pos of one antenna (llh/xyz/enu; the file stem names the antenna)</source>
+            <translation>单个天线的 RTKLIB 解算文件 .pos(llh/xyz/enu;文件名即天线名)</translation>
+        </message>
+        <message>
+            <source>position file .geo of one antenna (calendar time, lat, lon, h, 3 sigma; no quality flag; the file stem names the antenna)</source>
+            <translation>单个天线的位置文件 .geo(日历时间、纬度、经度、高程、3 个标准差;无质量标志;文件名即天线名)</translation>
+        </message>
+        <message>
+            <source>antenna_positions.csv: time, antenna, x, y, z (ECEF m), quality (GGA) of every antenna of the array</source>
+            <translation>antenna_positions.csv:天线阵列中每个天线的时间、天线、x、y、z(ECEF,m)、质量(GGA)</translation>
+        </message>
+        <message>
+            <source>antennas.json: antenna coordinates in the body frame (FRD, m)</source>
+            <translation>antennas.json:载体坐标系中的天线坐标(FRD,m)</translation>
+        </message>
+        <message>
+            <source>IMU increments (KF-GINS 7-column text or imu.csv; body FRD)</source>
+            <translation>IMU 增量(KF-GINS 7 列文本或 imu.csv;载体 FRD 坐标系)</translation>
+        </message>
+        <message>
+            <source>GNSS antenna positions with std (KF-GINS text or gnss.csv)</source>
+            <translation>带标准差的 GNSS 天线位置(KF-GINS 文本或 gnss.csv)</translation>
+        </message>
+        <message>
+            <source>KF-GINS YAML configuration (initial state, IMU noise, lever arm)</source>
+            <translation>KF-GINS YAML 配置(初始状态、IMU 噪声、杆臂)</translation>
+        </message>
+        <message>
+            <source>a real recording folder: comma2k19 segment or rtklibexplorer drive/walk (IMU, GNSS, configuration, reference)</source>
+            <translation>实测记录文件夹:comma2k19 片段或 rtklibexplorer 驾车/步行数据(IMU、GNSS、配置、参考轨迹)</translation>
+        </message>
+        <message>
+            <source>reference trajectory, 11-column KF-GINS .nav</source>
+            <translation>参考轨迹,11 列 KF-GINS .nav</translation>
+        </message>
+        <message>
+            <source>tilt-pole imu.csv: time, gx, gy, gz (rad/s), ax, ay, az (m/s²), body frame, z down along the pole</source>
+            <translation>对中杆 imu.csv:时间、gx、gy、gz(rad/s)、ax、ay、az(m/s²),载体坐标系,z 沿杆向下</translation>
+        </message>
+        <message>
+            <source>tilt-pole gnss.csv: time, e, n, u (local ENU) or time, lat, lon, height: the antenna</source>
+            <translation>对中杆 gnss.csv:时间、e、n、u(当地 ENU)或时间、纬度、经度、高程:天线位置</translation>
+        </message>
+        <message>
+            <source>tilt-pole pole.json: {"pole_length_m": …, optional "imu_convention": instant|interval-start|interval-middle|interval-end}</source>
+            <translation>对中杆 pole.json:{"pole_length_m": …,可选 "imu_convention": instant|interval-start|interval-middle|interval-end}</translation>
+        </message>
     </context>
     <context>
         <name>hydrosync-patterns</name>

@@ -348,8 +348,11 @@ def run_gins(imu: ImuData, gnss: GnssData, cfg: SensorConfig, params: GinsParams
     predicted std must have an RMS in :data:`RMS_OK` and an autocorrelation at 1 s below
     :data:`RHO_MAX`. If not, the model is re-estimated from the innovations
     (:func:`_estimate_model`: a factor on the IMU white noise and the GNSS white σ scale,
-    and, when the innovations stay time-correlated, a Gauss–Markov GNSS error) and the run
-    repeated. What was done is in ``result.gnss_model`` (and its ``summary`` line).
+    and, when the innovations stay time-correlated, a Gauss–Markov GNSS error with its
+    driving noise per axis) and, if they are then still correlated fix to fix, the fixes
+    are thinned to the first rate at which they are white (:func:`_thin_until_white`; only
+    the fixes kept are used, ``counts["gnss_thinned_every"]``); the run is repeated. What
+    was done is in ``result.gnss_model`` (and its ``summary`` line).
 
     Parameters
     ----------

@@ -11,6 +11,7 @@ from PySide6.QtWidgets import (
     QComboBox,
     QDialog,
     QDialogButtonBox,
+    QDoubleSpinBox,
     QFileDialog,
     QFormLayout,
     QGroupBox,
@@ -59,6 +60,11 @@ def _gui_words(description: str) -> str:
 def _takes_geoid(kind) -> bool:
     """Whether the kind's reader takes ``empty_geoid`` (a GGA log)."""
     return "empty_geoid" in getattr(kind, "options", ())
+
+
+def _takes_clock(kind) -> bool:
+    """Whether the kind's reader takes ``clock_offset`` (a GNSS/INS recording folder)."""
+    return "clock_offset" in getattr(kind, "options", ())
 
 
 def _takes_heave(kind) -> bool:
@@ -138,6 +144,19 @@ class ImportDialog(QDialog):
                                   "them with N = 0 (their heights are then above the geoid, "
                                   "not ellipsoidal) or leave them out.")
         self.geoid_label = QLabel("Empty geoid:")
+        # A recording's GNSS−IMU clock offset: estimated from the turns unless the user
+        # knows it (the lowest value of the box stands for "not given").
+        self.clock_box = QDoubleSpinBox()
+        self.clock_box.setRange(-10.001, 10.0)
+        self.clock_box.setDecimals(3)
+        self.clock_box.setSingleStep(0.001)
+        self.clock_box.setSuffix(" s")
+        self.clock_box.setSpecialValueText("estimated from the turns")
+        self.clock_box.setValue(self.clock_box.minimum())
+        self.clock_box.setToolTip("GNSS−IMU clock offset S (s): the GNSS epoch tagged t "
+                                  "happened at IMU time t + S. Applied and stored; later "
+                                  "runs use it.")
+        self.clock_label = QLabel("Clock offset:")
         self.path_edit = QLineEdit()
         self.path_edit.setPlaceholderText("file(s) or a folder; several logs of one kind "
                                           "(a day in hourly files) become one table")
@@ -160,6 +179,7 @@ class ImportDialog(QDialog):
         form.addRow("File:", row)
         form.addRow(self.heave_label, self.heave_box)
         form.addRow(self.geoid_label, self.geoid_box)
+        form.addRow(self.clock_label, self.clock_box)
         form.addRow("", self.heave_note)
         box = QGroupBox("What the files hold")
         inside = QVBoxLayout(box)
@@ -178,10 +198,12 @@ class ImportDialog(QDialog):
     # ------------------------------------------------------------- the choice
     def paths(self) -> list[str]:
         """The files of the File field (``; ``-separated when several); a folder stands
-        for its files with an extension the readers accept, in name order."""
+        for its files with an extension the readers accept, in name order, unless the
+        kind's input is itself a folder (a recording)."""
         out = []
+        kind = self._kinds.get(str(self.kind_box.currentData()))
         for item in (p.strip() for p in self.path_edit.text().split(SEPARATOR.strip())):
-            if item and Path(item).is_dir():
+            if item and Path(item).is_dir() and not getattr(kind, "folder", False):
                 out.extend(folder_files(item))
             elif item:
                 out.append(item)
@@ -195,6 +217,9 @@ class ImportDialog(QDialog):
             options["heave_positive"] = self.heave_box.currentData()
         if _takes_geoid(self._kinds.get(kind)):
             options["empty_geoid"] = self.geoid_box.currentData()
+        if (_takes_clock(self._kinds.get(kind))
+                and self.clock_box.value() > self.clock_box.minimum()):
+            options["clock_offset"] = round(self.clock_box.value(), 3)
         paths = self.paths()
         return kind, paths[0] if len(paths) == 1 else paths, options
 
@@ -234,6 +259,8 @@ class ImportDialog(QDialog):
             widget.setVisible(heave)
         for widget in (self.geoid_box, self.geoid_label):
             widget.setVisible(_takes_geoid(kind))
+        for widget in (self.clock_box, self.clock_label):
+            widget.setVisible(_takes_clock(kind))
         paths = self.paths()
         path = paths[0] if paths else ""
         if heave and path != self._sniffed:

@@ -146,11 +146,28 @@ def _guess_kinds(sentences: dict[str, int], suffix: str) -> tuple[str, ...]:
     return tuple(out)
 
 
+def _folder_preview(folder: Path, out: FilePreview, most: int = 5) -> FilePreview:
+    """A folder's files (names, total size): what a recording folder holds."""
+    try:
+        files = sorted(p for p in folder.rglob("*") if p.is_file())
+        out.size = sum(p.stat().st_size for p in files)
+    except OSError as exc:
+        out.error = f"{folder}: cannot be read ({exc.strerror or exc})"
+        return out
+    names = [str(p.relative_to(folder)) for p in files[:most]]
+    more = f", … (+{len(files) - most})" if len(files) > most else ""
+    out.first_line = f"folder of {len(files)} files: {', '.join(names)}{more}"
+    return out
+
+
 def preview_file(path: str | Path, cancel=None, head: int = HEAD_BYTES) -> FilePreview:
     """What *path* holds (see :class:`FilePreview`); never raises for a bad file: its
-    one-line reason is in ``error``. *cancel*: a token checked between the two ends."""
+    one-line reason is in ``error``. *cancel*: a token checked between the two ends.
+    A folder (the input of a recording kind) is described by its files."""
     path = Path(path)
     out = FilePreview(str(path))
+    if path.is_dir():  # a recording folder (an import kind whose input is a folder)
+        return _folder_preview(path, out)
     try:
         # A regular file only: a FIFO or device would block the read.
         if not path.is_file():

@@ -3515,6 +3515,18 @@
             <source>tilt-pole pole.json: {"pole_length_m": …, optional "imu_convention": instant|interval-start|interval-middle|interval-end}</source>
             <translation>对中杆 pole.json:{"pole_length_m": …,可选 "imu_convention": instant|interval-start|interval-middle|interval-end}</translation>
         </message>
+        <message>
+            <source>Clock offset:</source>
+            <translation>时钟偏差:</translation>
+        </message>
+        <message>
+            <source>estimated from the turns</source>
+            <translation>由转弯估计</translation>
+        </message>
+        <message>
+            <source>GNSS−IMU clock offset S (s): the GNSS epoch tagged t happened at IMU time t + S. Applied and stored; later runs use it.</source>
+            <translation>GNSS−IMU 时钟偏差 S(s):时间标签为 t 的 GNSS 历元发生在 IMU 时间 t + S。导入时应用并保存;之后的解算沿用。</translation>
+        </message>
     </context>
     <context>
         <name>hydrosync-patterns</name>
@@ -3937,6 +3949,10 @@ Default: {1}  (--param {2})</source>
         <message>
             <source>{0} file(s), {1}.</source>
             <translation>{0} 个文件,{1}。</translation>
+        </message>
+        <message>
+            <source>folder of {0} files: {1}</source>
+            <translation>文件夹,共 {0} 个文件:{1}</translation>
         </message>
     </context>
     <context>

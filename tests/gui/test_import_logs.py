@@ -174,8 +174,9 @@ def test_preview_of_a_large_log_reads_its_two_ends(tmp_path):
     assert part.first == whole.first and part.last == whole.last
     assert 0 < sum(part.sentences.values()) < sum(whole.sentences.values())
     assert part.kinds == whole.kinds and "attitude_log" in whole.kinds
-    bad = preview_file(tmp_path)
-    assert bad.error and "is a folder" in bad.error
+    folder = preview_file(tmp_path)  # the input of a recording kind: described
+    assert folder.error is None and folder.first_line == "folder of 1 files: day.log"
+    assert folder.size == len(data)
 
 
 def test_preview_marks_a_file_that_does_not_fit_the_kind(qtbot, tmp_path):
@@ -248,3 +249,53 @@ def test_a_replaced_survey_never_shows(qtbot, tmp_path):
     qtbot.wait(100)  # any late signal of the first survey is delivered by now
     assert [p.path for p in preview.previews] == [str(second)]
     assert preview.tree.topLevelItemCount() == 1
+
+
+def test_dialog_offers_a_recordings_clock_offset(qtbot, tmp_path):
+    """A GNSS/INS recording folder takes a known GNSS−IMU clock offset (the CLI's
+    ``--clock-offset``); left at its lowest value the offset is estimated, and no option
+    goes to the reader. Other kinds never see the box."""
+    from hydrosync_core.importers.kinds import KINDS
+    from hydrosync_gui.dialogs import ImportDialog
+
+    dialog = ImportDialog(KINDS, str(tmp_path))
+    qtbot.addWidget(dialog)
+    dialog.show()
+    dialog.kind_box.setCurrentIndex(dialog.kind_box.findData("gnss_log"))
+    assert dialog.clock_box.isHidden()
+    dialog.kind_box.setCurrentIndex(dialog.kind_box.findData("gins_recording"))
+    assert not dialog.clock_box.isHidden()
+    dialog.path_edit.setText(str(tmp_path))
+    assert dialog.clock_box.text() == "estimated from the turns"
+    assert "clock_offset" not in dialog.choice()[2]
+    dialog.clock_box.setValue(-0.25)
+    assert dialog.choice()[2] == {"clock_offset": -0.25}
+
+
+def test_dialog_imports_a_recording_folder_with_its_clock_offset(qtbot):
+    """The walk recording through the dialog: the folder itself reaches the reader (not
+    the files in it), with the offset typed in, as ``hydrosync import --gins-recording DIR
+    --clock-offset S`` does; the stored IMU times move by exactly −S."""
+    from hydrosync_core.datasets import shared_data_dir
+    from hydrosync_core.importers.kinds import KINDS, import_file
+    from hydrosync_core.project import Project
+    from hydrosync_gui.dialogs import ImportDialog
+    from hydrosync_gui.file_actions import _import_into_scratch
+
+    walk = shared_data_dir() / "rtkexplorer-gnss-imu" / "walk_0827"
+    if not walk.is_dir():
+        pytest.skip(f"shared recording absent: {walk}")
+    dialog = ImportDialog(KINDS, str(walk.parent))
+    qtbot.addWidget(dialog)
+    dialog.show()
+    dialog.kind_box.setCurrentIndex(dialog.kind_box.findData("gins_recording"))
+    dialog.path_edit.setText(str(walk))
+    dialog.clock_box.setValue(0.25)
+    kind, path, options = dialog.choice()
+    assert (kind, path, options) == ("gins_recording", str(walk), {"clock_offset": 0.25})
+    scratch, _ = _import_into_scratch(kind, path, options)
+    plain = Project.new(name="plain")
+    import_file(plain, kind, str(walk))
+    shifted = scratch.get_table("raw/gins/imu")["time"]
+    first = plain.get_table("raw/gins/imu")["time"]
+    np.testing.assert_allclose(shifted - first, -0.25, atol=1e-9)

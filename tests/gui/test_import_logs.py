@@ -233,18 +233,35 @@ def test_dialog_offers_the_kind_the_files_hold(qtbot, tmp_path):
     assert not dialog.guess_button.isVisible()
 
 
-def test_a_replaced_survey_never_shows(qtbot, tmp_path):
+def test_a_replaced_survey_never_shows(qtbot, tmp_path, monkeypatch):
     """Files changed while their survey runs: only the new files' rows are shown."""
+    import threading
+
+    from hydrosync_gui import import_preview
     from hydrosync_gui.import_preview import ImportPreview
 
     first, second = tmp_path / "a.log", tmp_path / "b.log"
     first.write_bytes(awkward_log(60.0, seed=1))
     second.write_bytes(awkward_log(30.0, seed=2))
+    # The first survey is held inside its first file until the files are replaced, so the
+    # replacement always lands while it runs (a fast machine would otherwise finish it
+    # before the test could replace anything).
+    running, release = threading.Event(), threading.Event()
+    real = import_preview.preview_file
+
+    def held(path, cancel=None):
+        if path == str(first):
+            running.set()
+            release.wait(10)
+        return real(path, cancel)
+
+    monkeypatch.setattr(import_preview, "preview_file", held)
     preview = ImportPreview()
     qtbot.addWidget(preview)
     preview.show_files([str(first)] * 3, "attitude_log")
-    qtbot.waitUntil(lambda: preview._worker is not None, timeout=5000)
+    qtbot.waitUntil(running.is_set, timeout=10000)
     preview.show_files([str(second)], "attitude_log")
+    release.set()
     qtbot.waitUntil(lambda: not preview.busy(), timeout=10000)
     qtbot.wait(100)  # any late signal of the first survey is delivered by now
     assert [p.path for p in preview.previews] == [str(second)]

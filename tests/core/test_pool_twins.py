@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import json
 from dataclasses import replace
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -177,6 +178,29 @@ def test_two_passes_in_one_adjustment(two_passes, tmp_path, capsys):
     assert "2 passes" in capsys.readouterr().out
 
 
+def test_correction_beyond_the_coarse_accuracy_exits_3(two_passes, tmp_path, capsys,
+                                                      monkeypatch):
+    """The simulated coarse boresight is off by 0.8°, -0.6°, 0.7°; stated as good to ±0.2°
+    (σ of the estimates ≈ 0.01-0.05°, far below the 0.4-0.6° excess), the data contradict
+    it: exit 3, one line naming the parameters, and the JSON lists them under
+    'contradicted' with the faces that carry them — not a calibration."""
+    monkeypatch.setenv("HYDROSYNC_PROGRESS", "off")
+    paths, _ = two_passes
+    out = tmp_path / "r.json"
+    capsys.readouterr()
+    code = main(["pool-calibrate", "--pass", str(paths[0]["mbes"].parent), "--pass",
+                 str(paths[1]["mbes"].parent), "--coarse-tol-deg", "0.2", "--json", str(out)])
+    err = [line for line in capsys.readouterr().err.strip().splitlines()
+           if not line.startswith("[")]
+    assert code == 3 and len(err) == 1 and "contradict" in err[0]
+    doc = json.loads(out.read_text())
+    assert {"roll", "pitch", "yaw"} <= set(doc["contradicted"])
+    for name in ("roll", "yaw"):
+        assert "faces carrying it: " in doc["contradicted"][name]
+        assert "faces carrying it: none" not in doc["contradicted"][name]
+    assert name in err[0]
+
+
 def test_bad_pass_folders_exit_2_naming_the_file(two_passes, tmp_path, capsys):
     paths, _ = two_passes
     good = str(paths[0]["mbes"].parent)
@@ -194,6 +218,29 @@ def test_bad_pass_folders_exit_2_naming_the_file(two_passes, tmp_path, capsys):
     (other / "target.json").write_text(json.dumps(prism_target(np.random.default_rng(99))))
     cases = [(tmp_path / "nowhere", "nowhere"), (empty, "mbes.csv"), (broken, "ins.csv"),
              (other, "target.json")]
+
+    def variant(name: str, changes: dict[str, str | None]) -> Path:
+        """A copy of the good folder with files replaced (text) or removed (None)."""
+        d = tmp_path / name
+        d.mkdir()
+        for f in ("mbes.csv", "ins.csv", "lidar.csv", "setup.json", "target.json"):
+            if f in changes:
+                if changes[f] is not None:
+                    (d / f).write_text(changes[f])
+            else:
+                (d / f).write_bytes(paths[0][f.split(".")[0]].read_bytes())
+        return d
+
+    setup = json.loads(paths[0]["setup"].read_text())
+    setup["lever_arm_m"]["x"] += 0.5
+    lines = paths[0]["mbes"].read_text().splitlines()
+    lines[5] = ",".join(["abc"] + lines[5].split(",")[1:])
+    cases += [(variant("no_lidar", {"lidar.csv": None}), "lidar.csv"),
+              (variant("bad_lidar", {"lidar.csv": "x,y,z\n1,2,three\n"}), "lidar.csv"),
+              (variant("bad_setup", {"setup.json": "{not json"}), "setup.json"),
+              (variant("other_setup", {"setup.json": json.dumps(setup)}), "setup.json"),
+              (variant("bad_mbes", {"mbes.csv": "\n".join(lines) + "\n"}), "mbes.csv"),
+              (variant("no_ins", {"ins.csv": None}), "ins.csv")]
     for folder, name in cases:
         out = tmp_path / "r.json"
         code = main(["pool-calibrate", "--pass", good, "--pass", str(folder), "--json",

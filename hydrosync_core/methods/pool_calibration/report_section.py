@@ -199,7 +199,8 @@ def _budget_table(ctx, res) -> list[Flowable]:
         extra_style=style,
         caption="\u03c3 budget of the joint adjustment: the 1\u03c3 each source alone gives "
         "each parameter (their squares add up to the total; the largest in bold). Soundings: "
-        "more passes, slower, at other ranges; build tolerance: survey the as-built "
+        "more passes, slower, at other ranges and on lines crossing the wall at about ±15°; "
+        "build tolerance: survey the as-built "
         "below-water blocks; laser planes: a denser scan of the above-water faces; INS: a "
         "more accurate INS; held parameters: the coarse error of undetermined ones.")
 

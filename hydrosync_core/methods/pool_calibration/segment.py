@@ -11,6 +11,9 @@ clouds are first cropped to the target's bounding box; per-face point sets are c
 multibeam faces the RANSAC band is replaced by a symmetric ±k·σ band about the face's own
 TLS plane (:func:`band_refit`): RANSAC is only the robust starting point, so the kept
 points neither depend on the (non-repeatable) RANSAC draw nor lean towards its plane.
+Those final selections then give up every point that lies as close to another face
+(:func:`drop_intersections`): a sounding near the line where two faces meet cannot be
+told to belong to one of them, and the noise truncated there biases both planes.
 """
 
 from __future__ import annotations
@@ -177,6 +180,55 @@ def band_refit(pts: np.ndarray, start: np.ndarray, k_sigma: float, limit: float,
     return sel
 
 
+def band_halfwidth(pts: np.ndarray, k_sigma: float, limit: float) -> float:
+    """Half-width (m) of the ±k·σ band of :func:`band_refit` for the kept points *pts*
+    (σ = 1.4826·MAD of their distances to their own TLS plane), at most *limit*."""
+    from hydrosync_core.methods.pool_calibration.planes import fit_plane
+
+    if len(pts) < 10:
+        return limit
+    dist = pts @ fit_plane(pts).normal
+    sigma = 1.4826 * float(np.median(np.abs(dist - np.median(dist))))
+    return min(limit, k_sigma * max(sigma, 1e-6))
+
+
+def drop_intersections(points: np.ndarray, faces: list[DesignFace],
+                       selected: dict[str, np.ndarray], bands: dict[str, float]
+                       ) -> dict[str, np.ndarray]:
+    """Selections (indices into *points*, target ENU m) without the points as close to
+    another design face as to their own.
+
+    A point of face F is dropped when it lies within the band b of another face G's plane
+    and inside G's polygon grown by b, with b the wider of the two faces' bands (*bands*:
+    face -> half-width in m; a face with nothing selected, an underside or a face against
+    the wall, takes F's). Why: the soundings at the foot of a block standing on a plinth
+    (or at any concave edge) are as near the plinth top as the block's side; the band of
+    the plinth top then keeps those the range noise put below it and not those above, a
+    few millimetres of one-sided bias over a strip that tilts the plinth-top reference
+    (#24: roll at +4σ and +8σ on plinth sessions). The same holds where the design
+    covers a face with another body (a block's footprint on its plinth, a face flush with
+    the wall), where no sounding can come from the covered face.
+    """
+    out = {}
+    for f in faces:
+        idx = selected.get(f.name, np.arange(0))
+        if not len(idx):
+            out[f.name] = idx
+            continue
+        pts = points[idx]
+        keep = np.ones(len(idx), bool)
+        for g in faces:
+            if g.name == f.name:
+                continue
+            band = max(bands.get(f.name, 0.0), bands.get(g.name, 0.0))
+            near = keep & (np.abs(pts @ g.normal - g.d) < band)
+            if near.any():
+                hit = np.flatnonzero(near)
+                keep[hit[inside_polygon(g, pts[hit], -band)]] = False
+        out[f.name] = idx[keep]
+    return out
+
+
 def segment_cloud(points: np.ndarray, faces: list[DesignFace], water_level: float,
                   side: str, *, tol: float = 0.3, margin: float = 0.1,
                   water_margin: float = 0.1, ransac_m: float = 0.05, dbscan_eps: float = 0.3,
@@ -188,7 +240,8 @@ def segment_cloud(points: np.ndarray, faces: list[DesignFace], water_level: floa
     *side* is ``"above"`` (laser) or ``"below"`` (multibeam). The polygon shrink *margin*
     is capped at half the face's inradius, so small faces keep a core. With ``band_sigma > 0`` the
     RANSAC/DBSCAN selection is replaced by the symmetric band of :func:`band_refit`
-    (±band_sigma robust σ about the face's own TLS plane, within the crop). Returns a
+    (±band_sigma robust σ about the face's own TLS plane, within the crop) and the points
+    as close to another face are dropped (:func:`drop_intersections`). Returns a
     :class:`FaceSegment` per face name (possibly empty).
     """
     rng = np.random.default_rng(seed)
@@ -200,6 +253,7 @@ def segment_cloud(points: np.ndarray, faces: list[DesignFace], water_level: floa
         ok = pts[:, 2] < water_level - water_margin
     cand, pts = cand[ok], pts[ok]
     out = {}
+    bands: dict[str, float] = {}
     for k, face in enumerate(faces):
         check_cancel(cancel)
         near = np.abs(pts @ face.normal - face.d) < tol
@@ -212,9 +266,15 @@ def segment_cloud(points: np.ndarray, faces: list[DesignFace], water_level: floa
                               max_angle_deg)
         if band_sigma > 0 and len(keep) >= min_points:
             keep = band_refit(pts[idx], keep, band_sigma, tol)
+            bands[face.name] = band_halfwidth(pts[idx[keep]], band_sigma, tol)
         sel = np.sort(cand[idx[keep]])
         out[face.name] = FaceSegment(face.name, sel, cropped, len(keep))
         report(progress, (k + 1) / len(faces), f"segmented {face.name} ({side} water)")
+    if bands:
+        kept = drop_intersections(points, faces, {n: s.indices for n, s in out.items()},
+                                  bands)
+        out = {n: FaceSegment(n, kept[n], s.cropped, s.ransac_inliers)
+               for n, s in out.items()}
     return out
 
 

@@ -67,7 +67,8 @@ def _joint_obs(seg, mfaces, min_points):
 
 #: What reduces each σ-budget source (the advice of a flagged parameter).
 REMEDY = {
-    "data": "more passes, slower, at other ranges",
+    "data": "more passes, slower, at other ranges and on lines crossing the wall at about "
+            "±15°",
     "build": "survey the as-built below-water blocks (smaller build tolerance)",
     "reference": "a denser laser scan of the above-water faces",
     "ins": "a more accurate INS",

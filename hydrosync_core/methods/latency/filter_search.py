@@ -52,7 +52,7 @@ class FilterSearch:
         cut-off either side — no filter beyond the longest —, the other order): the
         cut-off is only known to the grid's resolution (on 25 simulated days with an
         undeclared filter that the data determined, 22 within 1.96 σ of the truth; the
-        candidate's own σ alone covered 4)."""
+        the same σ without the grid term covered 12)."""
         if not self.determined or self.best is None:
             return None
         order, period = self.best

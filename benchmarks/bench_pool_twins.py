@@ -49,6 +49,7 @@ from scipy.optimize import least_squares
 from scipy.spatial.transform import Rotation, Slerp
 from scipy.stats import norm
 
+from hydrosync_core.errors import InputError
 from hydrosync_core.methods.pool_calibration.design import design_faces, inside_polygon
 from hydrosync_core.methods.pool_calibration.estimator import calibrate
 from hydrosync_core.methods.pool_calibration.params import PoolParams
@@ -191,7 +192,11 @@ def _print(label: str, r: dict, seconds: float) -> None:
           f"{' WORSE ' + ','.join(r['worse']) if r['worse'] else ''} {seconds:5.0f}s", flush=True)
 
 
-def _summary(label: str, runs: list[dict]) -> None:
+def _summary(label: str, runs: list[dict | None]) -> None:
+    failed = sum(r is None for r in runs)
+    runs = [r for r in runs if r is not None]
+    if failed:
+        print(f"{label}: {failed} run(s) stopped with exit 2 (no usable face), not scored")
     if not runs:
         return
     rot = np.sqrt(np.mean([r["rot"] ** 2 for r in runs]))
@@ -221,8 +226,12 @@ def _single(variant: str, draw: int, rng) -> dict:
         cfg = replace(cfg, target=prism_target(rng, water_level=0.0, **VARIANTS[variant]))
     sim = simulate_pool_pass(cfg, seed=5000 + draw)
     t0 = time.perf_counter()
-    res = calibrate(sim["lidar"], sim["mbes"], sim["ins"], sim["setup"], sim["target"],
-                    _params(cfg))
+    try:
+        res = calibrate(sim["lidar"], sim["mbes"], sim["ins"], sim["setup"], sim["target"],
+                        _params(cfg))
+    except InputError as exc:     # what the CLI reports with exit 2: counted, not a crash
+        print(f"  {variant} #{draw}: exit 2 ({exc})", flush=True)
+        return None
     ref = second_opinion([sim["mbes"]], [sim["ins"]], sim["setup"], sim["target"])
     r = _score(res, ref, sim["truth"], sim["setup"])
     _print(f"{variant} #{draw}", r, time.perf_counter() - t0)
@@ -269,9 +278,13 @@ def _session(draw: int, rng, n_passes: int = 4, design: str = "spread") -> dict:
                                seed=7000 + 10 * draw + k)
             for k, (r, h) in enumerate(zip(ranges, heads, strict=True))]
     t0 = time.perf_counter()
-    res = calibrate([s["lidar"] for s in sims], [s["mbes"] for s in sims],
-                    [s["ins"] for s in sims], sims[0]["setup"], sims[0]["target"],
-                    _params(base))
+    try:
+        res = calibrate([s["lidar"] for s in sims], [s["mbes"] for s in sims],
+                        [s["ins"] for s in sims], sims[0]["setup"], sims[0]["target"],
+                        _params(base))
+    except InputError as exc:
+        print(f"  session {design} {variant} #{draw}: exit 2 ({exc})", flush=True)
+        return None
     ref = second_opinion([s["mbes"] for s in sims], [s["ins"] for s in sims],
                          sims[0]["setup"], sims[0]["target"])
     r = _score(res, ref, sims[0]["truth"], sims[0]["setup"])
@@ -331,6 +344,7 @@ def main() -> None:
         _summary(f"single, {variant}", runs)
     for design, runs in sessions.items():
         _summary(f"four-pass sessions, {design} headings", runs)
+        runs = [r for r in runs if r is not None]
         if not runs:
             continue
         share = np.mean([r["within"] for r in runs])

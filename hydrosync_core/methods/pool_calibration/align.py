@@ -51,10 +51,19 @@ def coarse_align(ctx: georef.GeorefContext, faces: list[DesignFace],
                  roles: dict[str, FaceRole], refs: dict[str, Reference], water: float,
                  r_m0: np.ndarray, lever0: np.ndarray, *, tolerances=(0.6, 0.3, 0.15),
                  water_margin: float = 0.1, dbscan_eps: float = 0.5, min_points: int = 30,
-                 max_points: int = 20000, huber_m: float = 0.03, progress=None,
+                 max_points: int = 20000, huber_m: float = 0.03,
+                 max_correction: tuple[float, float] | None = None, progress=None,
                  cancel=None) -> Alignment:
-    """Staged segmentation + joint adjustment from the coarse setup (module docstring)."""
+    """Staged segmentation + joint adjustment from the coarse setup (module docstring).
+
+    *max_correction* (rad, m): a stage whose estimate moves an angle or a lever component
+    further than this from the coarse setup is not taken (the next stage starts from the
+    previous estimate): the setup is vouched for to about that much, and a wide crop can
+    catch a neighbour face or the floor that drags the fit away (#24: yaw driven to 47°
+    from a coarse yaw 1.35° off, every face lost).
+    """
     r_m, lever = r_m0.copy(), np.asarray(lever0, float).copy()
+    theta0 = np.array([*georef.boresight_angles(r_m0), *lever])
     use = [f for f in faces if f.name in refs]
     stages = []
     for k, tol in enumerate(tolerances):
@@ -71,8 +80,12 @@ def coarse_align(ctx: georef.GeorefContext, faces: list[DesignFace],
             fit = adjust(ctx, obs, r_m, lever, huber_m=max(huber_m, tol / 4), cancel=cancel,
                          fix=structural_fix(roles, obs), covariance=False, max_iter=15,
                          tol=1e-7)
-            r_m, lever = fit.r_m, fit.lever
+            moved = np.abs(np.array([*georef.boresight_angles(fit.r_m), *fit.lever]) - theta0)
             row["held"] = list(fit.fixed)
+            row["taken"] = max_correction is None or bool(
+                np.all(moved[:3] <= max_correction[0]) and np.all(moved[3:] <= max_correction[1]))
+            if row["taken"]:
+                r_m, lever = fit.r_m, fit.lever
         stages.append(row)
         report(progress, (k + 1) / len(tolerances), f"coarse alignment, crop ±{tol:g} m: "
                f"{row['faces']} faces")

@@ -171,6 +171,7 @@ def segment(lidar_enu, mbes, ins, setup: dict, target: dict,
                          tolerances=(tol, tol / 2, tol / 4), water_margin=p.water_margin_m,
                          dbscan_eps=p.dbscan_mbes_m, min_points=p.min_points,
                          max_points=p.max_points_per_face, huber_m=p.huber_m,
+                         max_correction=(2 * np.deg2rad(p.coarse_tol_deg), 2 * p.coarse_tol_m),
                          progress=sub_progress(progress, 0.5, 0.85), cancel=cancel)
     # Faces as found around the aligned setup (what Segment shows; the solution re-selects
     # the points with the tight tolerances).

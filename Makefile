@@ -5,7 +5,7 @@ BIN := $(VENV)/bin
 STAMP := $(VENV)/.hydrosync-installed
 OUT ?= demo-output
 
-.PHONY: install demo test bench lint gui screenshot clean
+.PHONY: install demo test bench lint gui screenshot screenshots clean
 
 $(STAMP): pyproject.toml scripts/install-system-packages.sh
 	bash scripts/install-system-packages.sh
@@ -40,6 +40,10 @@ bench: $(STAMP)
 
 lint: $(STAMP)
 	$(BIN)/ruff check .
+
+# docs/ screenshots from the layout harness's artifact (checked as they are shot).
+screenshots: $(STAMP)
+	$(BIN)/python scripts/docs_screenshots.py
 
 gui: $(STAMP)
 	$(BIN)/hydrosync-gui $(OUT)/demo.h5

@@ -74,13 +74,62 @@ def _z_cells(z: np.ndarray) -> str:
     return " ".join(f"{c:4.0f}/{r:5.2f}" for c, r in zip(cov, rms, strict=True))
 
 
+def velocity_second_opinion(rec: R.Recording, res, half_s: float = 0.5) -> None:
+    """Velocity against the reference beside a plain second opinion: the fixes differenced
+    over ±*half_s* against the reference differenced over the same span (both means over
+    one window, so neither's own smoothing favours it); and the smoothed velocity's σ."""
+    from hydrosync_core.methods.gins_smoother.evaluate import error_series
+
+    g, ref = rec.gnss, rec.reference
+    t = g.time[(g.time - half_s >= max(g.time[0], ref.time[0]))
+               & (g.time + half_s <= min(g.time[-1], ref.time[-1]))]
+
+    def ned(time, llh):
+        lat0 = np.radians(llh[0, 0])
+        return np.column_stack([np.radians(llh[:, 0]) * 6378137.0,
+                                np.radians(llh[:, 1]) * 6378137.0 * np.cos(lat0),
+                                -llh[:, 2]])
+
+    def diff(time, xyz):
+        a = np.column_stack([np.interp(t - half_s, time, xyz[:, c]) for c in range(3)])
+        b = np.column_stack([np.interp(t + half_s, time, xyz[:, c]) for c in range(3)])
+        return (b - a) / (2 * half_s)
+
+    d = diff(g.time, ned(g.time, g.llh)) - diff(ref.time, ned(ref.time, ref.llh))
+    e = error_series(res.smoothed, ref)
+    z = np.column_stack([e[k] / e[f"sd_{k}"] for k in ("vn", "ve", "vd")])
+    err = np.column_stack([e[k] for k in ("vn", "ve", "vd")])
+    sd = np.median(np.column_stack([e[f"sd_{k}"] for k in ("vn", "ve", "vd")]), axis=0)
+    print("  velocity vN/vE/vD (m/s): smoothed − reference RMS "
+          + " ".join(f"{v:.3f}" for v in np.sqrt(np.mean(err ** 2, axis=0)))
+          + ", mean " + " ".join(f"{v:+.3f}" for v in err.mean(axis=0))
+          + ", its σ (median) " + " ".join(f"{v:.3f}" for v in sd)
+          + ", RMS(e/σ) " + " ".join(f"{v:.2f}" for v in np.sqrt(np.mean(z ** 2, axis=0))))
+    print(f"  second opinion, fixes differenced over {2 * half_s:g} s − reference differenced "
+          "alike: RMS " + " ".join(f"{v:.3f}" for v in np.sqrt(np.mean(d ** 2, axis=0)))
+          + ", mean " + " ".join(f"{v:+.3f}" for v in d.mean(axis=0))
+          + f" ({t.size} fixes)")
+
+
 def sigma_honesty(rec: R.Recording, outage: bool) -> None:
-    """Normalised innovations and (RTK drive) normalised outage errors, per GNSS model."""
+    """Normalised innovations and (RTK drive) normalised outage errors, per GNSS model:
+    the file's white σ (before), the estimated model without thinning the fixes, and the
+    default (after)."""
+    from hydrosync_core.methods.gins_smoother import filter as F  # noqa: N812
+
     print("σ honesty: GNSS innovations / their predicted std (honest: RMS 1, autocorrelation 0)")
-    for mode in ("file", "auto"):
-        res = run_gins(rec.imu, rec.gnss, rec.config,
-                       GinsParams.from_dict({**rec.params, "gnss_noise": mode}))
-        print(f"  {mode:<5} {_innov(res.gnss_model['check'])}")
+    for mode, thin in (("file", True), ("auto", False), ("auto", True)):
+        keep = F.THIN_FACTORS
+        F.THIN_FACTORS = keep if thin else ()
+        try:
+            t0 = time.process_time()
+            res = run_gins(rec.imu, rec.gnss, rec.config,
+                           GinsParams.from_dict({**rec.params, "gnss_noise": mode}))
+            cpu = time.process_time() - t0
+        finally:
+            F.THIN_FACTORS = keep
+        label = mode if thin or mode == "file" else "auto, no thinning"
+        print(f"  {label:<17} {_innov(res.gnss_model['check'])}   CPU {cpu:.1f} s")
         print(f"        {res.gnss_model['summary']}")
     if not outage:
         return
@@ -143,6 +192,7 @@ def main() -> int:
                     f"{k} {100 * c[k]['within_95']:.0f}/{100 * c0[k]['within_95']:.0f}"
                     for k in ("north", "east", "down", "vn", "ve", "vd", "roll", "pitch",
                               "yaw")))
+            velocity_second_opinion(rec, res)
         sigma_honesty(rec, rec.reference is None)
         print("outage test: largest distance to the removed fixes (m), median / max over "
               "windows")

@@ -175,8 +175,13 @@ def build_demo(out_dir: str | Path, *, seed: int = DEMO_SEED,
     return outcome
 
 
-def truth_text(value, digits: int = 4) -> str:
-    """Compact one-line text of a simulator's truth (nested dicts/lists of numbers)."""
+def truth_text(value, digits: int = 8) -> str:
+    """Compact one-line text of a simulator's truth (nested dicts/lists of numbers).
+
+    Up to *digits* significant digits, trailing zeros dropped: a round truth reads round
+    (``-44.2``), a drawn one as many digits as any result printed beside it (results
+    carry up to 8: ``512.3404``); at 4 digits the truth looked coarser than the estimate.
+    """
     if isinstance(value, dict):
         # Arrays (e.g. true epoch times) are not one-line material: left out.
         return ", ".join(f"{k} {truth_text(v, digits)}" for k, v in value.items()

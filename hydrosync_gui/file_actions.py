@@ -18,6 +18,7 @@ import logging
 from collections.abc import Callable
 from pathlib import Path
 
+from PySide6.QtCore import QTimer
 from PySide6.QtWidgets import QFileDialog, QMessageBox
 
 from hydrosync_core.errors import ProjectAccessError
@@ -210,16 +211,24 @@ class FileActions:
     def _on_import(self) -> None:
         if not self.ensure_idle():
             return
-        choice = ImportDialog.ask(self, kinds(), self.last_dir())
-        if choice is not None:
-            self.import_data(*choice)
+        choices = ImportDialog.ask(self, kinds(), self.last_dir())
+        if choices:
+            self.import_all(list(choices))
 
-    def import_data(self, kind: str, path: str | list[str], options: dict | None = None
-                    ) -> None:
+    def import_all(self, choices: list[tuple[str, str | list[str], dict]]) -> None:
+        """Import each ``(kind, path(s), options)`` of *choices* in turn (the Import
+        dialog's list); a failure or Cancel stops the ones after it."""
+        if choices:
+            first, rest = choices[0], choices[1:]
+            self.import_data(*first, then=lambda: self.import_all(rest))
+
+    def import_data(self, kind: str, path: str | list[str], options: dict | None = None,
+                    then: Callable[[], None] | None = None) -> None:
         """Import *path* (a file, or several of one kind) as *kind* (a key of ``KINDS``) in
         a worker, with progress and Cancel.
 
-        *options*: ``{"heave_positive": "up" | "down"}`` for a motion log.
+        *options*: ``{"heave_positive": "up" | "down"}`` for a motion log. *then* runs
+        after a successful import.
 
         The file is read into a scratch project first, so a bad file (``InputError``) is
         reported as its one-line message and leaves the current project untouched.
@@ -238,6 +247,10 @@ class FileActions:
             self.update_title()
             log.info("imported %s", message)
             self.statusBar().showMessage(f"Imported {message}", 8000)
+            if then is not None:
+                # After the worker's "done" has unlocked the window: the next import
+                # must find it idle.
+                QTimer.singleShot(0, then)
 
         name = Path(path).name if isinstance(path, str) else f"{len(path)} files"
         self.run_shell_task(f"Importing {name}",

@@ -36,6 +36,8 @@ def cmd_import(args: argparse.Namespace) -> int:
     if not chosen:
         raise InputError(None, "nothing to import: give at least one --KIND FILE")
     files_of = dict(chosen)
+    if getattr(args, "clock_offset", None) is not None and "gins_recording" not in files_of:
+        raise InputError(None, "--clock-offset applies to --gins-recording only")
     if files_of.get("gnss_log") and files_of.get("gnss_log") == files_of.get("attitude_log"):
         from hydrosync_core.importers.log_import import expect_gnss_then_attitude
 
@@ -237,14 +239,17 @@ def register(sub: argparse._SubParsersAction) -> None:
     )
     p.add_argument("project", help="project file (.h5)")
     for name, kind in kinds().items():
-        flags = [f"--{name}"] + ([f"--{name.replace('_', '-')}"] if "_" in name else [])
-        more = f" (repeatable: {kind.repeatable})" if kind.repeatable else ""
+        # The hyphenated spelling first, so that usage and help show it; the underscore
+        # spelling of older scripts keeps working.
+        flags = list(dict.fromkeys([f"--{name.replace('_', '-')}", f"--{name}"]))
+        more = "".join(f"; see --{option.replace('_', '-')}" for option in kind.options)
+        more += f" (repeatable: {kind.repeatable})" if kind.repeatable else ""
         p.add_argument(*flags, dest=name, metavar="FILE", action="append",
                        help=kind.description + more)
     p.add_argument(
         "--heave-positive", choices=("up", "down"), default=None,
         help="direction of positive heave in the --attitude CSV (formats.md: up) or the "
-        "--attitude_log file (required for PSXN,23; TSS1 and PASHR are up; Seapath PSXN,23 is "
+        "--attitude-log file (required for PSXN,23; TSS1 and PASHR are up; Seapath PSXN,23 is "
         "documented positive down); stored heave is always positive up",
     )
     p.add_argument(
@@ -252,6 +257,12 @@ def register(sub: argparse._SubParsersAction) -> None:
         help="GGA sentences of a --gnss-log with an empty geoid separation: 'zero' keeps them "
         "with the separation taken as 0 (heights then above the geoid, not ellipsoidal; the "
         "import warns), 'skip' drops them (default zero)",
+    )
+    p.add_argument(
+        "--clock-offset", type=float, default=None, dest="clock_offset", metavar="S",
+        help="--gins-recording: the GNSS−IMU clock offset (s; the GNSS epoch tagged t "
+        "happened at IMU time t + S), applied and stored instead of estimating it from the "
+        "turns; later runs use it",
     )
     p.set_defaults(func=cmd_import)
 

@@ -59,6 +59,9 @@ class DataKind:
     repeatable : str
         Empty when one file fills the target (a second one replaces it); else what each
         of several files holds (``"one file per antenna"``): ``--help`` says so.
+    folder : bool
+        The input is a folder (a recording), not a file: the Import dialog passes the
+        folder itself instead of the files in it.
     """
 
     name: str
@@ -68,6 +71,7 @@ class DataKind:
     store: str = "table"
     options: tuple[str, ...] = ()
     repeatable: str = ""
+    folder: bool = False
 
 
 @dataclass(frozen=True)

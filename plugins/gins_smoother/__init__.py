@@ -26,7 +26,8 @@ SPEC = PluginSpec(
                  "arm)", "raw/gins/config", f"{RUN}:config_json", "json"),
         DataKind("gins_recording", "a real recording folder: comma2k19 segment or "
                  "rtklibexplorer drive/walk (IMU, GNSS, configuration, reference)",
-                 "raw/gins", f"{RUN}:store_recording", "custom"),
+                 "raw/gins", f"{RUN}:store_recording", "custom",
+                 options=("clock_offset",), folder=True),
         DataKind("gins_reference", "reference trajectory, 11-column KF-GINS .nav",
                  "raw/gins/reference", f"{RUN}:nav_table", "table"),
     ),

@@ -111,6 +111,11 @@ class GinsPanel(AnalysisPanel):
             if c.get("north") and c.get("east") and c.get("down"):
                 text += (", within 1.96σ N/E/D " + "/".join(
                     f"{100 * c[k]['within_95']:.0f}" for k in ("north", "east", "down")) + " %")
+            off = e.get("constant_offset")
+            if off and off.get("yaw") is not None:
+                text += ("; constant offset from the reference (not independent; its own "
+                         "axes and point) roll/pitch/yaw " + "/".join(
+                             f"{off[k]:+.2f}" for k in ("roll", "pitch", "yaw")) + "°")
         self.summary.setText(text)
         tabs = {"forward": project.get_table(f"{RESULT}/forward")}
         if project.exists(f"{RESULT}/smoothed"):

@@ -30,8 +30,7 @@ SPEC = PluginSpec(
         DataKind("gnss_log", "NMEA GNSS log (GGA / PTNL,GGK [+GST, ZDA]; logger time tags "
                  "allowed)", "raw/gnss", f"{READERS}.log_import:store_gnss_log", "custom",
                  options=("empty_geoid",), repeatable=SEVERAL_LOGS),
-        DataKind("attitude_log", "NMEA motion log (PASHR / PSXN,23 / TSS1; see "
-                 "--heave-positive)", "raw/attitude",
+        DataKind("attitude_log", "NMEA motion log (PASHR / PSXN,23 / TSS1)", "raw/attitude",
                  f"{READERS}.log_import:store_attitude_log", "custom",
                  options=("heave_positive",), repeatable=SEVERAL_LOGS),
     ),

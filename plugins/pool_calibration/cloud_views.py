@@ -21,11 +21,74 @@ PALETTE = ("#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd", "#8c564b", "#e
            "#17becf", "#bcbd22", "#7f7f7f", "#aec7e8", "#ffbb78", "#98df8a", "#ff9896",
            "#c5b0d5", "#c49c94", "#f7b6d2", "#9edae5", "#dbdb8d", "#393b79")
 UNASSIGNED = "#c8c8c8"
+#: Face kind -> shades of one hue (dark to light): a kind reads at a glance, neighbouring
+#: faces of one kind still differ. The order is the legend's.
+KIND_SHADES = {
+    "wall": ("#1f77b4", "#4f9bd0", "#16527f"),
+    "perpendicular side": ("#ff7f0e", "#ffa54f", "#c25f05"),
+    "oblique side": ("#2ca02c", "#5cc45c", "#1d6d1d"),
+    "top": ("#d62728", "#e8666a", "#9c1b1c"),
+    "underside": ("#9467bd", "#b595d4", "#6a4690"),
+    "floor": ("#8c564b", "#b07f74", "#5f3a33"),
+    "other": ("#7f7f7f", "#a5a5a5", "#555555"),
+}
+_ROLE_KIND = {"wall": "wall", "perpendicular": "perpendicular side",
+              "oblique": "oblique side"}
+
+
+def face_kind(name: str, role: str | None = None) -> str:
+    """The kind of face *name* (a key of :data:`KIND_SHADES`), from its role in the
+    adjustment when known (``wall``, ``perpendicular``, ``oblique``, ``horizontal``),
+    else from the words of its name (``N1_up_top``, ``floor``)."""
+    low = name.lower()
+    if role in _ROLE_KIND:
+        return _ROLE_KIND[role]
+    if role == "horizontal" or role is None:
+        for word, kind in (("floor", "floor"), ("bottom", "underside"),
+                           ("under", "underside"), ("top", "top")):
+            if word in low:
+                return kind
+    if role is None:
+        for word in ("wall", "perpendicular", "oblique"):
+            if word in low:
+                return _ROLE_KIND[word]
+    return "top" if role == "horizontal" else "other"
+
+
+class _FaceColours:
+    """The colours of the faces on show, shared by the cloud views and the face table
+    (one pool panel per window: :meth:`CloudBox.draw` sets them, the table's swatches
+    read them with :func:`face_colour` when painted)."""
+
+    def __init__(self) -> None:
+        self.kinds: list[str] = []
+        self.colours: list[str] = []
+
+    def set(self, kinds: list[str]) -> None:
+        seen: dict[str, int] = {}
+        self.kinds, self.colours = list(kinds), []
+        for kind in kinds:
+            shades = KIND_SHADES[kind]
+            self.colours.append(shades[seen.get(kind, 0) % len(shades)])
+            seen[kind] = seen.get(kind, 0) + 1
+
+
+FACE_COLOURS = _FaceColours()
+
+
+def set_face_kinds(kinds: list[str]) -> None:
+    """Colour face *k* by ``kinds[k]`` from now on (see :class:`_FaceColours`)."""
+    FACE_COLOURS.set(kinds)
 
 
 def face_colour(k: int) -> str:
-    """Hex colour of face index *k* (-1 = soundings on no face: light grey)."""
-    return UNASSIGNED if k < 0 else PALETTE[k % len(PALETTE)]
+    """Hex colour of face index *k*: a shade of its kind's hue once the kinds are set,
+    else a colour of :data:`PALETTE` (-1 = soundings on no face: light grey)."""
+    if k < 0:
+        return UNASSIGNED
+    if k < len(FACE_COLOURS.colours):
+        return FACE_COLOURS.colours[k]
+    return PALETTE[k % len(PALETTE)]
 
 
 def gl_available() -> bool:
@@ -66,6 +129,14 @@ def _split(face: np.ndarray) -> dict[int, np.ndarray]:
     return {int(k): np.flatnonzero(face == k) for k in np.unique(face)}
 
 
+def _tip(names: list[str], k: int, cloud: str) -> str | None:
+    """Tool tip of a point of face *k*: its name, kind and cloud."""
+    if k < 0 or k >= len(names):
+        return None
+    kind = FACE_COLOURS.kinds[k] if k < len(FACE_COLOURS.kinds) else ""
+    return f"{names[k]}" + (f" ({kind})" if kind else "") + f", {cloud}"
+
+
 class ProjectionView(QWidget):
     """Plan (E-N) and section (N-U) scatter plots, one item per face and cloud.
 
@@ -103,11 +174,15 @@ class ProjectionView(QWidget):
         self.section.clear()
         self.laser_items, self.mbes_items, self._mbes = {}, {}, {}
 
-    def _pair(self, xyz: np.ndarray, colour: str, symbol: str, size: float) -> tuple:
+    def _pair(self, xyz: np.ndarray, colour: str, symbol: str, size: float,
+              tip: str | None = None) -> tuple:
         pair = []
         for plot, (i, j) in ((self.plan, (0, 1)), (self.section, (1, 2))):
+            # Hovering a point names its face (the legend names only the kinds).
             item = pg.ScatterPlotItem(x=xyz[:, i], y=xyz[:, j], symbol=symbol, size=size,
-                                      pen=None, brush=pg.mkBrush(colour))
+                                      pen=None, brush=pg.mkBrush(colour),
+                                      hoverable=tip is not None,
+                                      tip=None if tip is None else (lambda tip=tip, **_: tip))
             plot.addItem(item)
             pair.append(item)
         return tuple(pair)
@@ -119,7 +194,8 @@ class ProjectionView(QWidget):
             # Laser: small, half-transparent discs under the soundings.
             colour = pg.mkColor(face_colour(k))
             colour.setAlpha(110)
-            self.laser_items[k] = self._pair(clouds["laser_xyz"][rows], colour, "o", 3)
+            self.laser_items[k] = self._pair(clouds["laser_xyz"][rows], colour, "o", 3,
+                                             _tip(names, k, "laser"))
         before, after = clouds["mbes_before_xyz"], clouds.get("mbes_after_xyz")
         for k, rows in _split(clouds["mbes_face"]).items():
             self._mbes[k] = (before[rows], None if after is None else after[rows])
@@ -127,7 +203,8 @@ class ProjectionView(QWidget):
             size, symbol = (2, "o") if k < 0 else (4, "t")
             colour = pg.mkColor(face_colour(k))
             colour.setAlpha(120 if k < 0 else 255)
-            self.mbes_items[k] = self._pair(self._mbes_xyz(k), colour, symbol, size)
+            self.mbes_items[k] = self._pair(self._mbes_xyz(k), colour, symbol, size,
+                                            _tip(names, k, "multibeam"))
             for item in self.mbes_items[k]:
                 item.setZValue(-1 if k < 0 else 1)
         self._frame(clouds)
@@ -183,8 +260,9 @@ class GLCloudView(QWidget):
 
     @staticmethod
     def _rgba(face: np.ndarray, alpha: float) -> np.ndarray:
-        table = np.array([pg.mkColor(face_colour(k)).getRgbF() for k in range(len(PALETTE))])
-        rgba = np.where((face >= 0)[:, None], table[np.maximum(face, 0) % len(PALETTE)],
+        n = max(int(face.max(initial=-1)) + 1, 1)
+        table = np.array([pg.mkColor(face_colour(k)).getRgbF() for k in range(n)])
+        rgba = np.where((face >= 0)[:, None], table[np.maximum(face, 0)],
                         pg.mkColor(UNASSIGNED).getRgbF())
         rgba[:, 3] = alpha
         return rgba.astype(np.float32)
@@ -208,7 +286,8 @@ class GLCloudView(QWidget):
             lo, hi = laser.min(axis=0), laser.max(axis=0)
             centre = (lo + hi) / 2
             self.view.opts["center"] = pg.Vector(*centre)
-            self.view.setCameraPosition(distance=float(2.0 * (hi - lo).max() + 1.0),
+            # Close enough that the target fills the view (at 2x its size half was empty).
+            self.view.setCameraPosition(distance=float(1.6 * (hi - lo).max() + 1.0),
                                         elevation=25, azimuth=200)
 
     def _mbes_xyz(self) -> np.ndarray:

@@ -13,6 +13,7 @@ iteration, lever-arm steps and joint adjustment on that segmentation
 
 from __future__ import annotations
 
+import html
 import json
 
 import numpy as np
@@ -125,16 +126,6 @@ class PoolCalibrationPanel(PluginPanel):
         conv_top.addWidget(QLabel(convergence_legend()))
         cv.addLayout(conv_top)
         cv.addWidget(self.convergence, 1)
-        left = QWidget()
-        lay = QVBoxLayout(left)
-        lay.setContentsMargins(0, 0, 4, 0)
-        lay.addWidget(box)
-        lay.addLayout(buttons)
-        lay.addWidget(self.summary)
-        lay.addWidget(self.warnings)
-        lay.addWidget(values_box)
-        lay.addWidget(conv_box, 1)
-
         self.cloud_box = CloudBox()
         # Shortcuts used by the tests and the shell's screenshots.
         self.cloud_view = self.cloud_box.view
@@ -143,22 +134,42 @@ class PoolCalibrationPanel(PluginPanel):
 
         self.face_table = FaceTable()
         self.iteration_table = IterationTable()
+        # The results sit beside the clouds, not under the parameters: on a 1366×768 laptop
+        # the parameter column scrolls, and what a run produced must never be below its fold.
         self.tabs = QTabWidget()
+        results = QWidget()
+        results_layout = QVBoxLayout(results)
+        results_layout.setContentsMargins(0, 0, 0, 0)
+        results_layout.addWidget(values_box)
+        results_layout.addStretch(1)
+        self.results_box = QScrollArea()
+        self.results_box.setWidget(results)
+        self.results_box.setWidgetResizable(True)
+        self.results_box.setFrameShape(QScrollArea.Shape.NoFrame)
+        self.tabs.addTab(self.results_box, "Results")
+        self.tabs.addTab(conv_box, "Convergence")
         self.tabs.addTab(self.face_table, "Faces")
         self.tabs.addTab(self.iteration_table, "Iterations")
         right = QSplitter(Qt.Orientation.Vertical)
         right.addWidget(self.cloud_box)
         right.addWidget(self.tabs)
-        right.setSizes([520, 300])
+        right.setSizes([440, 360])
+        # Only the parameters scroll; the buttons and the run's summary stay in view.
+        params_scroll = QScrollArea()
+        params_scroll.setWidget(box)
+        params_scroll.setWidgetResizable(True)
+        params_scroll.setFrameShape(QScrollArea.Shape.NoFrame)
+        params_scroll.setHorizontalScrollBarPolicy(Qt.ScrollBarPolicy.ScrollBarAlwaysOff)
+        left = QWidget()
+        left.setMinimumWidth(340)
+        lay = QVBoxLayout(left)
+        lay.setContentsMargins(0, 0, 4, 0)
+        lay.addWidget(params_scroll, 1)
+        lay.addLayout(buttons)
+        lay.addWidget(self.summary)
+        lay.addWidget(self.warnings)
         split = QSplitter(Qt.Orientation.Horizontal)
-        # The parameter column scrolls, so the panel fits a 1366×768 laptop screen.
-        left_scroll = QScrollArea()
-        left_scroll.setWidget(left)
-        left_scroll.setWidgetResizable(True)
-        left_scroll.setFrameShape(QScrollArea.Shape.NoFrame)
-        left_scroll.setHorizontalScrollBarPolicy(Qt.ScrollBarPolicy.ScrollBarAlwaysOff)
-        left_scroll.setMinimumWidth(340)
-        split.addWidget(left_scroll)
+        split.addWidget(left)
         split.addWidget(right)
         split.setStretchFactor(1, 1)
         split.setSizes([475, 925])
@@ -219,7 +230,7 @@ class PoolCalibrationPanel(PluginPanel):
         self.cloud_box.clear()
 
     def _set_warnings(self, warnings: list[str]) -> None:
-        self.warnings.setText("<br>".join(f"⚠ {w}" for w in warnings))
+        self.warnings.setText("<br>".join(f"⚠ {html.escape(w)}" for w in warnings))
         self.warnings.setVisible(bool(warnings))
 
     def _show_preview(self) -> None:
@@ -239,7 +250,7 @@ class PoolCalibrationPanel(PluginPanel):
         self.face_table.fill(faces)
         self.iteration_table.clear()
         self.convergence.show_table(None, None, self.log_check.isChecked())
-        self.cloud_box.draw([str(n) for n in faces["face"]], clouds)
+        self.cloud_box.draw([str(n) for n in faces["face"]], clouds, faces.get("role"))
         self.tabs.setCurrentWidget(self.face_table)
 
     def _pass_starts(self):
@@ -263,13 +274,14 @@ class PoolCalibrationPanel(PluginPanel):
         self.summary.setText(text)
         self._set_warnings(json.loads(attrs.get("warnings", "[]")))
         self.values.fill(attrs, result)
+        self.tabs.setCurrentWidget(self.results_box)
         faces = project.get_table(f"{RESULT}/faces")
         self.face_table.fill(faces)
         self.iteration_table.fill(project.get_table(f"{RESULT}/iterations"))
         self._draw_convergence()
         if all(project.exists(f"{RESULT}/plan/{k}") for k in PLAN):
             clouds = {k: project.get(f"{RESULT}/plan/{k}") for k in PLAN}
-            self.cloud_box.draw([str(n) for n in faces["face"]], clouds)
+            self.cloud_box.draw([str(n) for n in faces["face"]], clouds, faces.get("role"))
         else:
             self.cloud_box.clear()
 

@@ -48,6 +48,9 @@ class TiltAlignmentPanel(AnalysisPanel):
         self.plan = _plot("north [m]", "east [m]", equal=True)
         self.side = _plot("up [m]", "east [m]", equal=True)
         self.jcurve = _plot("J(ψ)", "ψ [°]")
+        # J(ψ) is drawn over ψ̂ ± 180°: high at both ends, its minimum in the middle, so
+        # the legend goes top centre, where the curve is not.
+        self.jcurve.plotItem.legend.anchor((0.5, 0), (0.5, 0), offset=(0, 2))
         self.hist = _plot("runs", "heading error [°]")
         self.scatter = _plot("tip error north [mm]", "tip error east [mm]", equal=True)
         self.add_tab("Swing", self.plan, self.side, horizontal=True)

@@ -180,8 +180,20 @@
             <translation>审批</translation>
         </message>
         <message>
+            <source>Attitude error against the reference (solution − reference, °), forward and smoothed; dashed: ±1σ of each solution.</source>
+            <translation>相对参考的姿态误差(解 − 参考,°),前向滤波和平滑后;虚线:各解的 ±1σ。</translation>
+        </message>
+        <message>
             <source>Attitude error against the reference (solution − reference, °), forward and smoothed; dashed: ±1σ of each solution; shaded: simulated GNSS outages.</source>
             <translation>相对参考的姿态误差(解 − 参考,°),前向滤波和平滑后;虚线:各解的 ±1σ;阴影:模拟的 GNSS 中断。</translation>
+        </message>
+        <message>
+            <source>Attitude error against the reference (solution − reference, °), forward only (no smoothing); dashed: ±1σ of each solution.</source>
+            <translation>相对参考的姿态误差(解 − 参考,°),仅前向滤波(无平滑);虚线:各解的 ±1σ。</translation>
+        </message>
+        <message>
+            <source>Attitude error against the reference (solution − reference, °), forward only (no smoothing); dashed: ±1σ of each solution; shaded: simulated GNSS outages.</source>
+            <translation>相对参考的姿态误差(解 − 参考,°),仅前向滤波(无平滑);虚线:各解的 ±1σ;阴影:模拟的 GNSS 中断。</translation>
         </message>
         <message>
             <source>Attitude from a GNSS antenna array</source>
@@ -364,6 +376,10 @@
             <translation>计算时间(UTC,版本)</translation>
         </message>
         <message>
+            <source>Constant offset from the reference (mean of solution − reference) and the share of epochs within 1.96σ, as is / with that offset removed.</source>
+            <translation>相对参考的恒定偏差(解 − 参考的均值),以及误差在 1.96σ 以内的历元比例:原样 / 去除该偏差后。</translation>
+        </message>
+        <message>
             <source>Constraint interval</source>
             <translation>约束间隔</translation>
         </message>
@@ -496,8 +512,48 @@
             <translation>可用天线少于 3 个的历元数</translation>
         </message>
         <message>
+            <source>GNSS/INS trajectory, forward filter only (no smoothing)</source>
+            <translation>GNSS/INS 轨迹,仅前向滤波(无平滑)</translation>
+        </message>
+        <message>
+            <source>Position error against the reference (solution − reference, m), forward and smoothed; dashed: ±1σ of each solution.</source>
+            <translation>相对参考的位置误差(解 − 参考,m),前向滤波和平滑后;虚线:各解的 ±1σ。</translation>
+        </message>
+        <message>
+            <source>Position error against the reference (solution − reference, m), forward only (no smoothing); dashed: ±1σ of each solution.</source>
+            <translation>相对参考的位置误差(解 − 参考,m),仅前向滤波(无平滑);虚线:各解的 ±1σ。</translation>
+        </message>
+        <message>
+            <source>Position error against the reference (solution − reference, m), forward only (no smoothing); dashed: ±1σ of each solution; shaded: simulated GNSS outages.</source>
+            <translation>相对参考的位置误差(解 − 参考,m),仅前向滤波(无平滑);虚线:各解的 ±1σ;阴影:模拟的 GNSS 中断。</translation>
+        </message>
+        <message>
             <source>Position errors (±σ)</source>
             <translation>位置误差(±σ)</translation>
+        </message>
+        <message>
+            <source>Standard deviations of the forward filter (no smoothing in this run).</source>
+            <translation>前向滤波的标准差(本次运行未平滑)。</translation>
+        </message>
+        <message>
+            <source>The reference is compared as it is: its own accuracy is not known to this analysis, and a reference computed from the same sensors is not an independent truth. A constant offset (below) is the reference's own axes or point — e.g. a camera whose mounting on the IMU is not given — which no σ of this solution can know about.</source>
+            <translation>参考轨迹按原样比较:本分析不知道其自身精度;由同一批传感器计算的参考轨迹不是独立的真值。恒定偏差(见下表)来自参考轨迹自身的坐标轴或参考点(例如安装关系未给出的相机),本解的任何 σ 都无法反映。</translation>
+        </message>
+        <message>
+            <source>Trajectory: GNSS antenna fixes, forward (no smoothing) IMU positions (local east/north from the start).</source>
+            <translation>轨迹:GNSS 天线定位、前向滤波(无平滑)的 IMU 位置(以起点为原点的当地东/北坐标)。</translation>
+        </message>
+        <message>
+            <source>Velocity error against the reference (solution − reference, m/s), forward and smoothed; dashed: ±1σ of each solution.</source>
+            <translation>相对参考的速度误差(解 − 参考,m/s),前向滤波和平滑后;虚线:各解的 ±1σ。</translation>
+        </message>
+        <message>
+            <source>Velocity error against the reference (solution − reference, m/s), forward only (no smoothing); dashed: ±1σ of each solution.</source>
+            <translation>相对参考的速度误差(解 − 参考,m/s),仅前向滤波(无平滑);虚线:各解的 ±1σ。</translation>
+        </message>
+        <message>
+            <source>Velocity error against the reference (solution − reference, m/s), forward only (no smoothing); dashed: ±1σ of each solution; shaded: simulated GNSS outages.</source>
+            <translation>相对参考的速度误差(解 − 参考,m/s),仅前向滤波(无平滑);虚线:各解的 ±1σ;阴影:模拟的 GNSS 中断。</translation>
         </message>
         <message>
             <source>Velocity errors (±σ)</source>
@@ -554,6 +610,14 @@
         <message>
             <source>Face pairing and reference planes</source>
             <translation>面的配对与参考平面</translation>
+        </message>
+        <message>
+            <source>Results</source>
+            <translation>结果</translation>
+        </message>
+        <message>
+            <source>Convergence</source>
+            <translation>收敛</translation>
         </message>
         <message>
             <source>Faces</source>
@@ -2304,6 +2368,14 @@
             <translation>仅前向 EKF(无平滑)</translation>
         </message>
         <message>
+            <source>forward offset</source>
+            <translation>前向滤波偏差</translation>
+        </message>
+        <message>
+            <source>forward within 1.96σ %</source>
+            <translation>前向滤波在 1.96σ 以内 %</translation>
+        </message>
+        <message>
             <source>from the IMU grade</source>
             <translation>由 IMU 等级确定</translation>
         </message>
@@ -2904,6 +2976,14 @@
             <translation>平滑后</translation>
         </message>
         <message>
+            <source>smoothed offset</source>
+            <translation>平滑后偏差</translation>
+        </message>
+        <message>
+            <source>smoothed within 1.96σ %</source>
+            <translation>平滑后在 1.96σ 以内 %</translation>
+        </message>
+        <message>
             <source>solution written to attitude.csv and summarised: lsq = iterative weighted least squares (Liu et al.), direct = three-antenna direct method (Liu et al.), wahba = closed-form optimal rotation; all three are always computed</source>
             <translation>写入 attitude.csv 并汇总的解:lsq = 迭代加权最小二乘(Liu 等),direct = 三天线直接法(Liu 等),wahba = 闭合形式最优旋转;三种方法总会计算</translation>
         </message>
@@ -2968,8 +3048,8 @@
             <translation>所有角度改正数都小于此值时最小二乘迭代停止</translation>
         </message>
         <message>
-            <source>the motion sensor's heave filter: highpass = a causal high-pass (order and cut-off period below), applied to the GNSS heights too so that both carry its phase; compensated/none = no phase at wave periods; unknown = not declared (the delay-model check flags a filter's phase)</source>
-            <translation>姿态传感器的升沉滤波器:highpass = 因果高通滤波(阶数和截止周期见下),同样作用于 GNSS 高程,使两者具有相同相位;compensated/none = 在波浪周期上无相位;unknown = 未声明(时延模型检验会标记滤波器的相位)</translation>
+            <source>the motion sensor's heave filter: highpass = a causal high-pass (order and cut-off period below), whose phase is removed from the heave and whose gain is applied to the GNSS heights; compensated/none = no phase at wave periods; unknown = not declared (the delay-model check flags a filter's phase or says when it cannot exclude one)</source>
+            <translation>姿态传感器的升沉滤波器:highpass = 因果高通滤波(阶数和截止周期见下),从升沉中去除其相位,并将其增益作用于 GNSS 高程;compensated/none = 在波浪周期上无相位;unknown = 未声明(时延模型检验会标记滤波器的相位,或说明无法排除滤波器)</translation>
         </message>
         <message>
             <source>the patent's iteration stops when every angle correction is below this</source>
@@ -3092,8 +3172,8 @@
             <translation>中心墙(多波束)</translation>
         </message>
         <message>
-            <source>warn when the horizontal circle holding the tip with 99 % probability is wider than this (a swing nearly in one plane leaves the accelerometer bias along the swing axis mixed with the tilt out of the plane)</source>
-            <translation>以 99 % 概率包含杆尖的水平圆宽于此值时警告(近乎单平面的摆动会使沿摆动轴的加速度计零偏与平面外倾斜混叠)</translation>
+            <source>warn when the horizontal circle holding the tip with 95 % probability is wider than this (a swing nearly in one plane leaves the accelerometer bias along the swing axis mixed with the tilt out of the plane)</source>
+            <translation>以 95 % 概率包含杆尖的水平圆宽于此值时警告(近乎单平面的摆动会使沿摆动轴的加速度计零偏与平面外倾斜混叠)</translation>
         </message>
         <message>
             <source>water level</source>
@@ -3275,9 +3355,185 @@
             <source>ψ RMS</source>
             <translation>ψ RMS</translation>
         </message>
+        <message>
+            <source>Folder…</source>
+            <translation>文件夹…</translation>
+        </message>
+        <message>
+            <source>Add to list</source>
+            <translation>加入列表</translation>
+        </message>
+        <message>
+            <source>What the files hold</source>
+            <translation>文件内容预览</translation>
+        </message>
+        <message>
+            <source>Choose files to see what they hold.</source>
+            <translation>选择文件以查看其内容。</translation>
+        </message>
+        <message>
+            <source>Looks like</source>
+            <translation>内容类型</translation>
+        </message>
+        <message>
+            <source>Import a folder</source>
+            <translation>导入文件夹</translation>
+        </message>
+        <message>
+            <source>Keep this import and choose another kind or file: OK imports everything listed (and the one above).</source>
+            <translation>保留此项导入并选择其他类型或文件:确定将导入列表中的全部项目(以及上方这一项)。</translation>
+        </message>
+        <message>
+            <source>Every file of a folder with an extension the readers accept (hourly logs of one device).</source>
+            <translation>文件夹中所有扩展名可被读取的文件(同一设备的逐小时记录)。</translation>
+        </message>
+        <message>
+            <source>file(s) or a folder; several logs of one kind (a day in hourly files) become one table</source>
+            <translation>文件或文件夹;同一类型的多个记录文件(按小时分割的一天)合并为一张表</translation>
+        </message>
+        <message>
+            <source>No motion sentence recognised yet: choose the heave sign of your sensor.</source>
+            <translation>尚未识别到运动语句:请选择传感器的升沉正方向。</translation>
+        </message>
+        <message>
+            <source>The attitude CSV format is heave positive up; change it only if your file differs.</source>
+            <translation>姿态 CSV 格式规定升沉向上为正;仅当文件不同时才更改。</translation>
+        </message>
+        <message>
+            <source>perpendicular side</source>
+            <translation>垂直侧面</translation>
+        </message>
+        <message>
+            <source>oblique side</source>
+            <translation>斜侧面</translation>
+        </message>
+        <message>
+            <source>top</source>
+            <translation>顶面</translation>
+        </message>
+        <message>
+            <source>underside</source>
+            <translation>底面</translation>
+        </message>
+        <message>
+            <source>floor</source>
+            <translation>池底</translation>
+        </message>
+        <message>
+            <source>other</source>
+            <translation>其他</translation>
+        </message>
+        <message>
+            <source>vessel offset sheet vessel.json (sensor offsets, body FRD)</source>
+            <translation>船舶偏移量表 vessel.json(传感器偏移量,载体 FRD 坐标系)</translation>
+        </message>
+        <message>
+            <source>GNSS heights CSV (time, height[, lat, lon, quality])</source>
+            <translation>GNSS 高程 CSV(时间、高程[、纬度、经度、解算质量])</translation>
+        </message>
+        <message>
+            <source>attitude CSV (time, roll, pitch, heading, heave)</source>
+            <translation>姿态 CSV(时间、横摇、纵摇、航向、升沉)</translation>
+        </message>
+        <message>
+            <source>survey lines CSV (name, start, end)</source>
+            <translation>测线 CSV(名称、开始、结束)</translation>
+        </message>
+        <message>
+            <source>NMEA GNSS log (GGA / PTNL,GGK [+GST, ZDA]; logger time tags allowed)</source>
+            <translation>NMEA GNSS 日志(GGA / PTNL,GGK [+GST、ZDA];可带记录器时间标签)</translation>
+        </message>
+        <message>
+            <source>NMEA motion log (PASHR / PSXN,23 / TSS1)</source>
+            <translation>NMEA 姿态传感器日志(PASHR / PSXN,23 / TSS1)</translation>
+        </message>
+        <message>
+            <source>multibeam soundings CSV (time, x, y, z; sensor frame)</source>
+            <translation>多波束测深点 CSV(时间、x、y、z;传感器坐标系)</translation>
+        </message>
+        <message>
+            <source>INS trajectory CSV (time, e, n, u, roll, pitch, heading)</source>
+            <translation>惯导轨迹 CSV(时间、e、n、u、横摇、纵摇、航向)</translation>
+        </message>
+        <message>
+            <source>laser points (CSV x,y,z / PLY / LAS / LAZ; target ENU)</source>
+            <translation>激光点云(CSV x,y,z / PLY / LAS / LAZ;目标物 ENU 坐标系)</translation>
+        </message>
+        <message>
+            <source>pool setup.json (coarse boresight and lever arm)</source>
+            <translation>水池检校 setup.json(粗标定的安装偏角和杆臂)</translation>
+        </message>
+        <message>
+            <source>pool target.json (target design)</source>
+            <translation>水池检校 target.json(目标物设计)</translation>
+        </message>
+        <message>
+            <source>RTKLIB solution file .pos of one antenna (llh/xyz/enu; the file stem names the antenna)</source>
+            <translation>单个天线的 RTKLIB 解算文件 .pos(llh/xyz/enu;文件名即天线名)</translation>
+        </message>
+        <message>
+            <source>position file .geo of one antenna (calendar time, lat, lon, h, 3 sigma; no quality flag; the file stem names the antenna)</source>
+            <translation>单个天线的位置文件 .geo(日历时间、纬度、经度、高程、3 个标准差;无质量标志;文件名即天线名)</translation>
+        </message>
+        <message>
+            <source>antenna_positions.csv: time, antenna, x, y, z (ECEF m), quality (GGA) of every antenna of the array</source>
+            <translation>antenna_positions.csv:天线阵列中每个天线的时间、天线、x、y、z(ECEF,m)、质量(GGA)</translation>
+        </message>
+        <message>
+            <source>antennas.json: antenna coordinates in the body frame (FRD, m)</source>
+            <translation>antennas.json:载体坐标系中的天线坐标(FRD,m)</translation>
+        </message>
+        <message>
+            <source>IMU increments (KF-GINS 7-column text or imu.csv; body FRD)</source>
+            <translation>IMU 增量(KF-GINS 7 列文本或 imu.csv;载体 FRD 坐标系)</translation>
+        </message>
+        <message>
+            <source>GNSS antenna positions with std (KF-GINS text or gnss.csv)</source>
+            <translation>带标准差的 GNSS 天线位置(KF-GINS 文本或 gnss.csv)</translation>
+        </message>
+        <message>
+            <source>KF-GINS YAML configuration (initial state, IMU noise, lever arm)</source>
+            <translation>KF-GINS YAML 配置(初始状态、IMU 噪声、杆臂)</translation>
+        </message>
+        <message>
+            <source>a real recording folder: comma2k19 segment or rtklibexplorer drive/walk (IMU, GNSS, configuration, reference)</source>
+            <translation>实测记录文件夹:comma2k19 片段或 rtklibexplorer 驾车/步行数据(IMU、GNSS、配置、参考轨迹)</translation>
+        </message>
+        <message>
+            <source>reference trajectory, 11-column KF-GINS .nav</source>
+            <translation>参考轨迹,11 列 KF-GINS .nav</translation>
+        </message>
+        <message>
+            <source>tilt-pole imu.csv: time, gx, gy, gz (rad/s), ax, ay, az (m/s²), body frame, z down along the pole</source>
+            <translation>对中杆 imu.csv:时间、gx、gy、gz(rad/s)、ax、ay、az(m/s²),载体坐标系,z 沿杆向下</translation>
+        </message>
+        <message>
+            <source>tilt-pole gnss.csv: time, e, n, u (local ENU) or time, lat, lon, height: the antenna</source>
+            <translation>对中杆 gnss.csv:时间、e、n、u(当地 ENU)或时间、纬度、经度、高程:天线位置</translation>
+        </message>
+        <message>
+            <source>tilt-pole pole.json: {"pole_length_m": …, optional "imu_convention": instant|interval-start|interval-middle|interval-end}</source>
+            <translation>对中杆 pole.json:{"pole_length_m": …,可选 "imu_convention": instant|interval-start|interval-middle|interval-end}</translation>
+        </message>
+        <message>
+            <source>Clock offset:</source>
+            <translation>时钟偏差:</translation>
+        </message>
+        <message>
+            <source>estimated from the turns</source>
+            <translation>由转弯估计</translation>
+        </message>
+        <message>
+            <source>GNSS−IMU clock offset S (s): the GNSS epoch tagged t happened at IMU time t + S. Applied and stored; later runs use it.</source>
+            <translation>GNSS−IMU 时钟偏差 S(s):时间标签为 t 的 GNSS 历元发生在 IMU 时间 t + S。导入时应用并保存;之后的解算沿用。</translation>
+        </message>
     </context>
     <context>
         <name>hydrosync-patterns</name>
+        <message>
+            <source>Reference: {0}.</source>
+            <translation>参考轨迹:{0}。</translation>
+        </message>
         <message>
             <source>95 % interval {0} … {1}</source>
             <translation>95 % 区间 {0} … {1}</translation>
@@ -3651,8 +3907,8 @@ Default: {1}  (--param {2})</source>
             <translation>{0}:{1} 个 ping,{2} 个测深点,其中 {3} 个在有参考平面的面上;{4}</translation>
         </message>
         <message>
-            <source>{0}&lt;br&gt;&lt;span style='color:#555'&gt;faint discs: laser (reference) · triangles: multibeam · grey dots: soundings on no face&lt;/span&gt;</source>
-            <translation>{0}&lt;br&gt;&lt;span style='color:#555'&gt;浅色圆点:激光(参考)· 三角形:多波束 · 灰点:不在任何面上的测深点&lt;/span&gt;</translation>
+            <source>{0}&amp;nbsp;&amp;nbsp; &lt;span style='color:#555'&gt;faint discs: laser · triangles: multibeam · grey: on no face&lt;/span&gt;</source>
+            <translation>{0}&amp;nbsp;&amp;nbsp; &lt;span style='color:#555'&gt;浅色圆点:激光 · 三角形:多波束 · 灰色:不在任何面上&lt;/span&gt;</translation>
         </message>
         <message>
             <source>σ from: {0}</source>
@@ -3669,6 +3925,34 @@ Default: {1}  (--param {2})</source>
         <message>
             <source>⚠ {0}&lt;/span&gt;</source>
             <translation>⚠ {0}&lt;/span&gt;</translation>
+        </message>
+        <message>
+            <source>Reading {0} file(s)…</source>
+            <translation>正在读取 {0} 个文件…</translation>
+        </message>
+        <message>
+            <source>Reading {0} of {1}…</source>
+            <translation>正在读取第 {0} 个文件,共 {1} 个…</translation>
+        </message>
+        <message>
+            <source>Import as {0} (what the files hold)</source>
+            <translation>按 {0} 导入(与文件内容相符)</translation>
+        </message>
+        <message>
+            <source>{0} found: documented heave positive {1}. Press OK to confirm, or change it if your sensor is set up otherwise.</source>
+            <translation>找到 {0}:文档规定的升沉正方向为 {1}。按“确定”确认;若传感器设置不同,请更改。</translation>
+        </message>
+        <message>
+            <source>{0} file(s), {1}; {2}.</source>
+            <translation>{0} 个文件,{1};{2}。</translation>
+        </message>
+        <message>
+            <source>{0} file(s), {1}.</source>
+            <translation>{0} 个文件,{1}。</translation>
+        </message>
+        <message>
+            <source>folder of {0} files: {1}</source>
+            <translation>文件夹,共 {0} 个文件:{1}</translation>
         </message>
     </context>
     <context>

@@ -56,8 +56,60 @@ def test_no_flag_without_a_filter(seed):
     res = estimate_latency(*args)
     assert res.diagnostics["delay_model"]["pure_delay"]
     assert not any(w.startswith("delay model") for w in res.warnings)
-    assert "heave_filter_search" not in res.diagnostics
+    # The filter is not declared: the search runs, and no filter fits far from Δt.
+    assert len(res.diagnostics["heave_filter_search"]["p_values"]) == 16
     assert abs(res.latency_s - lat) < 3 * res.uncertainty_s
+
+
+def _sea_day(seed: int, sea: str, period: float = 20.0):
+    lat = float(np.random.default_rng(100 + seed).uniform(-0.3, 0.3))
+    cfg = scenario("paper", sea, latency_s=lat, heave_filter_order=2,
+                   heave_filter_period_s=period, **DAY)
+    day = simulate_day(cfg, seed=seed)
+    return lat, estimate_latency(day["gnss"], day["attitude"], day["lines"], cfg.lever_arm_m)
+
+
+def test_a_filter_the_bands_cannot_see_is_not_excluded():
+    """Moderate sea, an undeclared 2nd-order 30 s filter: its lead reads as +131 ms of
+    delay (σ 10 ms) and varies too little across the wave band for the three bands to
+    disagree. Filters fit them as well as one pure delay, and would put Δt elsewhere: the
+    run says the data do not exclude a filter, and the delays those filters imply reach
+    the truth."""
+    lat, res = _sea_day(2, "moderate", 30.0)
+    assert res.diagnostics["delay_model"]["pure_delay"]
+    assert res.latency_s - lat > 3 * res.uncertainty_s  # biased beyond its σ ...
+    assert res.warnings[0].startswith("delay model: the bands agree with one delay, but")
+    assert "do not exclude an undeclared heave filter" in res.warnings[0]  # ... and flagged
+    assert "a heave filter not excluded" in res.message
+    search = res.diagnostics["heave_filter_search"]
+    fits = [search["implied_latency_s"][k] for k, p in search["p_values"].items()
+            if p >= min(0.05, res.diagnostics["delay_model"]["p_value"])]
+    assert min(fits) < lat < max(fits)
+
+
+def test_too_few_lines_to_check_with_an_undeclared_filter_is_flagged():
+    """Calm sea: 2 of 8 lines pass R > 0.85, 4 Welch segments, too few for the band
+    check (MIN_SEGMENTS); an undeclared filter's lead put Δt 242 ms off (σ 21 ms). With
+    the filter unknown that is a flag, not a note."""
+    lat, res = _sea_day(7, "calm")
+    assert not res.diagnostics["delay_model"]["determined"]
+    assert res.warnings[0].startswith("delay model: not checked")
+    assert "heave filter cannot be excluded" in res.warnings[0]
+    assert "not checked, heave filter unknown" in res.message
+
+
+def test_a_filter_the_data_determine_is_estimated_jointly():
+    """Rough sea: the bands disagree (p < 0.01) and the candidate filters that make them
+    agree imply one delay: the joint estimate (here −1 ms from the truth, σ 52 ms: the
+    cut-off grid's resolution) is quoted, and the reported interval covers it."""
+    lat, res = _sea_day(4, "rough")
+    search = res.diagnostics["heave_filter_search"]
+    assert search["determined"]
+    dt, sigma = search["joint"]
+    assert abs(dt - lat) < 2 * sigma
+    assert abs(res.latency_s - lat) > 0.15  # the pure-delay estimate is the filter's lead
+    assert res.ci95_low <= dt - 1.9 * sigma and dt + 1.9 * sigma <= res.ci95_high
+    assert any("jointly with the filter" in w for w in res.warnings)
 
 
 def test_a_pure_delay_gives_its_delay_in_every_band():

@@ -369,7 +369,7 @@ def test_first_pass_windows_equal_per_line_filtering():
     from hydrosync_core.methods.latency.correlation import heave_at
     from hydrosync_core.methods.latency.params import LatencyParams
 
-    cfg = replace(DAY, n_lines=4, gnss_hz=5.0)
+    cfg = replace(DAY, n_lines=6, gnss_hz=5.0)  # 6 Welch segments: prefilter.MIN_SEGMENTS
     d = simulate_day(cfg, seed=12)
     p = LatencyParams.from_dict({"estimator": "weighted"})
     setup = set_up(d["gnss"], d["attitude"], d["lines"], cfg.lever_arm_m, p)

@@ -35,11 +35,23 @@ def _solve(sim, params=None):
                         imu_convention=sim["truth"]["config"].imu_convention)
 
 
-def test_gyro_propagation_reproduces_the_simulated_attitude():
-    # interval samples tagged at the start are the increments the propagation chains
-    sim = simulate_swing(noise_free(SwingConfig(imu_convention="interval-start")), seed=1)
-    C = propagate(sim["truth"]["C"][0], sim["time"], sim["gyro"])
-    assert np.max(np.abs(C - sim["truth"]["C"])) < 1e-9
+@pytest.mark.parametrize("convention", ["instant", "interval-start"])
+def test_gyro_propagation_reproduces_the_simulated_attitude(convention):
+    """A fast coning motion (three sweeps of a 50° ellipse with a 15° twist, 50 Hz): the
+    model grid's increments (:func:`.imu_convention.to_model_grid`, coning term included)
+    chain to the true attitude within 0.1 mrad over the record (measured 0.05 / 0.02
+    mrad; without the coning term 1.4 mrad either way, which the adjustment read as
+    1.6-1.9× the gyro noise)."""
+    from hydrosync_core.methods.tilt_alignment.imu_convention import to_model_grid
+    from hydrosync_core.rotations import log_so3
+
+    cfg = SwingConfig(tilt_deg=50, sweeps=3, shape_ratio=0.5, twist_deg=15.0,
+                      imu_rate_hz=50.0, imu_convention=convention)
+    sim = simulate_swing(noise_free(cfg), seed=4)
+    t, w, _ = to_model_grid(sim["time"], sim["gyro"], sim["accel"], convention)
+    C = propagate(sim["truth"]["C"][0], t, w)         # interval-start: model times = tags
+    err = log_so3(np.einsum("kji,kjl->kil", sim["truth"]["C"], C))
+    assert np.max(np.linalg.norm(err, axis=1)) < 1e-4
 
 
 def test_mahony_levels_a_still_pole_and_keeps_heading_zero():
@@ -180,7 +192,7 @@ def test_a_swing_in_one_plane_is_warned_across_the_plane_and_an_ellipse_is_not()
     # is the tilt out of the plane. The swing plane is body y–z (roll only), at heading
     # 123° the pole leans towards 213°/33°: the weak direction is across it, 123°/303°.
     # A consumer IMU (bias prior 0.04 m/s²: l·b/g = 7.6 mm at 1σ) leaves the tip beyond
-    # the tolerance at 99 %.
+    # the tolerance at 95 % (the warning's level).
     planar = SwingConfig(tilt_deg=20.0, shape_ratio=0.0, twist_deg=0.0, wobble_deg=0.1,
                          azimuth_deg=0.0, heading_deg=123.0, accel_bias_m_s2=(0.04, 0.0, 0.0))
     sim = simulate_swing(planar, seed=1)
@@ -192,7 +204,7 @@ def test_a_swing_in_one_plane_is_warned_across_the_plane_and_an_ellipse_is_not()
     assert abs(abs(math.degrees(math.atan2(weak[1], weak[0])) % 180.0 - 123.0)) < 5.0
     assert sol.joint.bias_share > 0.9                 # the bias prior is the weak σ
 
-    assert sol.joint.horizontal_radius_m(0.99) > 0.01          # σ says it, not only the text
+    assert sol.joint.horizontal_radius_m(0.95) > 0.01          # σ says it, not only the text
     err = j.tip - sim["truth"]["tip_ned"]
     assert abs(err[:2] @ weak) < 1.96 * sol.joint.weak_sigma_m
     # the same pole swung in an ellipse with a twist: no warning, tip well within 1 cm
@@ -203,6 +215,26 @@ def test_a_swing_in_one_plane_is_warned_across_the_plane_and_an_ellipse_is_not()
     assert j.ok and j.warning is None and not sol.warnings
     assert 1.96 * sol.joint.weak_sigma_m < 0.01
     assert np.hypot(*(j.tip - sim["truth"]["tip_ned"])[:2]) < 0.01
+
+
+def test_the_warning_separates_good_from_bad_consumer_swings():
+    """Issue #30, item 3, on the hardest grade: 30 random consumer-grade swings (15-60°,
+    every convention, 50-200 Hz; 28 tips within 1 cm, the largest error 18 mm): no tip
+    without the warning is beyond 1 cm, and the warning fires on at most a fifth of the
+    tips within 1 cm (the issue's bound).
+
+    Power: this fixed draw is a regression check of the rule, not its statistics (those
+    are the benchmark's: 20 % of the good consumer tips over 80 swings). Here the 95 %
+    rule flags 7 % of the good tips; the former 99 % rule flags 25 % and fails; a σ too
+    small (no warning on the two tips beyond 1 cm) fails the first assertion.
+    """
+    from hydrosync_core.methods.tilt_alignment.montecarlo import run_monte_carlo, statistics
+
+    mc = run_monte_carlo(30, TiltParams(imu_grade="consumer"), seed=31, grade="consumer")
+    s = statistics(mc, "joint")
+    assert s["undetermined"] == 0 and s["h_within_1cm"] < 1.0   # a draw with bad tips
+    assert s["h_within_1cm_quiet"] == 1.0, s
+    assert s["warned_within_1cm"] <= 0.2, s
 
 
 def test_monte_carlo_statistics_give_sigma_coverage_and_the_warned_share():
@@ -431,16 +463,25 @@ def test_an_imu_noisier_than_its_grade_is_named():
     assert not any("noisier" in w for w in said)
 
 
-def test_model_error_of_a_fast_swing_is_not_read_as_noise():
-    """Three sweeps of 50° in 2.5 s at 100 Hz: second differences of the antenna path
-    differ from the instantaneous acceleration by Δt²/12·a''; with the NED Numerov weights
-    the IMU noise the joint method reports is within 20 % of the simulated (measured:
-    1.01× accelerometer, 0.98× gyro; without the weights 1.46× and 1.74×, and at 50 Hz
-    7.1× and 5.9× against 2.0× and 1.9× with them: the variance components absorb a model
-    error as noise)."""
-    cfg = SwingConfig(tilt_deg=50, sweeps=3, shape_ratio=0.5, imu_rate_hz=100.0,
+@pytest.mark.parametrize("rate", [100.0, 50.0])
+@pytest.mark.parametrize("convention", ["instant", "interval-end"])
+def test_model_error_of_a_fast_swing_is_not_read_as_noise(rate, convention):
+    """Three sweeps of a 50° ellipse in 2.5 s (peak 2 g at the antenna): the IMU noise the
+    joint method reports is within 20 % of the simulated at 100 and 50 Hz, both conventions.
+
+    Measured: 0.98-1.05× (gyro and accelerometer). Before (issue #30) at 50 Hz: 1.9× gyro
+    and 2.0× accelerometer (instantaneous: no coning term in the gyro increments, third
+    differences reading the swing as noise, the simulator's jump in jerk), 3.4×
+    accelerometer (interval means rotated by the mean of the end attitudes). The record's
+    own noise measure rests on ~800 fifth differences (MAD): ±4 % at 1σ, so 20 % is 5σ.
+    """
+    cfg = SwingConfig(tilt_deg=50, sweeps=3, shape_ratio=0.5, imu_rate_hz=rate,
                       wobble_deg=0.0, gyro_bias_deg_s=(0.03, -0.04, 0.02),
-                      accel_bias_m_s2=(0.01, -0.02, 0.015))
-    sol = _solve(simulate_swing(cfg, seed=4))
-    assert sol.joint.accel_noise_m_s2 == pytest.approx(0.0012 * 10, rel=0.2)
-    assert sol.joint.gyro_noise_rad_s == pytest.approx(math.radians(0.008) * 10, rel=0.2)
+                      accel_bias_m_s2=(0.01, -0.02, 0.015), imu_convention=convention)
+    sim = simulate_swing(cfg, seed=4)
+    sol = solve_record(sim["time"], sim["gyro"], sim["accel"], sim["gnss_time"],
+                       sim["gnss_ned"], sim["pole_length_m"], TiltParams(),
+                       gravity=cfg.gravity_m_s2, imu_convention=convention)
+    root = math.sqrt(rate)
+    assert sol.joint.accel_noise_m_s2 == pytest.approx(0.0012 * root, rel=0.2)
+    assert sol.joint.gyro_noise_rad_s == pytest.approx(math.radians(0.008) * root, rel=0.2)

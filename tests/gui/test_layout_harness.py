@@ -3,8 +3,10 @@
 clipped legends (:mod:`hydrosync_gui.layout_check`), each inner tab in turn.
 
 Screenshots of every checked view are written to ``$HYDROSYNC_SCREENSHOTS`` (a folder;
-default ``<pytest basetemp>/screenshots``) as ``<plugin>-<size>-<tab>.png``: the artifact a
-reviewer opens. With ``HYDROSYNC_SCREENSHOTS=docs`` (the convention of the panel tests) only
+default ``<pytest basetemp>/screenshots``) as ``<plugin>-<size>-<tab>.png``, and the view a
+panel opens on as ``<plugin>-<size>.png``: the artifact a reviewer opens, and what
+``make screenshots`` (``scripts/docs_screenshots.py``) copies into ``docs/``. With
+``HYDROSYNC_SCREENSHOTS=docs`` (the convention of the panel tests) only
 ``docs/main-window-1366x768.png`` is written: the GNSS Attitude panel's first view.
 
 The first tests check the checker itself on widgets built to fail, so that a harness that
@@ -186,7 +188,10 @@ def test_panel_lays_out_on_the_screen(qtbot, make_window, hydrosync_demo, screen
         _settle(qtbot, window)
         slug = re.sub(r"\W+", "_", name).strip("_").lower()
         if screenshot_dir.name != "docs":
-            window.grab().save(str(screenshot_dir / f"{plugin}-{size}-{slug}.png"))
+            shot = window.grab()
+            shot.save(str(screenshot_dir / f"{plugin}-{size}-{slug}.png"))
+            if name == views[0][0]:  # the panel as it opens: scripts/docs_screenshots.py
+                shot.save(str(screenshot_dir / f"{plugin}-{size}.png"))
         elif (plugin, size) == DOCS_VIEW and name == views[0][0] and not problems:
             window.grab().save(str(screenshot_dir / "main-window-1366x768.png"))
         problems += [f"[{name}] {p}" for p in check_layout(window)]

@@ -319,8 +319,8 @@ def test_import_menu_passes_heave_sign_to_the_motion_log_reader(
     monkeypatch.setattr(log_import, "store_attitude_log", store)
     (tmp_path / "m.log").write_text("$PSXN,23,0.1,0.2,90.0,0.1*00\n")  # checked to exist
     monkeypatch.setattr(ImportDialog, "ask", classmethod(
-        lambda cls, parent, kinds, start: ("attitude_log", str(tmp_path / "m.log"),
-                                           {"heave_positive": "up"})))
+        lambda cls, parent, kinds, start: [("attitude_log", str(tmp_path / "m.log"),
+                                           {"heave_positive": "up"})]))
     window = make_window()
     window._on_import()
     qtbot.waitUntil(lambda: not window.busy, timeout=5000)

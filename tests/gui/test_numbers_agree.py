@@ -109,3 +109,15 @@ def test_number_tokens_keep_their_digits():
     assert numbers("\u22120.605 m; 1.7/1.4/2.7 mm") == {"-0.605", "1.7", "1.4", "2.7"}
     assert numbers("+8.15e-01°") == {"8.15e-01"}
     assert "0.30" not in numbers("0.296")
+
+
+def test_demo_truth_has_the_digits_of_the_results_beside_it():
+    """The simulated truth is printed exactly (up to 8 significant digits, trailing
+    zeros dropped), not to 4 beside results printed to 6 or 8: a truth
+    512.34 once read "512.3" beside the estimate 512.3404."""
+    from hydrosync_core.demo import truth_text
+
+    truth = {"tip_enu": [512.34041, 1023.872, 3.2166], "roll": -44.2, "n": 4,
+             "latency_s": 0.29}
+    assert truth_text(truth) == ("tip_enu [512.34041, 1023.872, 3.2166], roll -44.2, n 4, "
+                                 "latency_s 0.29")

@@ -186,9 +186,13 @@ def _run_project(args, params: GinsParams) -> int:
     from hydrosync_core.methods.gins_smoother.project_run import run
     from hydrosync_core.project import Project
 
-    if args.imu or args.gnss or args.config or args.recording or args.clock_offset is not None:
+    if args.clock_offset is not None:
+        raise InputError(str(args.project), "a project's recording takes its clock offset "
+                         "at import: hydrosync import PROJECT --gins-recording DIR "
+                         "--clock-offset S")
+    if args.imu or args.gnss or args.config or args.recording:
         raise InputError(str(args.project), "give either a project file or --imu/--gnss/"
-                         "--config/--recording/--clock-offset")
+                         "--config/--recording")
     _check_out(args.out, "--out")
     _check_out(args.json, "--json")
     project = Project.open(args.project)
@@ -245,7 +249,8 @@ def register(sub: argparse._SubParsersAction) -> None:
                    "grade, lever arm, options and reference are used unless given)")
     p.add_argument("--clock-offset", type=float, metavar="S", help="with --recording: the "
                    "GNSS−IMU clock offset (s, the GNSS epoch tagged t happened at IMU time "
-                   "t + S) instead of estimating it from the turns")
+                   "t + S) instead of estimating it from the turns (for a project: give it "
+                   "to 'hydrosync import --gins-recording')")
     p.add_argument("--forward-only", action="store_true", help="write the forward filter "
                    "solution, skip smoothing")
     p.add_argument("--truth", type=Path, help="reference .nav for error statistics")

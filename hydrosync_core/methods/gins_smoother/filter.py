@@ -205,12 +205,16 @@ class NoiseModel:
     """The noise model of one pass beyond the configuration: the IMU white noise (ARW and
     VRW) × ``imu_scale``; GNSS white noise of std ``white_scale`` × the file's std (per
     N/E/D) plus, when ``corr_std`` is non-zero, a first-order Gauss–Markov GNSS error (std
-    ``corr_std`` m N/E/D, correlation time ``corr_time_s``) estimated as 3 extra states."""
+    ``corr_std`` m N/E/D, correlation time ``corr_time_s``) estimated as 3 extra states,
+    its driving noise ``2σ²/τ`` × ``corr_q_scale`` per N/E/D (None: × 1) — the steady σ
+    is the absolute accuracy of a fix, which innovations cannot see; the driving noise is
+    how fast that error wanders, which they can."""
 
     white_scale: np.ndarray
     corr_std: np.ndarray
     corr_time_s: float = 0.0
     imu_scale: float = 1.0
+    corr_q_scale: np.ndarray | None = None
 
     @property
     def correlated(self) -> bool:
@@ -233,6 +237,16 @@ TAU_GRID = (3.0, 10.0, 30.0, 100.0, 300.0, 1000.0, 3000.0)
 LB_LAGS = 10
 LB_ALPHA = 0.01
 LB_RHO_MIN = 0.1
+#: Factors on the Gauss–Markov driving noise searched per N/E/D by maximum likelihood:
+#: a coarse decade grid, then steps of 10^0.5 and 10^0.25 around each axis's best.
+Q_COARSE = (1e-3, 1e-2, 1e-1, 1.0, 10.0)
+Q_REFINE = (10 ** 0.5, 10 ** 0.25)
+#: When the innovations stay correlated fix to fix (a receiver whose fixes are its own
+#: filter's output): every k-th fix for k in THIN_FACTORS, the first that leaves them white
+#: with a mean square in MS_OK, at most THIN_MAX_INTERVAL_S between the fixes kept.
+THIN_FACTORS = (2, 5, 10)
+THIN_MAX_INTERVAL_S = 1.0
+MS_OK = (0.8, 1.2)
 
 
 def _lag_pairs(tt: np.ndarray, lag_s: float) -> tuple[np.ndarray, np.ndarray]:
@@ -334,8 +348,11 @@ def run_gins(imu: ImuData, gnss: GnssData, cfg: SensorConfig, params: GinsParams
     predicted std must have an RMS in :data:`RMS_OK` and an autocorrelation at 1 s below
     :data:`RHO_MAX`. If not, the model is re-estimated from the innovations
     (:func:`_estimate_model`: a factor on the IMU white noise and the GNSS white σ scale,
-    and, when the innovations stay time-correlated, a Gauss–Markov GNSS error) and the run
-    repeated. What was done is in ``result.gnss_model`` (and its ``summary`` line).
+    and, when the innovations stay time-correlated, a Gauss–Markov GNSS error with its
+    driving noise per axis) and, if they are then still correlated fix to fix, the fixes
+    are thinned to the first rate at which they are white (:func:`_thin_until_white`; only
+    the fixes kept are used, ``counts["gnss_thinned_every"]``); the run is repeated. What
+    was done is in ``result.gnss_model`` (and its ``summary`` line).
 
     Parameters
     ----------
@@ -378,17 +395,28 @@ def run_gins(imu: ImuData, gnss: GnssData, cfg: SensorConfig, params: GinsParams
     res = _pass(ctx, model, p.smooth, progress, cancel)
     first = check = innovation_check(res.gnss)
     estimated = False
+    thin = 1
     if p.gnss_corr_time_s > 0 or (adapt and not _consistent(check)):
-        model = _estimate_model(ctx, res, check, cancel)
+        model, check = _estimate_model(ctx, res, check, cancel)
+        estimated = True
+        if adapt and still_correlated(check):
+            white = _thin_until_white(ctx, model, cancel)
+            if white is not None:
+                ctx, model, thin, check = white
         res = _pass(ctx, model, p.smooth, progress, cancel)
         check = innovation_check(res.gnss)
-        estimated = True
+        if thin > 1:  # "used of in span" counts the fixes of the file, not those kept
+            res.counts["gnss_epochs"] = int(((gnss.time > t[i0]) & (gnss.time <= t[i1])).sum())
+            res.counts["gnss_thinned_every"] = thin
     info = {"mode": p.gnss_noise, "file_std_median_m": np.median(base_std, axis=0).tolist(),
             "gnss_std_scale": p.gnss_std_scale, "estimated": estimated,
             "model": "gauss-markov" if model.correlated else "white",
             "imu_noise_scale": model.imu_scale, "white_scale": model.white_scale.tolist(),
             "corr_std_m": model.corr_std.tolist() if model.correlated else None,
             "corr_time_s": model.corr_time_s if model.correlated else None,
+            "corr_q_scale": (model.corr_q_scale.tolist() if model.correlated and
+                             model.corr_q_scale is not None else None),
+            "thinned_every": thin, "fixes_in_file": int(gnss.time.size),
             "tau_given": p.gnss_corr_time_s > 0, "first_check": first, "check": check}
     info["summary"] = _model_summary(info)
     res.gnss_model = info
@@ -428,51 +456,107 @@ def _model_summary(info: dict) -> str:
     if info["corr_std_m"] is not None:
         how = "given" if info["tau_given"] else "estimated"
         text += (f" plus a time-correlated GNSS error of σ {f3(info['corr_std_m'])} m, τ "
-                 f"{info['corr_time_s']:g} s {how} (Gauss–Markov states)")
+                 f"{info['corr_time_s']:g} s {how} (Gauss–Markov states"
+                 + (f", driving noise ×{f3(info['corr_q_scale'])}"
+                    if info.get("corr_q_scale") else "") + ")")
+    if info.get("thinned_every", 1) > 1:
+        text += (f"; every {info['thinned_every']}th GNSS fix used (consecutive fixes share "
+                 "their error: the fewest thinned out that leaves the innovations white)")
     return text + "; now " + innov(info["check"])
 
 
-def _estimate_model(ctx, res: GinsResult, first_check: dict, cancel) -> NoiseModel:
+def axis_nll(gnss_out: dict) -> np.ndarray | None:
+    """Mean negative log-likelihood per fix of each innovation component on its own,
+    ``½(log S_cc + ν_c²/S_cc)`` (N/E/D): the axes' GNSS errors are modelled apart, so
+    each takes the driving noise its own innovations prefer. None with fewer than 10."""
+    used = gnss_out["used"].astype(bool)
+    if used.sum() < 10:
+        return None
+    nu = gnss_out["innovation"][used]
+    S = np.einsum("kii->ki", gnss_out["innovation_cov"][used])
+    return np.mean(0.5 * (np.log(S) + nu * nu / S), axis=0)
+
+
+def _fit(ctx, m: NoiseModel, cancel, times: int = 2) -> tuple[dict, NoiseModel, dict]:
+    """Settle the white GNSS scale of *m* on the innovations (:func:`white_scale_from_
+    innovations`, *times* iterations; with a Gauss–Markov error its σ follows the part of
+    the file's σ the white scale leaves, at least half). Returns the check, the model and
+    the last pass's GNSS output."""
+    med = np.median(ctx[9], axis=0)
+
+    def run(model):
+        check_cancel(cancel)
+        return _pass(ctx, model, False, None, cancel).gnss
+
+    r = run(m)
+    for _ in range(times):
+        k = white_scale_from_innovations(r, m.white_scale)
+        if k is None:
+            break
+        corr = (med * np.sqrt(np.maximum(1.0 - np.minimum(k, 1.0) ** 2, 0.25))
+                if m.correlated else np.zeros(3))
+        m = NoiseModel(k, corr, m.corr_time_s, m.imu_scale, m.corr_q_scale)
+        r = run(m)
+    return innovation_check(r), m, r
+
+
+def _driving_noise(ctx, m: NoiseModel, cancel) -> NoiseModel:
+    """Per-axis factor on the Gauss–Markov driving noise by maximum likelihood of each
+    axis's innovations (:func:`axis_nll`): the decade grid :data:`Q_COARSE` (every axis
+    the same factor in a pass), then steps :data:`Q_REFINE` up and down from each axis's
+    best. A horizontal and a vertical error of one receiver need not wander alike."""
+    tried: list[tuple[np.ndarray, np.ndarray, NoiseModel]] = []
+
+    def trial(q):
+        _chk, fitted, r = _fit(ctx, NoiseModel(m.white_scale, m.corr_std, m.corr_time_s,
+                                               m.imu_scale, np.asarray(q, float)), cancel)
+        nll = axis_nll(r)
+        if nll is not None:
+            tried.append((np.asarray(q, float), nll, fitted))
+
+    for q in Q_COARSE:
+        trial(np.full(3, q))
+    if not tried:
+        return m
+    for step in Q_REFINE:
+        best = _best_per_axis(tried)
+        trial(best * step)
+        trial(best / step)
+    return NoiseModel(m.white_scale, m.corr_std, m.corr_time_s, m.imu_scale,
+                      _best_per_axis(tried))
+
+
+def _best_per_axis(tried) -> np.ndarray:
+    """The factor of each axis whose trial gave that axis the smallest likelihood cost."""
+    nll = np.array([t[1] for t in tried])
+    q = np.array([t[0] for t in tried])
+    i = np.argmin(nll, axis=0)
+    return q[i, np.arange(3)]
+
+
+def _estimate_model(ctx, res: GinsResult, first_check: dict, cancel
+                    ) -> tuple[NoiseModel, dict]:
     """Noise model by maximum likelihood of the GNSS innovations (:func:`run_gins`).
 
     1. IMU white-noise factor in factor-2 steps from 1 (up, then down, while the
        likelihood improves; within :data:`IMU_SCALE_RANGE`), with white GNSS noise whose
-       scale is re-estimated from the innovations at each factor
-       (:func:`white_scale_from_innovations`, two iterations);
+       scale is re-estimated from the innovations at each factor (:func:`_fit`);
     2. if the white scale leaves part of the file's σ unexplained (< :data:`K_WHITE_MIN`),
        the innovations of the best model are still correlated at 1 s (≥ RHO_MAX) or a
        correlation time is given: a Gauss–Markov GNSS error, its σ the part of the file's
        σ that the white scale leaves (at least half of it — the file's σ is taken as the
        accuracy of one fix, slowly varying errors included, which innovations cannot see),
        its correlation time over :data:`TAU_GRID` (or the given one), then the IMU factor
-       again with it.
+       again with it, and its driving noise per axis (:func:`_driving_noise`).
+
+    Returns the model and the innovation check of a forward pass with it.
     """
     p = ctx[3]
-    base_std = ctx[9]
-    med = np.median(base_std, axis=0)
-
-    def run(m):
-        check_cancel(cancel)
-        return _pass(ctx, m, False, None, cancel)
-
-    def corr_for(k):
-        return med * np.sqrt(np.maximum(1.0 - np.minimum(k, 1.0) ** 2, 0.25))
-
-    def fit(m, times=2):
-        r = run(m)
-        for _ in range(times):
-            k = white_scale_from_innovations(r.gnss, m.white_scale)
-            if k is None:
-                break
-            m = NoiseModel(k, corr_for(k) if m.correlated else np.zeros(3), m.corr_time_s,
-                           m.imu_scale)
-            r = run(m)
-        return innovation_check(r.gnss), m
 
     def best_of(models):
         best = None
         for m0 in models:
-            chk, m = fit(m0)
+            chk, m, _r = _fit(ctx, m0, cancel)
             if chk["nll"] is not None and (best is None or chk["nll"] < best[0]["nll"]):
                 best = (chk, m)
         return best
@@ -496,19 +580,60 @@ def _estimate_model(ctx, res: GinsResult, first_check: dict, cancel) -> NoiseMod
 
     best = climb(lambda q: NoiseModel(np.ones(3), np.zeros(3), 0.0, q), 1.0)
     if best is None:
-        return NoiseModel(np.ones(3), np.zeros(3))
+        m = NoiseModel(np.ones(3), np.zeros(3))
+        return m, innovation_check(_pass(ctx, m, False, None, cancel).gnss)
     chk, m = best
     rho = [r for r in chk["rho_1s"] if r is not None]
     if p.gnss_corr_time_s > 0 or np.min(m.white_scale) < K_WHITE_MIN or \
             (rho and max(rho) >= RHO_MAX):
         taus = (p.gnss_corr_time_s,) if p.gnss_corr_time_s > 0 else TAU_GRID
-        best = best_of(NoiseModel(m.white_scale, corr_for(m.white_scale), float(tau),
-                                  m.imu_scale) for tau in taus) or best
+        med = np.median(ctx[9], axis=0)
+        corr = med * np.sqrt(np.maximum(1.0 - np.minimum(m.white_scale, 1.0) ** 2, 0.25))
+        best = best_of(NoiseModel(m.white_scale, corr, float(tau), m.imu_scale)
+                       for tau in taus) or best
         m = best[1]
         if m.correlated:  # the IMU factor again, with the Gauss-Markov GNSS error
             best = climb(lambda q: NoiseModel(m.white_scale, m.corr_std, m.corr_time_s, q),
                          m.imu_scale) or best
-    return fit(best[1], 3)[1]  # the white scale settled at the chosen model
+            best = (best[0], _driving_noise(ctx, best[1], cancel))
+    chk, m, _r = _fit(ctx, best[1], cancel, 3)  # the white scale settled at the model
+    return m, chk
+
+
+def thinned(gnss: GnssData, every: int) -> GnssData:
+    """Every *every*-th fix of *gnss* (from the first)."""
+    k = slice(None, None, every)
+    return GnssData(gnss.time[k], gnss.llh[k], gnss.std[k], gnss.source,
+                    None if gnss.vel is None else gnss.vel[k])
+
+
+def mean_square_ok(check: dict) -> bool:
+    """Normalised innovations' mean square within :data:`MS_OK` on every axis."""
+    return check.get("rms") is not None and all(
+        MS_OK[0] <= r * r <= MS_OK[1] for r in check["rms"])
+
+
+def _thin_until_white(ctx, model: NoiseModel, cancel):
+    """The fixes thinned by the first factor of :data:`THIN_FACTORS` whose innovations,
+    with the model's white scale and driving noise fitted again, are white (Ljung–Box,
+    :func:`still_correlated`) with a mean square in :data:`MS_OK`; ``(ctx, model, factor,
+    check)`` or None when no factor (keeping fixes at most :data:`THIN_MAX_INTERVAL_S`
+    apart) does. Consecutive fixes of a receiver that filters its own solution share their
+    error: used as independent, they make every σ optimistic; fewer fixes that are
+    independent give σ that hold."""
+    imu, gnss = ctx[0], ctx[1]
+    step = float(np.median(np.diff(gnss.time))) if gnss.time.size > 1 else math.inf
+    for k in THIN_FACTORS:
+        if k * step > THIN_MAX_INTERVAL_S + 1e-9:
+            break
+        g = thinned(gnss, k)
+        keep = np.arange(0, gnss.time.size, k)
+        c = (imu, g) + ctx[2:9] + (ctx[9][keep],)
+        m = _driving_noise(c, model, cancel) if model.correlated else model
+        chk, m, _r = _fit(c, m, cancel, 3)
+        if not still_correlated(chk) and mean_square_ok(chk):
+            return c, m, k, chk
+    return None
 
 
 def _pass(ctx: tuple, model: NoiseModel, smooth: bool, progress, cancel) -> GinsResult:
@@ -528,7 +653,8 @@ def _pass(ctx: tuple, model: NoiseModel, smooth: bool, progress, cancel) -> Gins
     if model.correlated:
         for c in range(3):
             P0[ns_imu + c, ns_imu + c] = model.corr_std[c] ** 2
-            qc[ns_imu + c] = 2 * model.corr_std[c] ** 2 / tau_g
+            qc[ns_imu + c] = 2 * model.corr_std[c] ** 2 / tau_g * (
+                1.0 if model.corr_q_scale is None else model.corr_q_scale[c])
     x0 = x0.copy()
     x0[K.GNSS_X:K.GNSS_X + 3] = 0.0
     n_traj = i1 - i0 + 1

@@ -42,6 +42,8 @@ IMU, GNSS, CONFIG, REFERENCE, OUTAGES = (f"{RAW}/imu", f"{RAW}/gnss", f"{RAW}/co
                                          f"{RAW}/reference", f"{RAW}/outages")
 IMU_COLS = ("dtheta_x", "dtheta_y", "dtheta_z", "dvel_x", "dvel_y", "dvel_z")
 MAX_STORED_ROWS = 2_000_000
+#: A GNSS−IMU clock offset beyond this is a unit mistake (ms given as s), not a latency.
+MAX_CLOCK_OFFSET_S = 10.0
 
 
 # ----------------------------------------------------------------- import readers
@@ -78,15 +80,20 @@ def config_json(path) -> dict:
     return read_config(path).to_dict()
 
 
-def store_recording(project, target: str, path, **_options) -> str:
-    """``hydrosync import --gins-recording FOLDER``: a real recording folder (comma2k19
-    segment or rtklibexplorer drive/walk, :mod:`.recordings`) → ``raw/gins/imu``,
-    ``gnss``, ``config`` and, when the recording has one, ``reference``.
+def store_recording(project, target: str, path, clock_offset: float | None = None,
+                    **_options) -> str:
+    """``hydrosync import --gins-recording FOLDER [--clock-offset S]``: a real recording
+    folder (comma2k19 segment or rtklibexplorer drive/walk, :mod:`.recordings`) →
+    ``raw/gins/imu``, ``gnss``, ``config`` and, when the recording has one, ``reference``.
 
-    The GNSS-minus-IMU clock offset is estimated from the turns
-    (:func:`.recordings.estimate_time_shift`, no filter pass) and applied; it, its σ and
-    the recording's notes are stored as attributes of ``raw/gins``.
+    The GNSS-minus-IMU clock offset *clock_offset* (s, the GNSS epoch tagged t happened at
+    IMU time t + S) is applied when given; otherwise it is estimated from the turns
+    (:func:`.recordings.estimate_time_shift`, no filter pass). It, its σ (NaN when given)
+    and the recording's notes are stored as attributes of ``raw/gins``, so every later run
+    uses it without being told again.
     """
+    import math
+
     from hydrosync_core.methods.gins_smoother.recordings import (
         estimate_time_shift,
         read_recording,
@@ -94,7 +101,17 @@ def store_recording(project, target: str, path, **_options) -> str:
     )
 
     rec = read_recording(path)
-    shift, est = estimate_time_shift(rec)
+    if clock_offset is not None:
+        shift = float(clock_offset)
+        if not math.isfinite(shift) or abs(shift) > MAX_CLOCK_OFFSET_S:
+            raise InputError(str(path), f"clock offset {clock_offset!r} s: expected a finite "
+                             f"number within ±{MAX_CLOCK_OFFSET_S:g} s",
+                             field="--clock-offset")
+        est = None
+        clock = f"GNSS−IMU clock offset {shift:+.3f} s given"
+    else:
+        shift, est = estimate_time_shift(rec)
+        clock = est.text() if est is not None else "the recording's own timing"
     rec = shifted(rec, shift)
     imu = {"time": rec.imu.time}
     imu.update({c: rec.imu.inc[:, i] for i, c in enumerate(IMU_COLS)})
@@ -110,7 +127,6 @@ def store_recording(project, target: str, path, **_options) -> str:
     project.put_json(f"{target}/config", rec.config.to_dict())
     if rec.reference is not None:
         project.put_table(f"{target}/reference", nav_columns(rec.reference), source=str(path))
-    clock = est.text() if est is not None else "the recording's own timing"
     project.set_attrs(target, recording=rec.name, time_shift_s=shift, time_shift=clock,
                       time_shift_sigma_s=est.sigma_s if est is not None else float("nan"),
                       notes=json.dumps(rec.notes), recommended_params=json.dumps(rec.params))

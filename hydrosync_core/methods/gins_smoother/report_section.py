@@ -16,7 +16,10 @@ from hydrosync_core.methods.gins_smoother.project_run import GNSS, RESULT
 from hydrosync_core.params import stored
 from hydrosync_core.report.context import fmt
 
-HEADING = "GNSS/INS trajectory with RTS smoothing"
+#: The section heading by whether the run smoothed (``counts["ran"]``): it says what ran.
+HEADINGS = {True: "GNSS/INS trajectory with RTS smoothing",
+            False: "GNSS/INS trajectory, forward filter only (no smoothing)"}
+HEADING = HEADINGS[True]
 MAX_POINTS = 1500
 
 
@@ -61,6 +64,7 @@ def error_figures(project, ctx, t0: float) -> list:
         return []
     windows = json.loads(project.attrs(RESULT).get("outages", "[]"))
     out = []
+    sols = "forward and smoothed" if "smoothed" in errs else "forward only (no smoothing)"
     for comps, what, unit, scale in ERROR_GROUPS:
         charts = []
         for comp in comps:
@@ -78,9 +82,56 @@ def error_figures(project, ctx, t0: float) -> list:
                     c.line(x, -scale * sd[i], color=COLOR[name], width=0.5, dash=(2, 2))
             charts.append(c)
         out.append(ctx.figure(charts, f"{what.capitalize()} error against the reference "
-                              f"(solution − reference, {unit}), forward and smoothed; "
+                              f"(solution − reference, {unit}), {sols}; "
                               "dashed: ±1σ of each solution"
                               + ("; shaded: simulated GNSS outages." if windows else ".")))
+    return out
+
+
+#: (component, scale, decimals) of the constant-offset table: m, m/s, degrees.
+OFFSET_COLUMNS = (("north", 1, 2), ("east", 1, 2), ("down", 1, 2), ("vn", 1, 3), ("ve", 1, 3),
+                  ("vd", 1, 3), ("roll", 1, 2), ("pitch", 1, 2), ("yaw", 1, 2))
+
+
+def reference_note(project) -> str | None:
+    """What the imported recording says its reference is (``raw/gins`` notes), if any."""
+    try:
+        notes = json.loads(project.attrs("raw/gins").get("notes", "[]"))
+    except (TypeError, ValueError, KeyError):
+        return None
+    return next((n.split(":", 1)[1].strip() for n in notes
+                 if isinstance(n, str) and n.startswith("reference:")), None)
+
+
+def reference_limits(project, ctx, ev: dict) -> list:
+    """The reference's own limits and each solution's constant offset from it, with the
+    share within 1.96σ as is and with that offset removed."""
+    out = [ctx.para("The reference is compared as it is: its own accuracy is not known to "
+                    "this analysis, and a reference computed from the same sensors is not "
+                    "an independent truth. A constant offset (below) is the reference's own "
+                    "axes or point — e.g. a camera whose mounting on the IMU is not given — "
+                    "which no σ of this solution can know about.")]
+    note = reference_note(project)
+    if note:
+        out.append(ctx.para(f"Reference: {note}."))
+    rows = []
+    for name in ("forward", "smoothed"):
+        off = ev.get(name, {}).get("constant_offset")
+        cov = ev.get(name, {}).get("coverage", {})
+        c, c0 = cov.get("all", {}), cov.get("offset_removed", {})
+        if not off or not c0:
+            continue
+        rows.append([f"{name} offset"] + [fmt(off[k] * f, d) for k, f, d in OFFSET_COLUMNS])
+        rows.append([f"{name} within 1.96σ %"] + [
+            f"{100 * c[k]['within_95']:.0f}/{100 * c0[k]['within_95']:.0f}"
+            if c.get(k) and c0.get(k) else "—" for k, _f, _d in OFFSET_COLUMNS])
+    if rows:
+        out += ctx.table(["Solution", "N m", "E m", "D m", "vN m/s", "vE", "vD", "roll °",
+                          "pitch °", "yaw °"], rows,
+                         col_widths=[0.19] + [0.09] * 9,
+                         caption="Constant offset from the reference (mean of solution − "
+                         "reference) and the share of epochs within 1.96σ, as is / with "
+                         "that offset removed.")
     return out
 
 
@@ -91,7 +142,7 @@ def section(project, ctx) -> list:
     ev = json.loads(attrs["evaluation"])
     align = json.loads(attrs["alignment"])
     params = stored(GinsParams, project, RESULT)
-    out = [ctx.heading(HEADING)]
+    out = [ctx.heading(HEADINGS[smoothed])]
     out.append(ctx.para(
         "Loosely coupled GNSS/INS integration after Wang et al.: strapdown mechanisation in "
         "the local-level frame (earth rate, transport rate, normal gravity, coning and "
@@ -159,6 +210,7 @@ def section(project, ctx) -> list:
                           "pitch °", "yaw °"], rows,
                          col_widths=[0.14] + [0.086] * 3 + [0.09] * 3 + [0.1] * 3,
                          caption="RMS error against the reference (epochs with GNSS).")
+        out += reference_limits(project, ctx, ev)
         orow = []
         for name in ("forward", "smoothed"):
             o = ev.get(name, {}).get("outage")

@@ -34,6 +34,12 @@ MIN_COHERENCE = 0.5
 MIN_BINS = 2
 """Coherent bins a band needs."""
 
+MIN_SEGMENTS = 8
+"""Welch segments (about four two-minute lines) the pooled spectra need: with fewer the
+squared coherence is biased high by ~1/segments and its phase variance is not known well
+enough for a χ² test (on a simulated calm day whose one used line gave 2 segments, the
+bands agreed at p = 0.14 while an undeclared filter put Δt 219 ms off)."""
+
 P_FLAG = 0.01
 """χ² p-value below which the bands are said to disagree."""
 
@@ -93,29 +99,58 @@ def _segments(x: np.ndarray, nper: int) -> np.ndarray:
     return seg * np.hanning(nper + 2)[1:-1]
 
 
-def _pooled_spectra(pairs: Sequence[tuple[np.ndarray, np.ndarray]], interval: float):
-    """(f, Pxy, Pxx, Pyy, segments) summed over every segment of the lines long enough
-    for one (relative scale: only phases and coherences are used)."""
+@dataclasses.dataclass(frozen=True)
+class PooledSpectra:
+    """Auto- and cross-spectra summed over every Welch segment of the used lines, the
+    total heave split into the sensor's heave (v) and the rotation-induced heave (r) so
+    that a heave filter's phase can be taken off the first alone; y: the heights.
+    Relative scale: only phases and coherences are used."""
+
+    f: np.ndarray
+    vy: np.ndarray
+    ry: np.ndarray
+    vv: np.ndarray
+    rr: np.ndarray
+    vr: np.ndarray
+    yy: np.ndarray
+    segments: int
+
+    def cross_and_coherence(self, lead=None) -> tuple[np.ndarray, np.ndarray]:
+        """(cross-spectrum of total heave and heights, squared coherence), with the phase
+        ``lead(f)`` (rad) of a heave filter removed from the sensor's heave first:
+        ``v → v·exp(−i·lead)``."""
+        turn = 1.0 if lead is None else np.exp(1j * lead(self.f))
+        cross = turn * self.vy + self.ry
+        power = self.vv + self.rr + 2.0 * np.real(turn * self.vr)
+        with np.errstate(invalid="ignore", divide="ignore"):
+            return cross, np.abs(cross) ** 2 / (power * self.yy)
+
+
+def pooled_spectra(series: Sequence[tuple], interval: float) -> PooledSpectra | None:
+    """:class:`PooledSpectra` of *series*: per used line (sensor heave, induced heave,
+    heights) or (total heave, heights), m, at the GNSS epochs (every *interval* s).
+    None when no line is long enough for one segment of SEGMENT_S."""
     nper = int(round(SEGMENT_S / interval))
     if nper < 8:
         return None
-    pxy = pxx = pyy = None
+    sums = None
     segments = 0
-    for heave, height in pairs:
-        if heave.size < nper:
+    for parts in series:
+        v, r, y = parts if len(parts) == 3 else (parts[0], None, parts[1])
+        if np.size(v) < nper:
             continue
-        hx = np.fft.rfft(_segments(np.asarray(heave, dtype=float), nper), axis=1)
-        hy = np.fft.rfft(_segments(np.asarray(height, dtype=float), nper), axis=1)
-        parts = ((np.conj(hx) * hy).sum(axis=0), (np.abs(hx) ** 2).sum(axis=0),
-                 (np.abs(hy) ** 2).sum(axis=0))
-        if pxy is None:
-            pxy, pxx, pyy = parts
-        else:
-            pxy, pxx, pyy = pxy + parts[0], pxx + parts[1], pyy + parts[2]
-        segments += hx.shape[0]
-    if pxy is None:
+        fv = np.fft.rfft(_segments(np.asarray(v, dtype=float), nper), axis=1)
+        fy = np.fft.rfft(_segments(np.asarray(y, dtype=float), nper), axis=1)
+        fr = np.zeros_like(fv) if r is None else np.fft.rfft(
+            _segments(np.asarray(r, dtype=float), nper), axis=1)
+        line = [(np.conj(fv) * fy).sum(axis=0), (np.conj(fr) * fy).sum(axis=0),
+                (np.abs(fv) ** 2).sum(axis=0), (np.abs(fr) ** 2).sum(axis=0),
+                (np.conj(fv) * fr).sum(axis=0), (np.abs(fy) ** 2).sum(axis=0)]
+        sums = line if sums is None else [x + y for x, y in zip(sums, line, strict=True)]
+        segments += fv.shape[0]
+    if sums is None:
         return None
-    return np.fft.rfftfreq(nper, interval), pxy, pxx, pyy, segments
+    return PooledSpectra(np.fft.rfftfreq(nper, interval), *sums, segments)
 
 
 def _band(f, phase, weight, latency_s) -> BandDelay:
@@ -126,43 +161,62 @@ def _band(f, phase, weight, latency_s) -> BandDelay:
     return BandDelay(float(f[0]), float(f[-1]), latency_s + tau, sigma)
 
 
-def check_delay_model(pairs: Sequence[tuple[np.ndarray, np.ndarray]], interval: float,
-                      latency_s: float) -> ModelCheck:
-    """The band check on the used lines.
+@dataclasses.dataclass(frozen=True)
+class CoherentPhase:
+    """The pooled residual cross-spectrum phase of the coherent bins: frequencies (Hz),
+    phase (rad) and its variance (rad²), as :func:`check_delay_model` compares them."""
 
-    Parameters
-    ----------
-    pairs : sequence of (heave, height)
-        Per used line: total heave at ``tag − latency_s`` and the detrended heights (m),
-        both at the line's GNSS epochs (regular, every *interval* s).
-    interval : float
-        GNSS sampling interval (s).
-    latency_s : float
-        The estimate the heave is aligned at (s).
-    """
-    pooled = _pooled_spectra(pairs, interval)
-    if pooled is None or not np.isfinite(latency_s):
-        return ModelCheck(False)
-    f, pxy, pxx, pyy, segments = pooled
-    with np.errstate(invalid="ignore", divide="ignore"):
-        coherence = np.abs(pxy) ** 2 / (pxx * pyy)
+    f: np.ndarray
+    phase: np.ndarray
+    var_phase: np.ndarray
+
+
+def coherent_phase(spectra: PooledSpectra | None, lead=None) -> CoherentPhase | None:
+    """The coherent bins of *spectra* (a heave filter's phase ``lead(f)`` removed from the
+    sensor's heave first, when given); None when there are too few to compare bands."""
+    if spectra is None or spectra.segments < MIN_SEGMENTS:
+        return None
+    cross, coherence = spectra.cross_and_coherence(lead)
+    f = spectra.f
     keep = (f > 0) & (coherence >= MIN_COHERENCE) & (coherence < 1.0)
     idx = np.flatnonzero(keep)
     if idx.size < BANDS * MIN_BINS:
-        return ModelCheck(False)
+        return None
     # Half-overlapping Hann segments are nearly independent (Welch 1967: ~0.95 of the
     # variance reduction of as many disjoint ones); the neighbouring bins are not
     # (NEIGHBOUR_FACTOR).
-    n_eff = float(segments)
-    var_phase = (1.0 - coherence[idx]) / (2.0 * n_eff * coherence[idx])
-    phase = np.angle(pxy[idx])
-    bands = tuple(_band(f[part], phase[pos], 1.0 / var_phase[pos], latency_s)
-                  for part, pos in zip(np.array_split(idx, BANDS),
-                                       np.array_split(np.arange(idx.size), BANDS),
-                                       strict=True))
+    var_phase = (1.0 - coherence[idx]) / (2.0 * float(spectra.segments) * coherence[idx])
+    return CoherentPhase(f[idx], np.angle(cross[idx]), var_phase)
+
+
+def band_check(spectrum: CoherentPhase | None, latency_s: float) -> ModelCheck:
+    """Band delays of *spectrum* aligned at *latency_s* (s) and their χ² test."""
+    if spectrum is None or not np.isfinite(latency_s):
+        return ModelCheck(False)
+    idx = np.arange(spectrum.f.size)
+    bands = tuple(_band(spectrum.f[part], spectrum.phase[part],
+                        1.0 / spectrum.var_phase[part], latency_s)
+                  for part in np.array_split(idx, BANDS))
     d = np.array([b.delay_s for b in bands])
     w = 1.0 / np.array([b.sigma_s for b in bands]) ** 2
     mean = float(np.sum(w * d) / np.sum(w))
     stat = float(np.sum(w * (d - mean) ** 2))
     return ModelCheck(True, bands, stat, float(chi2.sf(stat, BANDS - 1)),
                       float(np.sqrt(np.mean((d - mean) ** 2))))
+
+
+def check_delay_model(series: Sequence[tuple], interval: float,
+                      latency_s: float) -> ModelCheck:
+    """The band check on the used lines.
+
+    Parameters
+    ----------
+    series : sequence of (heave, height) or (sensor heave, induced heave, height)
+        Per used line: total heave at ``tag − latency_s`` (or its two parts) and the
+        detrended heights (m), at the line's GNSS epochs (regular, every *interval* s).
+    interval : float
+        GNSS sampling interval (s).
+    latency_s : float
+        The estimate the heave is aligned at (s).
+    """
+    return band_check(coherent_phase(pooled_spectra(series, interval)), latency_s)

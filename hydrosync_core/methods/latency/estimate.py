@@ -37,7 +37,8 @@ def estimate_latency(
         check_inputs(gnss, attitude, lever_arm)  # a one-line error before filtering
         gnss, attitude = with_declared_filter(gnss, attitude, lever_arm, p.heave_filter_order,
                                               p.heave_filter_period_s)
-    factor = upsampling_factor(np.asarray(attitude["time"], dtype=float)) \
+    factor = upsampling_factor(np.asarray(attitude["time"], dtype=float),
+                               gnss.get("time")) \
         if p.estimator != "qi2010" and "time" in attitude else 1
     fine = band_limited(attitude, factor) if factor > 1 else attitude
     if p.estimator == "auto" and factor > 1:

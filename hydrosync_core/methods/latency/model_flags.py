@@ -11,17 +11,19 @@ from collections.abc import Mapping
 
 import numpy as np
 
-from hydrosync_core.methods.latency.delay_model import ModelCheck, check_delay_model
+from hydrosync_core.methods.latency.delay_model import (
+    ModelCheck,
+    band_check,
+    coherent_phase,
+    pooled_spectra,
+)
 from hydrosync_core.methods.latency.detrend import detrend
+from hydrosync_core.methods.latency.filter_search import search_filter
 from hydrosync_core.methods.latency.heave_windows import HeaveWindows
 from hydrosync_core.methods.latency.inputs import check_inputs, median_interval
 from hydrosync_core.methods.latency.lines import line_selection
 from hydrosync_core.methods.latency.params import LatencyParams
 from hydrosync_core.methods.latency.result import LatencyResult
-
-SEARCH_MAX_RECORDS = 2_000_000
-"""Attitude records up to which a flagged run searches the heave filter (16 candidates,
-each filtering the whole record: seconds for a day of 1 Hz data, minutes for 100 Hz)."""
 
 GAP_SIGMAS = 2.0
 """Two estimates further apart than this many σ of their difference are flagged."""
@@ -40,12 +42,13 @@ def gap_sigma(sigma_kept: float, sigma_other: float) -> float:
     return math.sqrt(max(other**2 - sigma_kept**2, sigma_kept**2))
 
 
-def _line_pairs(result: LatencyResult, gnss: Mapping, attitude: Mapping,
-                p: LatencyParams) -> tuple[list, float]:
-    """(total heave at ``tag − Δt``, detrended heights) of each used line; GNSS interval."""
+def _line_series(result: LatencyResult, gnss: Mapping, attitude: Mapping,
+                 p: LatencyParams) -> tuple[list, float]:
+    """(sensor heave, rotation-induced heave — both at ``tag − Δt`` — and detrended
+    heights) of each used line (m); the GNSS interval (s)."""
     t_g, hgt, att, arm = check_inputs(gnss, attitude, result.lever_arm_m)
     source = HeaveWindows(att, arm)
-    pairs = []
+    series = []
     for ln in result.lines:
         if not ln.used:
             continue
@@ -54,8 +57,10 @@ def _line_pairs(result: LatencyResult, gnss: Mapping, attitude: Mapping,
         if tags.size < 8:
             continue
         h, _ = detrend(tags, hgt[sel], int(p.detrend_degree))
-        pairs.append((source.at(tags - result.latency_s), h))
-    return pairs, median_interval(t_g)
+        times = tags - result.latency_s
+        sensor = np.interp(times, att["time"], att["heave"])
+        series.append((sensor, source.at(times) - sensor, h))
+    return series, median_interval(t_g)
 
 
 def _cause(p: LatencyParams, upsampled: bool = False) -> str:
@@ -83,9 +88,14 @@ def _flags(result: LatencyResult, check: ModelCheck, p: LatencyParams
             f"({check.bands_text()}; χ² p = {check.p_value:.1g}): {_cause(p)}; σ widened "
             f"by the band spread {check.spread_s * 1e3:.0f} ms")
         notes.append("not a pure delay")
+    elif not check.determined and p.heave_filter == "unknown":
+        warnings.append("delay model: not checked (too few coherent frequencies or lines to "
+                        "compare bands), so the lead of an undeclared heave filter cannot be "
+                        "excluded: declare the heave filter (none, compensated or highpass)")
+        notes.append("not checked, heave filter unknown")
     elif not check.determined:
-        warnings.append("delay model not checked: too few coherent frequencies to compare "
-                        "bands")
+        warnings.append("delay model not checked: too few coherent frequencies or lines to "
+                        "compare bands")
     other = result.diagnostics.get("other_estimate")
     if other and np.isfinite(other["latency_s"]) and sigma > 0:
         gap = abs(float(other["latency_s"]) - float(result.latency_s))
@@ -101,14 +111,20 @@ def _flags(result: LatencyResult, check: ModelCheck, p: LatencyParams
     return sigma, warnings, notes
 
 
-def widened_sigma(latency_s: float, sigma_s: float, diagnostics: Mapping) -> float:
+def widened_sigma(latency_s: float, sigma_s: float, diagnostics: Mapping,
+                  factor: float = 1.959963984540054) -> float:
     """σ (s) of a recombined mean (lines chosen by hand) widened as the run's checks
     widened it: by the band spread when the bands disagreed, to half the gap to the
-    other estimator when that exceeds 2 σ of the difference. From the stored diagnostics."""
+    other estimator when that exceeds 2 σ of the difference, to cover the joint estimate
+    with the heave filter (interval *factor*). From the stored diagnostics."""
     sigma = float(sigma_s)
     model = diagnostics.get("delay_model") or {}
     if model.get("determined") and not model.get("pure_delay", True):
         sigma = math.hypot(sigma, float(model.get("spread_s", 0.0)))
+        joint = (diagnostics.get("heave_filter_search") or {}).get("joint")
+        if joint and np.isfinite(latency_s):
+            sigma = max(sigma, (abs(float(joint[0]) - latency_s) + factor * float(joint[1]))
+                        / factor)
     other = diagnostics.get("other_estimate")
     if other and np.isfinite(other.get("latency_s", np.nan)) and np.isfinite(latency_s):
         gap = abs(float(other["latency_s"]) - float(latency_s))
@@ -124,22 +140,26 @@ def with_model_check(result: LatencyResult, gnss: Mapping, attitude: Mapping,
     interval keeps its factor: normal or Student's t)."""
     if not result.converged or not np.isfinite(result.latency_s):
         return result
-    pairs, interval = _line_pairs(result, gnss, attitude, p)
-    check = check_delay_model(pairs, interval, result.latency_s)
-    sigma, warnings, notes = _flags(result, check, p)
-    diagnostics = {**result.diagnostics, "delay_model": check.to_dict()}
-    if not check.pure_delay and p.heave_filter == "unknown":
-        if len(attitude["time"]) <= SEARCH_MAX_RECORDS:
-            from hydrosync_core.methods.latency.filter_search import search_filter
-
-            found = search_filter(result, gnss, attitude, p, _line_pairs)
-            diagnostics["heave_filter_search"] = found.to_dict()
-            warnings.insert(1, f"delay model: {found.text()}")
-        else:
-            warnings.insert(1, "delay model: no search for the heave filter on a record this "
-                               "long (16 filterings of the whole day): declare it")
     old = float(result.uncertainty_s)
     factor = (result.ci95_high - result.latency_s) / old if old > 0 else 1.959964
+    series, interval = _line_series(result, gnss, attitude, p)
+    spectra = pooled_spectra(series, interval)
+    check = band_check(coherent_phase(spectra), result.latency_s)
+    sigma, warnings, notes = _flags(result, check, p)
+    diagnostics = {**result.diagnostics, "delay_model": check.to_dict()}
+    if p.heave_filter == "unknown" and check.determined:
+        found = search_filter(spectra, result.latency_s)
+        diagnostics["heave_filter_search"] = found.to_dict()
+        far = found.far_fits(result.latency_s, GAP_SIGMAS * sigma)
+        if not check.pure_delay:
+            warnings.insert(1, f"delay model: {found.text()}")
+            joint = found.joint()
+            if joint is not None:  # the interval covers the joint estimate's
+                sigma = max(sigma, (abs(joint[0] - result.latency_s) + factor * joint[1])
+                            / factor)
+        elif far:
+            warnings.insert(0, f"delay model: {found.not_excluded_text(far)}")
+            notes.append("a heave filter not excluded")
     changes = {"diagnostics": diagnostics, "warnings": tuple(warnings) + result.warnings}
     if sigma > old:
         changes.update(uncertainty_s=sigma, ci95_low=result.latency_s - factor * sigma,

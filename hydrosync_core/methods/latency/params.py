@@ -39,7 +39,8 @@ SCREENINGS = ("auto", "paper", "extended")
 #: The motion sensor's heave filter (:mod:`.heave_filter`): ``unknown`` (not declared: the
 #: delay-model check says when the data show one), ``none`` or ``compensated`` (no phase
 #: at the wave periods: nothing to model), ``highpass`` (causal Butterworth high-pass of
-#: ``heave_filter_order`` and ``heave_filter_period_s``, applied to the heights as well).
+#: ``heave_filter_order`` and ``heave_filter_period_s``: its phase is removed from the
+#: heave, its gain applied to the heights).
 HEAVE_FILTERS = ("unknown", "none", "compensated", "highpass")
 
 ESTIMATOR_NAMES = {
@@ -137,9 +138,10 @@ class LatencyParams(Params):
     heave_filter: str = param(
         "unknown", label="Heave filter", choices=HEAVE_FILTERS,
         help="the motion sensor's heave filter: highpass = a causal high-pass (order and "
-             "cut-off period below), applied to the GNSS heights too so that both carry "
-             "its phase; compensated/none = no phase at wave periods; unknown = not "
-             "declared (the delay-model check flags a filter's phase)")
+             "cut-off period below), whose phase is removed from the heave and whose gain "
+             "is applied to the GNSS heights; compensated/none = no phase at wave "
+             "periods; unknown = not declared (the delay-model check flags a filter's "
+             "phase or says when it cannot exclude one)")
     heave_filter_order: int = param(
         2, label="Heave filter order", minimum=1, maximum=4, advanced=True,
         help="order of the declared high-pass heave filter")

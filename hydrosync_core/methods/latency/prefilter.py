@@ -50,6 +50,14 @@ zero exceeds with probability ≥ this counts as noise only (weight zero). Witho
 noise-only band above the waves (0.5–8 Hz at 20 Hz GNSS) got the largest weights: 1.6x
 the Cramér–Rao bound at 20 Hz, 1.2x with it (docs/benchmarks.md)."""
 
+MIN_SEGMENTS = 6
+"""Welch segments the pooled weighting needs. The weight is estimated from the very lines
+it then weights: its noise is common to every line, so it biases them alike and never
+shows in their scatter. Weighted estimator on simulated 5 Hz days, 40 per row (paper
+noise): 3 segments 95 % coverage 0.83 and 0.95 on two draws (error/σ RMS 1.67, 1.2), 4
+segments 0.875 (1.51), 6 segments 0.95 (1.15; coloured 0.975), 8 segments 0.975 (1.01).
+Below 6 the anti-aliased correlation is used (the 3-segment draw: 0.97, RMS 0.95)."""
+
 MAX_COHERENCE = 0.99
 """Upper clip of the estimated coherence (keeps the weight finite)."""
 
@@ -317,18 +325,21 @@ def _pooled_spectra(pairs: list[tuple[np.ndarray, np.ndarray]], fs: float, nper:
 def pooled_weighting(pairs: list[tuple[np.ndarray, np.ndarray]], dt: float) -> Weighting | None:
     """Coherence weight from (heights, heave at the same epochs) pairs of the day's lines.
 
-    Returns None with fewer than 16 epochs in the shortest line.
+    Returns None with fewer than 16 epochs in the shortest line, or fewer than
+    MIN_SEGMENTS Welch segments over the lines.
     """
     pairs = [(h, H) for h, H in pairs if h.size >= 16]
     if not pairs:
         return None
     nper = int(min(round(WELCH_S / dt), min(h.size for h, _ in pairs)))
+    # Unbiased for K independent segments (the raw estimate is ~1/K even without signal).
+    k = sum(max(1, 2 * h.size // nper - 1) for h, _ in pairs)
+    if k < MIN_SEGMENTS:
+        return None
     f, s_hh, s_HH, s_hH = _pooled_spectra(pairs, 1.0 / dt, nper)
     total = sum(h.size for h, _ in pairs)
     with np.errstate(invalid="ignore", divide="ignore"):
         coh = np.abs(s_hH) ** 2 / (s_hh * s_HH)
-    # Unbiased for K independent segments (the raw estimate is ~1/K even without signal).
-    k = sum(max(1, 2 * h.size // nper - 1) for h, _ in pairs)
     raw = np.nan_to_num(coh, nan=0.0)
     coh = (k * raw - 1.0) / (k - 1.0) if k > 1 else coh
     if k > 1 and COHERENCE_ALPHA > 0:

@@ -184,10 +184,11 @@ def recombine(project: Project, used: np.ndarray, weighting: str | None = None) 
         project.delete(f"{RESULT}/synchronised")
     # The run's delay-model flags still hold for the lines chosen by hand: σ widened alike.
     diagnostics = json.loads(attrs.get("diagnostics", "{}") or "{}")
-    sigma = widened_sigma(comb.latency_s, comb.uncertainty_s, diagnostics) \
+    factor = (comb.ci95_high - comb.latency_s) / comb.uncertainty_s \
+        if comb.n_used and comb.uncertainty_s > 0 else 1.959963984540054
+    sigma = widened_sigma(comb.latency_s, comb.uncertainty_s, diagnostics, factor) \
         if comb.n_used else comb.uncertainty_s
     if sigma > comb.uncertainty_s:
-        factor = (comb.ci95_high - comb.latency_s) / comb.uncertainty_s
         comb = dataclasses.replace(comb, uncertainty_s=sigma,
                                    ci95_low=comb.latency_s - factor * sigma,
                                    ci95_high=comb.latency_s + factor * sigma)

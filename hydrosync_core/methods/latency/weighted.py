@@ -95,7 +95,7 @@ def weighted_passes(setup: Setup, p: LatencyParams, first: list, works: list, pr
                                   setup.g_int)
     if weighting is None:
         add_uncertainty(setup, first, works)
-        return first, ["coherence weighting not possible (too few epochs): "
+        return first, ["coherence weighting not possible (too few epochs or Welch segments): "
                        "the anti-aliased correlation is used"]
     for work in works:
         if work is not None:

@@ -26,7 +26,7 @@ k is ``φ_k = δθ − M_k·δb_g`` with ``M_k = Σ_(j<k) C_(j+1)·Δt_j``; ``δ
 Generalised least squares: the gyro white noise, integrated by the attitude, is a random
 walk common to all later observations; it enters their covariance (not only white
 weights), with the GNSS and accelerometer white noise. The IMU noise levels come from the
-record itself (third differences); the four scale factors (GNSS horizontal, vertical,
+record itself (fifth differences); the four scale factors (GNSS horizontal, vertical,
 accelerometer, gyro) are re-estimated from the residuals (variance components), and the
 covariance of the result gives σ of the tip.
 
@@ -198,7 +198,7 @@ def numerov_weights(Wq: np.ndarray) -> np.ndarray:
 
 def interval_weights(Wq: np.ndarray) -> np.ndarray:
     """Window weights for interval-mean accelerometer rows (row *k* the mean over
-    ``[t_k, t_(k+1))``, rotated to NED with the attitude in the middle of the interval):
+    ``[t_k, t_(k+1))``, in NED, :func:`ned_force`):
     ``Wq·M`` with M the fourth-order map from interval means to the value the second
     differences see at ``t_k``, ``(13(Y_(k−1) + Y_k) − Y_(k−2) − Y_(k+1))/24``."""
     out = np.zeros_like(Wq)
@@ -209,19 +209,37 @@ def interval_weights(Wq: np.ndarray) -> np.ndarray:
     return out
 
 
-def _force_attitude(C: np.ndarray, mid: bool) -> np.ndarray:
-    """The attitude that rotates accelerometer row k to NED: at ``t_k``, or (interval
-    means, *mid*) halfway to ``t_(k+1)`` (mean of the two matrices, second order)."""
+def ned_force(C: np.ndarray, time: np.ndarray, accel: np.ndarray, gyro: np.ndarray | None,
+              mid: bool) -> tuple[np.ndarray, np.ndarray]:
+    """Accelerometer rows in NED, and the matrices that map a body-frame change of a row
+    (a bias) into NED: ``(y (N, 3), A (N, 3, 3))``.
+
+    Instantaneous rows: ``y_k = C_k·f_k``. Interval means (*mid*; *gyro* the rotation over
+    the interval divided by its length): the NED mean over ``[t_k, t_(k+1))``,
+    ``y_k = C_k·(f̄ + φ×f̄/2 + φ×(φ×f̄)/6 + Δt²/12·(ω̄×ḟ − ω̇×f̄))`` with ``φ = ω̄·Δt``,
+    to third order in ``Ω·Δt``: the attitude turns inside the interval while the force
+    changes (a sculling term). The mean of the two end attitudes, kept before, left
+    ``Δt²/12·ω̄×ḟ`` and ``φ×(φ×f̄)/12``: 0.02 m/s² in a window of a fast swing at 50 Hz,
+    three times the accelerometer noise (issue #30).
+    """
+    accel = np.asarray(accel, float)
     if not mid:
-        return C
-    out = C.copy()
-    out[:-1] = 0.5 * (C[:-1] + C[1:])
-    return out
+        return np.einsum("kij,kj->ki", C, accel), C
+    dt = np.empty(time.size)
+    dt[:-1] = np.diff(time)
+    dt[-1] = dt[-2]
+    phi = gyro * dt[:, None]
+    half = np.cross(phi, accel) / 2.0
+    body = accel + half + np.cross(phi, np.cross(phi, accel)) / 6.0
+    body += dt[:, None] ** 2 / 12.0 * (np.cross(gyro, np.gradient(accel, time, axis=0))
+                                       - np.cross(np.gradient(gyro, time, axis=0), accel))
+    T = np.eye(3) + skew(phi) / 2.0
+    return np.einsum("kij,kj->ki", C, body), C @ T
 
 
-def _model(C, time, accel, gnss_t, length, tip, ba, g, windows, mid=False):
+def _model(C, time, accel, gnss_t, length, tip, ba, g, windows, mid=False, gyro=None):
     """Residuals (GNSS (M,3), accelerometer windows (B,3)) and their Jacobians
-    ((M,3,12), (B,3,12))."""
+    ((M,3,12), (B,3,12)); *gyro* (bias removed) for interval-mean rows (:func:`ned_force`)."""
     n = time.size
     dt = np.diff(time)
     u = C[:, :, 2] * length
@@ -241,27 +259,33 @@ def _model(C, time, accel, gnss_t, length, tip, ba, g, windows, mid=False):
     # accelerometers, window i: e = Σ_k Wq·(C(f − b_a) + g·e_d) + Σ_k D·u
     # (= ∫w·a dt − ∫w·ü dt with the antenna acceleration a = −ü: no velocities needed)
     Wq, D = windows
-    Cf = _force_attitude(C, mid)
-    y = np.einsum("kij,kj->ki", Cf, accel - ba)
+    y, A = ned_force(C, time, accel - ba, gyro, mid)
     Dy = -skew(y) @ Phi
-    Dy[:, :, BA] -= Cf
+    Dy[:, :, BA] -= A
     ea = Wq @ (y + g * E_DOWN) + D @ u
     Da = np.einsum("bk,kij->bij", Wq, Dy) + np.einsum("bk,kij->bij", D, Du)
     return u_at, Dg, ea, Da
 
 
+#: order of the differences that measure an IMU record's white noise, and the variance of
+#: that difference of unit white noise (``C(2n, n)``)
+NOISE_DIFF_ORDER, NOISE_DIFF_GAIN = 5, 252.0
+
+
 def white_sigma(x: np.ndarray) -> float:
-    """Per-sample σ of the white noise on the columns of *x* (N, 3), from third
+    """Per-sample σ of the white noise on the columns of *x* (N, 3), from fifth
     differences (robust: MAD), RMS over the axes.
 
-    ``Δ³`` of white noise has variance 20·σ²; a swing's smooth motion hardly enters at
-    100 Hz (its third difference is ``(Ω·Δt)³`` times its amplitude).
+    ``Δ⁵`` of white noise has variance 252·σ²; a swing's smooth motion enters with
+    ``(Ω·Δt)⁵`` times its amplitude. Third differences (``(Ω·Δt)³``) read a fast
+    three-sweep swing at 50 Hz as 1.5× the accelerometer noise (issue #30); fifth
+    differences as 1.05×.
     """
-    d = np.diff(np.asarray(x, float), n=3, axis=0)
+    d = np.diff(np.asarray(x, float), n=NOISE_DIFF_ORDER, axis=0)
     if d.shape[0] < 10:
         return float("nan")
     mad = np.median(np.abs(d - np.median(d, axis=0)), axis=0)
-    return float(np.sqrt(np.mean((1.4826 * mad) ** 2 / 20.0)))
+    return float(np.sqrt(np.mean((1.4826 * mad) ** 2 / NOISE_DIFF_GAIN)))
 
 
 def _gyro_noise_design(C, time, gnss_t, u, y, windows, chunk):
@@ -376,7 +400,7 @@ def _prior_rows(pb: _Problem, st: _State) -> tuple[np.ndarray, np.ndarray]:
 def _linearise(pb: _Problem, st: _State) -> tuple[np.ndarray, np.ndarray]:
     """Residuals (GNSS rows, then windows) and their Jacobian at the state."""
     u_at, Dg, ea, Da = _model(st.C, pb.time, pb.accel, pb.gnss_t, pb.length, st.tip, st.ba,
-                              pb.g, pb.windows, pb.mid)
+                              pb.g, pb.windows, pb.mid, pb.gyro - st.bg)
     e = np.concatenate([(pb.gnss_p - st.tip + u_at).ravel(), ea.ravel()])
     return e, np.vstack([Dg.reshape(-1, NPAR), Da.reshape(-1, NPAR)])
 
@@ -384,7 +408,7 @@ def _linearise(pb: _Problem, st: _State) -> tuple[np.ndarray, np.ndarray]:
 def _gyro_cov(pb: _Problem, st: _State) -> np.ndarray:
     """The gyro-noise covariance component σ_ω²·H·Hᵀ at the state."""
     u = st.C[:, :, 2] * pb.length
-    y = np.einsum("kij,kj->ki", _force_attitude(st.C, pb.mid), pb.accel - st.ba)
+    y, _ = ned_force(st.C, pb.time, pb.accel - st.ba, pb.gyro - st.bg, pb.mid)
     H = _gyro_noise_design(st.C, pb.time, pb.gnss_t, u, y, pb.windows, pb.chunk)
     return (H @ H.T) * pb.gyro_noise ** 2
 
@@ -440,7 +464,7 @@ def _variance_components(pb: _Problem, st: _State, Sigma: np.ndarray, comps: tup
             new[i] = theta[i] * float(v @ S @ v) / red_i
     # no σ may shrink below its a-priori value: a dozen epochs (2 Hz) estimate the GNSS σ
     # to ±20 %, and a receiver's stated RTK σ is a floor; the IMU noise is measured from
-    # the record itself (third differences, to a few %); its components have little
+    # the record itself (fifth differences, to a few %); its components have little
     # redundancy in a swing, so they may grow (a model error) but not fall below the
     # measured noise (issue #30)
     return np.clip(new, 1.0, np.array([50.0, 50.0, 20.0, 20.0]) ** 2)

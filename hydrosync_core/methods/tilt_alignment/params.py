@@ -142,7 +142,7 @@ class TiltParams(Params):
     tip_tolerance_m: float = param(
         0.01, label="Tip tolerance", unit="m", minimum=0.0, min_exclusive=True, maximum=1.0,
         decimals=4, step=0.001,
-        help="warn when the horizontal circle holding the tip with 99 % probability is "
+        help="warn when the horizontal circle holding the tip with 95 % probability is "
              "wider than this (a swing nearly in one plane leaves the accelerometer bias "
              "along the swing axis mixed with the tilt out of the plane)")
     gravity_m_s2: float | None = param(

@@ -222,7 +222,7 @@ def test_demo_results_shown(panel, demo, qtbot):
         plan["laser_xyz"])
     assert set(view.mbes_items) == set(np.unique(plan["mbes_face"]).tolist())
     for name in (str(faces["face"][k]) for k in view.laser_items):
-        assert name in panel.cloud_box.legend.text()
+        assert name in panel.cloud_box.legend.toolTip()  # the legend itself: by kind
 
     # Before/after toggle swaps the multibeam arrays (and only those).
     def mbes_xy(k):

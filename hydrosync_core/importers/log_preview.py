@@ -156,7 +156,9 @@ def _folder_preview(folder: Path, out: FilePreview, most: int = 5) -> FilePrevie
         return out
     names = [str(p.relative_to(folder)) for p in files[:most]]
     more = f", … (+{len(files) - most})" if len(files) > most else ""
-    out.first_line = f"folder of {len(files)} files: {', '.join(names)}{more}"
+    listed = f"{', '.join(names)}{more}"
+    out.first_line = (f"folder of 1 file: {listed}" if len(files) == 1
+                      else f"folder of {len(files)} files: {listed}")
     return out
 
 

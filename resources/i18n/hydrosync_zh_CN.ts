@@ -3954,6 +3954,10 @@ Default: {1}  (--param {2})</source>
             <source>folder of {0} files: {1}</source>
             <translation>文件夹,共 {0} 个文件:{1}</translation>
         </message>
+        <message>
+            <source>folder of 1 file: {0}</source>
+            <translation>文件夹,共 1 个文件:{0}</translation>
+        </message>
     </context>
     <context>
         <name>signoff</name>

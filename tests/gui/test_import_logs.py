@@ -175,7 +175,7 @@ def test_preview_of_a_large_log_reads_its_two_ends(tmp_path):
     assert 0 < sum(part.sentences.values()) < sum(whole.sentences.values())
     assert part.kinds == whole.kinds and "attitude_log" in whole.kinds
     folder = preview_file(tmp_path)  # the input of a recording kind: described
-    assert folder.error is None and folder.first_line == "folder of 1 files: day.log"
+    assert folder.error is None and folder.first_line == "folder of 1 file: day.log"
     assert folder.size == len(data)
 
 

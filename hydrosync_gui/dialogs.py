@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import re
 from collections.abc import Mapping
 from pathlib import Path
 
@@ -51,25 +50,10 @@ def folder_files(folder: str | Path) -> list[str]:
                   if p.is_file() and p.suffix.lower() in ACCEPTED_SUFFIXES)
 
 
-def _gui_words(description: str) -> str:
-    """A kind's one-line description without the pointers to command-line options
-    (``; see --heave-positive``): the dialog asks for those itself."""
-    return re.sub(r"[;,]?\s*see --[a-z-]+", "", description)
-
-
-def _takes_geoid(kind) -> bool:
-    """Whether the kind's reader takes ``empty_geoid`` (a GGA log)."""
-    return "empty_geoid" in getattr(kind, "options", ())
-
-
-def _takes_clock(kind) -> bool:
-    """Whether the kind's reader takes ``clock_offset`` (a GNSS/INS recording folder)."""
-    return "clock_offset" in getattr(kind, "options", ())
-
-
-def _takes_heave(kind) -> bool:
-    """Whether the kind's reader takes ``heave_positive`` ("up" / "down")."""
-    return "heave_positive" in getattr(kind, "options", ())
+def _takes(kind, option: str) -> bool:
+    """Whether the kind's reader takes the import option *option* (``"heave_positive"``,
+    ``"empty_geoid"``, ``"clock_offset"``): the dialog then asks for it."""
+    return option in getattr(kind, "options", ())
 
 
 class ImportDialog(QDialog):
@@ -116,7 +100,7 @@ class ImportDialog(QDialog):
         for name, kind in self._kinds.items():
             # The description alone: it is what the catalogue translates, and the kind's
             # key is a command-line word (shown in "Add to list" and the tooltip).
-            self.kind_box.addItem(_gui_words(kind.description), name)
+            self.kind_box.addItem(kind.description, name)
             flag = name.replace("_", "-")
             self.kind_box.setItemData(self.kind_box.count() - 1,
                                       f"hydrosync import --{flag} … → /{kind.target}",
@@ -212,13 +196,13 @@ class ImportDialog(QDialog):
     def choice(self) -> tuple[str, str | list[str], dict]:
         """The chosen ``(kind, path or paths, options)``; options go to the kind's reader."""
         kind = str(self.kind_box.currentData())
+        spec = self._kinds.get(kind)
         options = {}
-        if _takes_heave(self._kinds.get(kind)) and self.heave_box.currentData() is not None:
+        if _takes(spec, "heave_positive") and self.heave_box.currentData() is not None:
             options["heave_positive"] = self.heave_box.currentData()
-        if _takes_geoid(self._kinds.get(kind)):
+        if _takes(spec, "empty_geoid"):
             options["empty_geoid"] = self.geoid_box.currentData()
-        if (_takes_clock(self._kinds.get(kind))
-                and self.clock_box.value() > self.clock_box.minimum()):
+        if _takes(spec, "clock_offset") and self.clock_box.value() > self.clock_box.minimum():
             options["clock_offset"] = round(self.clock_box.value(), 3)
         paths = self.paths()
         return kind, paths[0] if len(paths) == 1 else paths, options
@@ -247,20 +231,20 @@ class ImportDialog(QDialog):
     # ------------------------------------------------------------------ slots
     def _current_ok(self) -> bool:
         kind = self._kinds.get(str(self.kind_box.currentData()))
-        return bool(self.paths()) and (not _takes_heave(kind)
+        return bool(self.paths()) and (not _takes(kind, "heave_positive")
                                        or self.heave_box.currentData() is not None)
 
     @Slot()
     def _on_kind(self) -> None:
         kind = self._kinds.get(str(self.kind_box.currentData()))
         self.target.setText(f"/{kind.target}" if kind else "")
-        heave = _takes_heave(kind)
+        heave = _takes(kind, "heave_positive")
         for widget in (self.heave_box, self.heave_label, self.heave_note):
             widget.setVisible(heave)
         for widget in (self.geoid_box, self.geoid_label):
-            widget.setVisible(_takes_geoid(kind))
+            widget.setVisible(_takes(kind, "empty_geoid"))
         for widget in (self.clock_box, self.clock_label):
-            widget.setVisible(_takes_clock(kind))
+            widget.setVisible(_takes(kind, "clock_offset"))
         paths = self.paths()
         path = paths[0] if paths else ""
         if heave and path != self._sniffed:

@@ -79,54 +79,51 @@ def _long_digits(text: str, where: str) -> None:
                          line=line)
 
 
-def parse_json(text: str, where: str) -> Any:
-    """Parse JSON *text* from file *where*, bounded (see the module doc)."""
+def _bounded_parse(text: str, where: str, parse, syntax_error, syntax_message) -> Any:
+    """*parse* (a library's ``loads``) of *text* from file *where*, bounded (see the module
+    doc): *syntax_error* (an exception class) becomes ``syntax_message(exc)``, an
+    ``(message, line)`` pair; too deep and too long numbers get their own one line."""
     _long_digits(text, where)
     try:
-        document = json.loads(text)
-    except json.JSONDecodeError as exc:
-        raise InputError(where, f"not valid JSON: {exc.msg}", line=exc.lineno) from None
+        document = parse(text)
+    except syntax_error as exc:
+        message, line = syntax_message(exc)
+        raise InputError(where, message, line=line) from None
     except RecursionError:
         raise _too_deep(where) from None
     except ValueError as exc:
         raise _big_number(where, exc) from None
     return check_shape(document, where)
+
+
+def parse_json(text: str, where: str) -> Any:
+    """Parse JSON *text* from file *where*, bounded (see the module doc)."""
+    return _bounded_parse(text, where, json.loads, json.JSONDecodeError,
+                          lambda exc: (f"not valid JSON: {exc.msg}", exc.lineno))
 
 
 def parse_toml(text: str, where: str) -> dict:
     """Parse TOML *text* from file *where*, bounded (see the module doc)."""
     import tomllib
 
-    _long_digits(text, where)
-    try:
-        document = tomllib.loads(text)
-    except tomllib.TOMLDecodeError as exc:
+    def message(exc):
         match = re.search(r"\(at line (\d+)", str(exc))
-        raise InputError(where, f"not valid TOML: {str(exc).split(' (at line')[0]}",
-                         line=int(match.group(1)) if match else None) from None
-    except RecursionError:
-        raise _too_deep(where) from None
-    except ValueError as exc:
-        raise _big_number(where, exc) from None
-    return check_shape(document, where)
+        return (f"not valid TOML: {str(exc).split(' (at line')[0]}",
+                int(match.group(1)) if match else None)
+
+    return _bounded_parse(text, where, tomllib.loads, tomllib.TOMLDecodeError, message)
 
 
 def parse_yaml(text: str, where: str) -> Any:
     """Parse YAML *text* (safe loader) from file *where*, bounded (see the module doc)."""
     import yaml
 
-    _long_digits(text, where)
-    try:
-        document = yaml.safe_load(text)
-    except yaml.YAMLError as exc:
+    def message(exc):
         mark = getattr(exc, "problem_mark", None)
-        raise InputError(where, f"not valid YAML: {getattr(exc, 'problem', None) or exc}",
-                         line=None if mark is None else mark.line + 1) from None
-    except RecursionError:
-        raise _too_deep(where) from None
-    except ValueError as exc:
-        raise _big_number(where, exc) from None
-    return check_shape(document, where)
+        return (f"not valid YAML: {getattr(exc, 'problem', None) or exc}",
+                None if mark is None else mark.line + 1)
+
+    return _bounded_parse(text, where, yaml.safe_load, yaml.YAMLError, message)
 
 
 def load(path: str | os.PathLike, what: str = "settings file") -> Any:

@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from hydrosync_core.methods.pool_calibration.beams import sounding_points
 from hydrosync_core.methods.pool_calibration.georef import GeorefContext
 from hydrosync_core.methods.pool_calibration.planes import PlaneFit
 
@@ -30,8 +31,7 @@ def _plane_pattern_removed(ctx: GeorefContext, obs: dict[str, tuple[np.ndarray, 
         start += len(idx)
         if len(idx) < 4:
             continue
-        p = ctx.ping[idx]
-        pts = ctx.origin[p] + np.einsum("nij,nj->ni", ctx.rot[p], ctx.x_m[idx] @ r_m.T + lever)
+        pts = sounding_points(ctx, idx, r_m, lever, plane)
         e1 = np.cross(plane.normal, [0.0, 0.0, 1.0])
         if np.linalg.norm(e1) < 0.5:
             e1 = np.cross(plane.normal, [1.0, 0.0, 0.0])

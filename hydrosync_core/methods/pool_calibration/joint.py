@@ -59,6 +59,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from hydrosync_core.methods.pool_calibration.beams import beam_meets_plane, sounding_points
 from hydrosync_core.methods.pool_calibration.block_sigma import block_factors
 from hydrosync_core.methods.pool_calibration.georef import (
     GeorefContext,
@@ -120,15 +121,14 @@ def _system(ctx: GeorefContext, obs: dict[str, tuple[np.ndarray, PlaneFit]], r_m
         y = ctx.x_m[idx] @ r_m.T
         a = np.einsum("nji,j->ni", ctx.rot[p], plane.normal)      # A_iᵀ n
         pts = ctx.origin[p] + np.einsum("nij,nj->ni", ctx.rot[p], y + lever)
-        res.append(pts @ plane.normal - plane.d)
-        jac.append(np.hstack([np.cross(y, a) @ w, a]))
+        r = pts @ plane.normal - plane.d
+        res.append(r)
+        jac.append(np.hstack([np.cross(beam_meets_plane(y, a, r), a) @ w, a]))
         lab.append(np.full(len(idx), name, dtype=object))
     return np.concatenate(res), np.vstack(jac), np.concatenate(lab)
 
 
-def _points(ctx, idx, r_m, lever):
-    p = ctx.ping[idx]
-    return ctx.origin[p] + np.einsum("nij,nj->ni", ctx.rot[p], ctx.x_m[idx] @ r_m.T + lever)
+_points = sounding_points
 
 
 def _build_groups(obs, refs, build_sigma) -> tuple[dict, np.ndarray]:
@@ -162,7 +162,7 @@ def _build_columns(ctx, obs, refs, groups, sig, r_m, lever) -> np.ndarray:
         if ref is None or ref.group not in groups:
             continue
         g = groups[ref.group]
-        pts = _points(ctx, idx, r_m, lever)
+        pts = _points(ctx, idx, r_m, lever, plane)
         n = plane.normal
         block = np.hstack([-np.tile(n, (len(idx), 1)), np.cross(n, pts - ref.pivot)])
         out[sl, 6 * g:6 * g + 6] = block * (sig > 0)
@@ -189,7 +189,7 @@ def _reference_cov(ctx, obs, r_m, lever, jac_aug, weights, g_theta, refs=None) -
         if plane.axes is None:
             continue
         jw = jac_aug[sl] * weights[sl, None]
-        rel = _points(ctx, idx, r_m, lever) - plane.centroid
+        rel = _points(ctx, idx, r_m, lever, plane) - plane.centroid
         b = np.column_stack([rel @ plane.axes[:, 1], rel @ plane.axes[:, 2],
                              -np.ones(len(idx))])
         ref = refs.get(name) if refs else None

@@ -170,3 +170,12 @@ def georeference(ctx: GeorefContext, r_m: np.ndarray, lever: np.ndarray,
         p = ctx.ping[sl]
         out[start:start + chunk] = ctx.origin[p] + np.einsum("nij,nj->ni", ctx.rot[p], body)
     return out
+
+
+def sensor_heads(ctx: GeorefContext, lever: np.ndarray,
+                 select: np.ndarray | None = None) -> np.ndarray:
+    """ENU position (n, 3) m of the multibeam head at each kept sounding's ping (or the
+    subset *select*): ``o + (C R_b) l_b``, where its beam starts."""
+    idx = np.arange(len(ctx.x_m)) if select is None else np.asarray(select)
+    p = ctx.ping[idx]
+    return ctx.origin[p] + np.einsum("nij,j->ni", ctx.rot[p], np.asarray(lever, float))

@@ -14,6 +14,16 @@ points neither depend on the (non-repeatable) RANSAC draw nor lean towards its p
 Those final selections then give up every point that lies as close to another face
 (:func:`drop_intersections`): a sounding near the line where two faces meet cannot be
 told to belong to one of them, and the noise truncated there biases both planes.
+
+Where the sensor head of each sounding is known (``heads``: the multibeam's, per sounding),
+the cuts that run across a face (its polygon, the water level, the band about another face)
+are made where the sounding's beam meets the face's plane (:func:`on_plane`), not at the
+sounding itself. A range error moves a sounding along its beam, so both across the face and
+off its plane: cutting on the sounding's own position keeps, near each edge, only the
+soundings whose range erred one way, a one-sided residual along that edge (about +1σ of
+yaw on the #24 passes). Where the beam meets the plane does not depend on the range error
+(:mod:`.beams`). A sounding nearer another face's plane than its own is still dropped on
+its own position: on a grazing face its beam meets the plane far from where it lies.
 """
 
 from __future__ import annotations
@@ -22,6 +32,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from hydrosync_core.methods.pool_calibration.beams import beam_meets_plane
 from hydrosync_core.methods.pool_calibration.design import DesignFace, inside_polygon
 from hydrosync_core.progress import check_cancel, report
 
@@ -192,9 +203,18 @@ def band_halfwidth(pts: np.ndarray, k_sigma: float, limit: float) -> float:
     return min(limit, k_sigma * max(sigma, 1e-6))
 
 
+def on_plane(points: np.ndarray, heads: np.ndarray | None, face: DesignFace) -> np.ndarray:
+    """Where each point's beam, from its sensor head (*heads*, (n, 3) m), meets *face*'s
+    plane (n, 3, target ENU m; :func:`~.beams.beam_meets_plane`); without *heads*, the
+    points themselves."""
+    if heads is None:
+        return points
+    return heads + beam_meets_plane(points - heads, face.normal, points @ face.normal - face.d)
+
+
 def drop_intersections(points: np.ndarray, faces: list[DesignFace],
-                       selected: dict[str, np.ndarray], bands: dict[str, float]
-                       ) -> dict[str, np.ndarray]:
+                       selected: dict[str, np.ndarray], bands: dict[str, float],
+                       heads: np.ndarray | None = None) -> dict[str, np.ndarray]:
     """Selections (indices into *points*, target ENU m) without the points as close to
     another design face as to their own.
 
@@ -207,7 +227,11 @@ def drop_intersections(points: np.ndarray, faces: list[DesignFace],
     few millimetres of one-sided bias over a strip that tilts the plinth-top reference
     (#24: roll at +4σ and +8σ on plinth sessions). The same holds where the design
     covers a face with another body (a block's footprint on its plinth, a face flush with
-    the wall), where no sounding can come from the covered face.
+    the wall), where no sounding can come from the covered face. With *heads* (sensor
+    head per point) the test is made where the point's beam meets F's plane
+    (:func:`on_plane`), so that a range error does not decide it; a point nearer G's plane
+    than F's, inside G's polygon grown by b, is dropped too (a sounding of G near F's
+    plane, whose beam may meet F's plane far away when it grazes F).
     """
     out = {}
     for f in faces:
@@ -216,15 +240,21 @@ def drop_intersections(points: np.ndarray, faces: list[DesignFace],
             out[f.name] = idx
             continue
         pts = points[idx]
+        met = on_plane(pts, None if heads is None else heads[idx], f)
+        own = np.abs(pts @ f.normal - f.d)
         keep = np.ones(len(idx), bool)
         for g in faces:
             if g.name == f.name:
                 continue
             band = max(bands.get(f.name, 0.0), bands.get(g.name, 0.0))
-            near = keep & (np.abs(pts @ g.normal - g.d) < band)
+            near = np.abs(met @ g.normal - g.d) < band
+            if heads is not None:
+                near |= np.abs(pts @ g.normal - g.d) < np.minimum(own, band)
+            near &= keep
             if near.any():
                 hit = np.flatnonzero(near)
-                keep[hit[inside_polygon(g, pts[hit], -band)]] = False
+                keep[hit[inside_polygon(g, met[hit], -band)
+                         | inside_polygon(g, pts[hit], -band)]] = False
         out[f.name] = idx[keep]
     return out
 
@@ -233,32 +263,43 @@ def segment_cloud(points: np.ndarray, faces: list[DesignFace], water_level: floa
                   side: str, *, tol: float = 0.3, margin: float = 0.1,
                   water_margin: float = 0.1, ransac_m: float = 0.05, dbscan_eps: float = 0.3,
                   min_points: int = 10, max_points: int = 20000, max_angle_deg: float = 15.0,
-                  band_sigma: float = 0.0, seed: int = 0, progress=None,
-                  cancel=None) -> dict[str, FaceSegment]:
+                  band_sigma: float = 0.0, seed: int = 0, heads: np.ndarray | None = None,
+                  progress=None, cancel=None) -> dict[str, FaceSegment]:
     """Segment *points* (N, 3, target ENU, m) into *faces*.
 
     *side* is ``"above"`` (laser) or ``"below"`` (multibeam). The polygon shrink *margin*
     is capped at half the face's inradius, so small faces keep a core. With ``band_sigma > 0`` the
     RANSAC/DBSCAN selection is replaced by the symmetric band of :func:`band_refit`
     (±band_sigma robust σ about the face's own TLS plane, within the crop) and the points
-    as close to another face are dropped (:func:`drop_intersections`). Returns a
+    as close to another face are dropped (:func:`drop_intersections`). *heads* (N, 3, m):
+    the sensor head of each point; given, the polygon, water-level and intersection cuts are
+    made where the point's beam meets the face's plane (module docstring). Returns a
     :class:`FaceSegment` per face name (possibly empty).
     """
     rng = np.random.default_rng(seed)
     cand = np.flatnonzero(bbox_mask(points, faces, tol))
     pts = points[cand]
-    if side == "above":
-        ok = pts[:, 2] > water_level + water_margin
-    else:
-        ok = pts[:, 2] < water_level - water_margin
+
+    def wet_side(z: np.ndarray, margin: float) -> np.ndarray:
+        return z > water_level + margin if side == "above" else z < water_level - margin
+
+    # With the heads, the margin is applied per face where the beams meet it; the points
+    # themselves need only be on the sensor's side of the surface (surface returns go).
+    ok = wet_side(pts[:, 2], water_margin if heads is None else 0.0)
     cand, pts = cand[ok], pts[ok]
+    hds = None if heads is None else heads[cand]
     out = {}
     bands: dict[str, float] = {}
     for k, face in enumerate(faces):
         check_cancel(cancel)
         near = np.abs(pts @ face.normal - face.d) < tol
         idx = np.flatnonzero(near)
-        idx = idx[inside_polygon(face, pts[idx], min(margin, 0.5 * inradius(face)))]
+        shrink = min(margin, 0.5 * inradius(face))
+        if hds is not None:
+            met = on_plane(pts[idx], hds[idx], face)
+            idx = idx[wet_side(met[:, 2], water_margin) & inside_polygon(face, met, shrink)]
+        else:
+            idx = idx[inside_polygon(face, pts[idx], shrink)]
         cropped = len(idx)
         if len(idx) > max_points:
             idx = np.sort(rng.choice(idx, max_points, replace=False))
@@ -272,7 +313,7 @@ def segment_cloud(points: np.ndarray, faces: list[DesignFace], water_level: floa
         report(progress, (k + 1) / len(faces), f"segmented {face.name} ({side} water)")
     if bands:
         kept = drop_intersections(points, faces, {n: s.indices for n, s in out.items()},
-                                  bands)
+                                  bands, heads)
         out = {n: FaceSegment(n, kept[n], s.cropped, s.ransac_inliers)
                for n, s in out.items()}
     return out

@@ -143,7 +143,8 @@ def _resegment(seg, p, r_m, lever, cancel) -> dict[str, np.ndarray]:
                          tol=p.refine_tol_m, margin=p.face_margin_m,
                          water_margin=p.water_margin_m, ransac_m=p.refine_ransac_m,
                          dbscan_eps=p.dbscan_mbes_m, max_points=p.max_points_per_face,
-                         band_sigma=p.refine_band_sigma, cancel=cancel)
+                         band_sigma=p.refine_band_sigma,
+                         heads=georef.sensor_heads(seg.ctx, lever), cancel=cancel)
     return {n: s.indices for n, s in mseg.items()}
 
 

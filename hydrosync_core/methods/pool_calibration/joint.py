@@ -11,7 +11,10 @@ the design translation)::
     r_i = n_k · p_i - d_k + [-n_k, n_k × (p_i - q)] (δt, δω),   p_i = o + A_i (R_m x_i + l)
     ∂r_i/∂l = a_i = A_iᵀ n_k,   ∂r_i/∂θ_j = ((R_m x_i) × a_i) · ω_j     (A_i = C·R_b)
 
-with ω_roll = Rz·Ry·e_x, ω_pitch = Rz·e_y, ω_yaw = e_z (∂R_m/∂θ_j = [ω_j]× R_m). The
+with ω_roll = Rz·Ry·e_x, ω_pitch = Rz·e_y, ω_yaw = e_z (∂R_m/∂θ_j = [ω_j]× R_m), the
+rotation columns taken at ``y* = R_m x_i - (r_i / (a_i·û_i)) û_i``, where the beam meets the
+plane, not at the sounding: a range error moves ``R_m x_i`` with the residual and biased the
+solution (errors in the variables, :mod:`.beams`). The
 displacements' prior ``diag(σ_t² I, σ_ω² I)`` (σ = tol/√3, a rectangular tolerance) is a
 stochastic constraint: ``σ0² C⁻¹`` added to their block of the normal matrix. So the
 blocks' offsets weigh only as much as the build allows (block tops at different depths do

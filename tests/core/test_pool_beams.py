@@ -130,3 +130,27 @@ def test_edge_cut_where_the_beam_meets_the_face_does_not_tilt_it():
     b_cut, _ = slope(segmod.segment_cloud(pts, [face], 0.0, "below", **kw)["f"].indices)
     assert abs(b_fair) < 3.5 * se
     assert b_cut < -8 * se
+
+
+def test_a_face_no_beam_can_reach_takes_no_soundings_of_its_neighbour():
+    """Beams rising towards a block (4° up) hit its side 1-2.5 cm under the top. Where they
+    would meet the top's plane lies well inside the top, but each would need a range error
+    of decimetres to be the top's: the top keeps none of them (#24: a top with 21 such
+    soundings put lever z at -5.9σ)."""
+    rng = np.random.default_rng(5)
+    top = make_face("top", np.array([[-1.0, 0.0, -1.3], [0.0, 0.0, -1.3], [0.0, 1.0, -1.3],
+                                     [-1.0, 1.0, -1.3]]), "test", 0)
+    side = make_face("side", np.array([[-1.0, 0.0, -2.3], [-1.0, 1.0, -2.3],
+                                       [-1.0, 1.0, -1.3], [-1.0, 0.0, -1.3]]), "test", 1)
+    n = 3000
+    on = np.column_stack([np.full(n, -1.0), rng.uniform(0.05, 0.95, n),
+                          rng.uniform(-1.325, -1.31, n)])
+    heads = np.column_stack([np.full(n, -5.0), on[:, 1], np.full(n, -1.6)])
+    u = (on - heads) / np.linalg.norm(on - heads, axis=1)[:, None]
+    pts = on + rng.normal(0.0, 0.005, n)[:, None] * u
+    seg = segmod.segment_cloud(pts, [top, side], 0.0, "below", tol=0.1, margin=0.1,
+                               water_margin=0.1, ransac_m=0.03, dbscan_eps=0.3,
+                               band_sigma=4.0, heads=heads)
+    met = segmod.on_plane(pts, heads, top)
+    assert np.mean(np.all((met[:, :2] > [-0.9, 0.1]) & (met[:, :2] < [-0.1, 0.9]), axis=1)) > 0.5
+    assert seg["top"].n == 0

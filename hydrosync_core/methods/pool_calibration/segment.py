@@ -212,6 +212,21 @@ def on_plane(points: np.ndarray, heads: np.ndarray | None, face: DesignFace) -> 
     return heads + beam_meets_plane(points - heads, face.normal, points @ face.normal - face.d)
 
 
+def range_error(points: np.ndarray, heads: np.ndarray, face: DesignFace) -> np.ndarray:
+    """|Range error| (n,) m each point would need to lie on *face*'s plane: its distance to
+    the plane over the cosine of its beam's incidence (beams from *heads*, m).
+
+    A sounding off a face's plane by r is the face's only if its range erred by r/cos. Near
+    a grazing face a sounding of the next face lies a few centimetres off the plane, but
+    needs a range error of decimetres: a block's oblique side just under its top, seen by
+    beams rising towards it, would otherwise meet the top's plane well inside the top
+    (#24: lever z at -5.9σ from 21 such soundings taken for a top no beam can see).
+    """
+    ray = points - heads
+    cos = np.abs(ray @ face.normal) / np.maximum(np.linalg.norm(ray, axis=1), 1e-12)
+    return np.abs(points @ face.normal - face.d) / np.maximum(cos, 1e-3)
+
+
 def drop_intersections(points: np.ndarray, faces: list[DesignFace],
                        selected: dict[str, np.ndarray], bands: dict[str, float],
                        heads: np.ndarray | None = None) -> dict[str, np.ndarray]:
@@ -273,7 +288,9 @@ def segment_cloud(points: np.ndarray, faces: list[DesignFace], water_level: floa
     (±band_sigma robust σ about the face's own TLS plane, within the crop) and the points
     as close to another face are dropped (:func:`drop_intersections`). *heads* (N, 3, m):
     the sensor head of each point; given, the polygon, water-level and intersection cuts are
-    made where the point's beam meets the face's plane (module docstring). Returns a
+    made where the point's beam meets the face's plane (module docstring), and a point whose
+    range would have to err by more than *tol* to lie on the face is not the face's
+    (:func:`range_error`). Returns a
     :class:`FaceSegment` per face name (possibly empty).
     """
     rng = np.random.default_rng(seed)
@@ -297,7 +314,8 @@ def segment_cloud(points: np.ndarray, faces: list[DesignFace], water_level: floa
         shrink = min(margin, 0.5 * inradius(face))
         if hds is not None:
             met = on_plane(pts[idx], hds[idx], face)
-            idx = idx[wet_side(met[:, 2], water_margin) & inside_polygon(face, met, shrink)]
+            idx = idx[wet_side(met[:, 2], water_margin) & inside_polygon(face, met, shrink)
+                      & (range_error(pts[idx], hds[idx], face) < tol)]
         else:
             idx = idx[inside_polygon(face, pts[idx], shrink)]
         cropped = len(idx)

@@ -263,10 +263,30 @@ def _seed(seg, p, mfaces, refs, progress, cancel) -> tuple[SeedSolution, list[di
     return seed, table, rnd, reasons, warnings
 
 
+#: The final selection is redone around the joint solution while the solution moves any
+#: selected sounding by more than RESELECT_SHIFT × the re-crop tolerance, at most
+#: RESELECT_ROUNDS times.
+RESELECT_SHIFT = 0.1
+RESELECT_ROUNDS = 3
+
+
+def _largest_shift(ctx, obs, setup_a, setup_b, sample: int = 4000) -> float:
+    """Largest displacement (m) of the observed soundings (an evenly spread subset of at most
+    *sample*) between two setups (boresight matrix, lever m)."""
+    idx = np.concatenate([i for i, _ in obs.values()]) if obs else np.arange(0)
+    if not len(idx):
+        return 0.0
+    idx = idx[::max(1, len(idx) // sample)]
+    a = georef.georeference(ctx, *setup_a, select=idx)
+    b = georef.georeference(ctx, *setup_b, select=idx)
+    return float(np.max(np.linalg.norm(a - b, axis=1)))
+
+
 def _joint(seg, p, mfaces, r_a, l_a, cancel):
     """Joint adjustment from the aligned setup (independent of the seed's outcome), held
-    parameters at their coarse values; the points are re-selected once around its own
-    first solution. Returns (fit or None, observations, face indices, warnings)."""
+    parameters at their coarse values; the points are re-selected around its own first
+    solution, and again around the final one while it moves them (RESELECT_SHIFT).
+    Returns (fit or None, observations, face indices, warnings)."""
     theta_c = np.array([*georef.boresight_angles(seg.r_m0), *seg.lever0])
     c_sig = (np.deg2rad(p.coarse_tol_deg) / np.sqrt(3), p.coarse_tol_m / np.sqrt(3))
     b_sig = (p.build_tol_m / np.sqrt(3), np.deg2rad(p.build_tol_deg) / np.sqrt(3))
@@ -287,6 +307,18 @@ def _joint(seg, p, mfaces, r_a, l_a, cancel):
         # up to the coarse accuracy biased the angles correlated with it (#24: single passes
         # without a visible top 2-20× worse than a plain point-to-plane fit).
         fit = adjust(seg.ctx, obs, first.r_m, first.lever, fix={}, **kw)
+        r_sel, l_sel = first.r_m, first.lever
+        for _ in range(RESELECT_ROUNDS):
+            if _largest_shift(seg.ctx, obs, (r_sel, l_sel), (fit.r_m, fit.lever)) \
+                    < RESELECT_SHIFT * p.refine_tol_m:
+                break
+            # The points were selected around a setup the solution has left (the first fit
+            # holds lever z when no top is seen, and its coarse value may be 15 cm off): a
+            # wall's foot then takes floor soundings, which tilt it (#24: roll at -3σ).
+            r_sel, l_sel = fit.r_m, fit.lever
+            mfaces = _resegment(seg, p, r_sel, l_sel, cancel)
+            obs = _joint_obs(seg, mfaces, p.min_soundings)
+            fit = adjust(seg.ctx, obs, r_sel, l_sel, fix={}, **kw)
     except (ValueError, np.linalg.LinAlgError) as exc:
         return None, obs, mfaces, [f"joint adjustment failed ({exc}); the seed solution is "
                                    "reported"]

@@ -131,9 +131,6 @@ def _system(ctx: GeorefContext, obs: dict[str, tuple[np.ndarray, PlaneFit]], r_m
     return np.concatenate(res), np.vstack(jac), np.concatenate(lab)
 
 
-_points = sounding_points
-
-
 def _build_groups(obs, refs, build_sigma) -> tuple[dict, np.ndarray]:
     """Build-error groups (below-water body, twin body) -> index, and the prior σ (6,)."""
     sig = np.array([build_sigma[0]] * 3 + [build_sigma[1]] * 3, dtype=float)
@@ -165,7 +162,7 @@ def _build_columns(ctx, obs, refs, groups, sig, r_m, lever) -> np.ndarray:
         if ref is None or ref.group not in groups:
             continue
         g = groups[ref.group]
-        pts = _points(ctx, idx, r_m, lever, plane)
+        pts = sounding_points(ctx, idx, r_m, lever, plane)
         n = plane.normal
         block = np.hstack([-np.tile(n, (len(idx), 1)), np.cross(n, pts - ref.pivot)])
         out[sl, 6 * g:6 * g + 6] = block * (sig > 0)
@@ -192,7 +189,7 @@ def _reference_cov(ctx, obs, r_m, lever, jac_aug, weights, g_theta, refs=None) -
         if plane.axes is None:
             continue
         jw = jac_aug[sl] * weights[sl, None]
-        rel = _points(ctx, idx, r_m, lever, plane) - plane.centroid
+        rel = sounding_points(ctx, idx, r_m, lever, plane) - plane.centroid
         b = np.column_stack([rel @ plane.axes[:, 1], rel @ plane.axes[:, 2],
                              -np.ones(len(idx))])
         ref = refs.get(name) if refs else None

@@ -32,6 +32,16 @@ their ratio, RMS and max |error/σ| per parameter, exit-3 (undetermined) count, 
 outputs are further from the truth than the coarse input without a flag, and, for
 sessions, how many meet 0.02° / 2 mm on every parameter.
 
+Tails: beside the max, the count of |error/σ| beyond 3 and 3.5 against what an honest
+Gaussian σ gives on as many values (an honest σ exceeds 3.5 once in about 2 150 values, so
+the max of 180 values is beyond it in 8 % of variants).
+
+``--draw K --noise-seeds N`` keeps the geometry of draw K of each variant (target, track,
+motion, noise *levels*, coarse setup: the same random stream) and draws its build errors and
+noise afresh N times (simulator seeds 70000…; each variant its own stream from
+``--seed``, as when it runs alone): whether a large |error/σ| on one pass is a
+tail draw of an honest σ or a σ that is wrong for that geometry.
+
 Run: ``.venv/bin/python benchmarks/bench_pool_twins.py [--draws 30] [--sessions 10]``
 (full sizes take long on 2 cores; ``--draws 3 --sessions 2`` for a quick look).
 """
@@ -211,6 +221,10 @@ def _summary(label: str, runs: list[dict | None]) -> None:
           f"{np.nanmax(np.abs(z)):.2f}; exit 3: {sum(r['exit3'] for r in runs)}; worse than "
           f"coarse without a flag: {sum(bool(r['worse']) for r in runs)}; every parameter "
           f"within {ROT_DEG}°/{LEVER_MM} mm: {sum(r['within'] for r in runs)}/{len(runs)}")
+    vals = np.abs(z[np.isfinite(z)])
+    print(f"  tails: |e/σ| > 3 in {int((vals > 3).sum())} of {vals.size} values (Gaussian "
+          f"expects {vals.size * 2 * norm.sf(3.0):.2f}), > 3.5 in {int((vals > 3.5).sum())} "
+          f"(expects {vals.size * 2 * norm.sf(3.5):.2f})")
     ok = np.array([r["ok"] for r in runs]).sum(axis=0)
     print(f"  within {ROT_DEG}°/{LEVER_MM} mm or flagged, per parameter: "
           + " ".join(f"{n} {k}/{len(runs)}" for n, k in zip(PARAMS, ok, strict=True))
@@ -219,12 +233,19 @@ def _summary(label: str, runs: list[dict | None]) -> None:
 
 
 # ------------------------------------------------------------------ runs
-def _single(variant: str, draw: int, rng) -> dict:
+def _single_config(variant: str, rng) -> PoolPassConfig:
+    """One pass's configuration of *variant*, drawn from *rng* (the benchmark's stream)."""
     kind = "patent" if variant == "patent" else "prism"
     cfg = random_config(rng, kind, 1)
     if kind == "prism":
         cfg = replace(cfg, target=prism_target(rng, water_level=0.0, **VARIANTS[variant]))
-    sim = simulate_pool_pass(cfg, seed=5000 + draw)
+    return cfg
+
+
+def _single(variant: str, draw: int, rng, cfg: PoolPassConfig | None = None,
+            sim_seed: int | None = None) -> dict:
+    cfg = cfg or _single_config(variant, rng)
+    sim = simulate_pool_pass(cfg, seed=5000 + draw if sim_seed is None else sim_seed)
     t0 = time.perf_counter()
     try:
         res = calibrate(sim["lidar"], sim["mbes"], sim["ins"], sim["setup"], sim["target"],
@@ -234,8 +255,17 @@ def _single(variant: str, draw: int, rng) -> dict:
         return None
     ref = second_opinion([sim["mbes"]], [sim["ins"]], sim["setup"], sim["target"])
     r = _score(res, ref, sim["truth"], sim["setup"])
-    _print(f"{variant} #{draw}", r, time.perf_counter() - t0)
+    label = f"{variant} #{draw}" + ("" if sim_seed is None else f" noise {sim_seed}")
+    _print(label, r, time.perf_counter() - t0)
     return r
+
+
+def _redraws(variant: str, draw: int, n: int, rng) -> list[dict]:
+    """Draw *draw*'s geometry of *variant* with *n* fresh build errors and noise."""
+    for _ in range(draw):
+        _single_config(variant, rng)
+    cfg = _single_config(variant, rng)
+    return [_single(variant, draw, rng, cfg, sim_seed=70000 + k) for k in range(n)]
 
 
 #: Session designs: headings of the four passes (deg from the wall line). "spread": drawn
@@ -321,8 +351,18 @@ def main() -> None:
     parser.add_argument("--no-foreign", action="store_true")
     parser.add_argument("--designs", nargs="*", default=list(DESIGNS), choices=DESIGNS,
                         help="session designs (headings of the four passes)")
+    parser.add_argument("--draw", type=int, help="only this draw of each variant, its "
+                        "noise drawn afresh --noise-seeds times (no sessions, no foreign)")
+    parser.add_argument("--noise-seeds", type=int, default=20)
     args = parser.parse_args()
     rng = np.random.default_rng(args.seed)
+    if args.draw is not None:
+        runs = {v: _redraws(v, args.draw, args.noise_seeds, np.random.default_rng(args.seed))
+                for v in args.variants}
+        print()
+        for variant, rr in runs.items():
+            _summary(f"{variant} #{args.draw} (seed {args.seed}), fresh noise", rr)
+        return
     print("module (joint adjustment) vs second opinion (plain point-to-plane on the design "
           "planes); e/σ for roll pitch yaw x y z")
     if not args.no_foreign:

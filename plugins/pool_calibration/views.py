@@ -19,14 +19,17 @@ from plugins.pool_calibration.cloud_views import face_colour
 #: Face table: stored column -> (header, unit, display scale, format).
 FACE_COLUMNS = {
     "face": ("Face", "", 1, None), "role": ("Role", "", 1, None),
-    "water": ("Water", "", 1, None), "points_laser": ("Laser pts", "", 1, None),
+    "water": ("Water", "", 1, None),
+    # The pairing and the reference first: which plane each face is compared with is what
+    # a surveyor checks before any number, and the panel is too narrow for all columns.
+    "pairing": ("Pairing", "", 1, None),
+    "reference": ("Reference", "", 1, None),
+    "used_for": ("Used for", "", 1, None),
+    "points_laser": ("Laser pts", "", 1, None),
     "points_mbes": ("MBES pts", "", 1, None),
     "rms_laser_m": ("RMS laser", "mm", 1000, "{:.2f}"),
     "rms_mbes_m": ("RMS MBES", "mm", 1000, "{:.2f}"),
     "normal_angle_deg": ("Normal Δ", "°", 1, "{:.3f}"),
-    "used_for": ("Used for", "", 1, None),
-    "reference": ("Reference", "", 1, None),
-    "pairing": ("Pairing", "", 1, None),
     "twin_de_m": ("Twin ΔE", "m", 1, "{:.3f}"), "twin_dn_m": ("Twin ΔN", "m", 1, "{:.3f}"),
     "twin_du_m": ("Twin ΔU", "m", 1, "{:.3f}"),
 }

@@ -2316,8 +2316,8 @@
             <translation>任一点云中点数少于此值的面不予采用</translation>
         </message>
         <message>
-            <source>faces with more points are randomly thinned (seeded)</source>
-            <translation>点数更多的面随机抽稀(固定随机种子)</translation>
+            <source>faces with more points are randomly thinned (seeded); every sounding dropped widens the σ of the result, so the cap is only a bound on memory (a four-pass session's wall holds about 150 000)</source>
+            <translation>点数更多的面随机抽稀(固定随机种子);每舍去一个测深点,结果的 σ 都会变大,因此该上限仅用于限制内存(四个测次的墙面约有 150 000 个点)</translation>
         </message>
         <message>
             <source>factor on the std of the GNSS file</source>

@@ -258,3 +258,54 @@ def test_soundings_at_a_block_foot_do_not_bias_the_plinth_top():
     assert abs(pts[idx, 2].mean() + 2.0) < 4e-4
     side = seg["block_side"].indices
     assert len(side) > 3000 and abs(pts[side, 0].mean() + 0.5) < 5e-4
+
+
+def test_ins_sigma_agrees_with_monte_carlo_on_a_fixed_selection(monkeypatch):
+    """The INS part of σ is a linear propagation (``ins_cov``): redraw the Gauss-Markov
+    attitude errors of the log many times, keep the pass's selection and reference planes,
+    re-adjust, and the spread of the solution must be what the budget says — for every
+    parameter the INS moves visibly (the full chain: Slerp at the ping times, the per-ping
+    derivatives, the augmented normal matrix with the twins' build displacements)."""
+    from hydrosync_core.methods.pool_calibration import joint as jointmod
+    from hydrosync_core.methods.pool_calibration import solve as solvemod
+    from hydrosync_core.methods.pool_calibration.simulate import _gauss_markov
+
+    sigma_deg, tau = 0.01, 1.5
+    cfg = PoolPassConfig(**dict(FAST, target_kind="patent", ping_rate_hz=10.0, speed_m_s=0.8,
+                                ins_attitude_noise_deg=sigma_deg, ins_noise_tau_s=tau))
+    sim = simulate_pool_pass(cfg, seed=5)
+    seen = {}
+
+    def spy(ctx, obs, *args, **kw):
+        seen.update(obs=obs, kw=kw)
+        return adjust(ctx, obs, *args, **kw)
+
+    adjust = jointmod.adjust
+    monkeypatch.setattr(solvemod, "adjust", spy)
+    params = PoolParams(ins_sigma_deg=(sigma_deg,) * 3, ins_tau_s=tau)
+    res = calibrate(sim["lidar"], sim["mbes"], sim["ins"], sim["setup"], sim["target"], params)
+    kw = dict(seen["kw"], covariance=False)
+    r0 = georef.boresight_matrix(*np.deg2rad([res.boresight_deg[k] for k in
+                                              ("roll", "pitch", "yaw")]))
+    l0 = np.array([res.lever_arm_m[k] for k in "xyz"])
+    budget = np.array([res.joint.sigma_budget["ins"][k] for k in
+                       ("roll", "pitch", "yaw", "lever_x", "lever_y", "lever_z")], float)
+    budget[:3] = np.deg2rad(budget[:3])
+    rng = np.random.default_rng(11)
+    draws = []
+    for _ in range(30):
+        ins = dict(sim["ins"])
+        err = _gauss_markov(len(ins["time"]), cfg, rng)
+        for j, key in enumerate(("roll", "pitch", "heading")):
+            ins[key] = np.asarray(ins[key]) + err[:, j]
+        fit = adjust(georef.prepare(sim["mbes"], ins), seen["obs"], r0, l0, **kw)
+        draws.append([*georef.boresight_angles(fit.r_m), *fit.lever])
+    spread = np.std(draws, axis=0, ddof=1)
+    ratio = spread / budget
+    # 30 draws: the spread of a σ is known to ±13 % (1σ); ±50 % is beyond 3.8σ.
+    j = res.joint
+    total = np.array([*np.deg2rad([j.sigma_boresight_deg[k] for k in ("roll", "pitch", "yaw")]),
+                      *[j.sigma_lever_arm_m[k] for k in "xyz"]])
+    visible = budget > 0.2 * total
+    assert visible.sum() >= 3, budget
+    assert np.all((ratio[visible] > 0.5) & (ratio[visible] < 1.5)), ratio

@@ -148,8 +148,10 @@ class PoolParams(Params):
         0.5, label="Cluster distance (multibeam)", unit="m", minimum=0.001, maximum=10.0,
         group=SEG, advanced=True, help="DBSCAN neighbourhood of the sounding face clusters")
     max_points_per_face: int = param(
-        20000, label="Max points per face", minimum=100, maximum=100_000_000, group=SEG,
-        advanced=True, help="faces with more points are randomly thinned (seeded)")
+        200_000, label="Max points per face", minimum=100, maximum=100_000_000, group=SEG,
+        advanced=True, help="faces with more points are randomly thinned (seeded); every "
+                            "sounding dropped widens the σ of the result, so the cap is only a "
+                            "bound on memory (a four-pass session's wall holds about 150 000)")
     laser_voxel_m: float = param(
         0.02, label="Laser voxel size", unit="m", minimum=0.0, maximum=1.0, decimals=4,
         group=SEG, advanced=True, help="voxel down-sampling of very large laser clouds "

@@ -283,8 +283,9 @@ def test_segment_then_run_in_worker(panel, demo, qtbot, tmp_path):
     model = panel.face_table.model()
     assert model.rowCount() == len(panel.segmentation.design)
     wall = list(faces["face"]).index("wall")
-    assert int(model.text(wall, 3)) == len(panel.segmentation.laser_points["wall"]) > 1000
-    assert int(model.text(wall, 4)) == len(panel.segmentation.mbes_faces["wall"]) > 1000
+    laser_col, mbes_col = (list(FACE_COLUMNS).index(k) for k in ("points_laser", "points_mbes"))
+    assert int(model.text(wall, laser_col)) == len(panel.segmentation.laser_points["wall"]) > 1000
+    assert int(model.text(wall, mbes_col)) == len(panel.segmentation.mbes_faces["wall"]) > 1000
     assert panel.cloud_box.stack.currentWidget() is panel.cloud_view
     assert any(s.startswith("Segmentation: wall") for s in statuses)
     assert not panel.after_radio.isEnabled()  # no corrected soundings yet

@@ -172,10 +172,9 @@ def georeference(ctx: GeorefContext, r_m: np.ndarray, lever: np.ndarray,
     return out
 
 
-def sensor_heads(ctx: GeorefContext, lever: np.ndarray,
-                 select: np.ndarray | None = None) -> np.ndarray:
-    """ENU position (n, 3) m of the multibeam head at each kept sounding's ping (or the
-    subset *select*): ``o + (C R_b) l_b``, where its beam starts."""
-    idx = np.arange(len(ctx.x_m)) if select is None else np.asarray(select)
-    p = ctx.ping[idx]
-    return ctx.origin[p] + np.einsum("nij,j->ni", ctx.rot[p], np.asarray(lever, float))
+def sensor_heads(ctx: GeorefContext, lever: np.ndarray) -> np.ndarray:
+    """ENU position (n, 3) m of the multibeam head at each kept sounding's ping,
+    ``o + (C R_b) l_b``, where its beam starts (computed once per ping, then repeated for
+    its soundings)."""
+    per_ping = ctx.origin + ctx.rot @ np.asarray(lever, float)
+    return per_ping[ctx.ping]

@@ -252,6 +252,10 @@ def main(argv: list[str] | None = None) -> int:
                 raise KeyboardInterrupt
             return code
         except InputError as exc:
+            if interrupts.interrupted():  # e.g. h5py's lock turned a Ctrl-C into a "corrupted
+                _ignore_further_interrupts(in_main_thread)  # project": the file is intact
+                print(_interrupt_message(command), file=sys.stderr)
+                return _end_interrupted(in_main_thread, loading=command == "hydrosync")
             print(f"{command}: {exc.one_line()}", file=sys.stderr)
             return EXIT_INPUT
         except BrokenPipeError:  # ``hydrosync info P.h5 | head``: the reader left, as
@@ -260,12 +264,12 @@ def main(argv: list[str] | None = None) -> int:
         except (Cancelled, KeyboardInterrupt):
             _ignore_further_interrupts(in_main_thread)
             print(_interrupt_message(command), file=sys.stderr)
-            return EXIT_INTERRUPTED
+            return _end_interrupted(in_main_thread, loading=command == "hydrosync")
         except Exception as exc:
             if interrupts.interrupted():  # a Ctrl-C a library turned into another error
                 _ignore_further_interrupts(in_main_thread)
                 print(_interrupt_message(command), file=sys.stderr)
-                return EXIT_INTERRUPTED
+                return _end_interrupted(in_main_thread, loading=command == "hydrosync")
             if atomic.is_disk_full(exc):  # a write outside the atomic helpers
                 target = getattr(exc, "filename", None) or "an output file"
                 print(f"{command}: {atomic.disk_full(target).one_line()}", file=sys.stderr)
@@ -286,6 +290,26 @@ def main(argv: list[str] | None = None) -> int:
             # The command is over: a Ctrl-C while the interpreter shuts down must neither
             # kill it silently nor print anything (Python keeps SIG_IGN through shutdown).
             signal.signal(signal.SIGINT, signal.SIG_IGN)
+
+
+def _end_interrupted(in_main_thread: bool, loading: bool) -> int:
+    """Exit code of an interrupted command; a ``hydrosync`` process interrupted while its
+    modules load (*loading*: before the command started) ends here, at once.
+
+    A Ctrl-C that lands inside an import (the parser loads the command modules) can leave a
+    compiled extension half initialised, and the interpreter's shutdown may then crash in
+    it: exit -11 after the right message (``tests/reliability/test_signals.py``). Before
+    the command starts nothing is open and nothing can have been saved, so, as the handler
+    installed while the first modules load does, the process skips the shutdown. Later the
+    shutdown runs as usual (it closes projects and releases their locks); an in-process
+    caller (the GUI, a test) always gets the code back.
+    """
+    if loading and in_main_thread and _started_as_command():
+        for stream in (sys.stdout, sys.stderr):
+            with contextlib.suppress(Exception):
+                stream.flush()
+        os._exit(EXIT_INTERRUPTED)
+    return EXIT_INTERRUPTED
 
 
 def _break_lock_option(argv: list[str]) -> tuple[bool, list[str]]:

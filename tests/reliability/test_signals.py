@@ -122,6 +122,33 @@ def test_interrupt_turned_into_import_error_is_still_an_interrupt(tmp_path, monk
     assert "ImportError" not in err
 
 
+def test_interrupt_turned_into_a_corrupted_project_is_still_an_interrupt(tmp_path,
+                                                                         monkeypatch, capsys):
+    """A Ctrl-C inside h5py's lock comes out as SystemError ("... returned a result with an
+    exception set"), which the opener reports as a corrupted project: the file is intact,
+    so it is exit 130 and the interrupt message, never "corrupted project" and exit 2."""
+    from hydrosync_core.errors import InputError
+
+    path = tmp_path / "P.h5"
+    Project.new("x").save(path)
+    before = digest(path)
+
+    def open_interrupted_inside_h5py(*args, **kwargs):
+        try:
+            os.kill(os.getpid(), signal.SIGINT)
+            time.sleep(0.5)  # the handler raises KeyboardInterrupt here
+        except KeyboardInterrupt:
+            raise InputError(str(path), "corrupted project (<cyfunction FastRLock.__exit__> "
+                             "returned a result with an exception set)") from None
+
+    monkeypatch.setattr(Project, "open", staticmethod(open_interrupted_inside_h5py))
+    assert main(["vessel", str(path), "--set", "gnss", "1", "2", "3"]) == 130
+    err = capsys.readouterr().err
+    assert stderr_lines(err) == ["hydrosync vessel: interrupted (Ctrl-C): cancelled, nothing "
+                                 "was saved"]
+    assert digest(path) == before
+
+
 def test_interrupt_right_after_the_save_says_saved(tmp_path, monkeypatch, capsys):
     """The rename and its record are one step for Ctrl-C: a signal there is deferred."""
     path = tmp_path / "P.h5"
